@@ -1,0 +1,149 @@
+// The whole finger: pressure in, joint angles and backbone out (MODEL.md stages 1-6).
+//
+// Only what a scene needs is computed:
+//  - chambers with identical (L, b, c, mu) share one solve per pressure;
+//  - an unchanged pressure returns the cached state without any work;
+//  - the state is allocated once, at construction, and evaluation never allocates.
+#pragma once
+
+#include <Eigen/Core>
+
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/parameters.hpp"
+#include "pneumatic_finger/stages.hpp"
+
+namespace pneumatic_finger {
+
+/// Which solver turns pressure into half angles.
+enum class SolverKind {
+  kRobust,  ///< default: cancellation-free stages, safeguarded Newton; within 1e-12 rad of the reference
+  kPaper,   ///< the paper's closed forms (eq 10-12 Cardano, eq 16-35 Ferrari) with Wang's root check
+  kTable,   ///< piecewise polynomial of theta(sqrt(P)) built at construction; robust solver outside its range
+};
+
+/// "robust", "paper" or "table".
+const char* solverName(SolverKind kind);
+
+/// Parses a solver name. @throws ParameterError naming the unknown solver and the known ones.
+SolverKind parseSolverName(const std::string& name);
+
+/// Options of the model that are not properties of the actuator.
+struct ModelOptions {
+  SolverKind solver = SolverKind::kRobust;
+  /// Upper end of the table solver's pressure range (Pa gauge); above it the robust solver answers.
+  double table_max_gauge_pa = 3.0e5;
+  /// Largest |theta_table - theta_robust| the table may have on its check grid (rad); segments double until met.
+  double table_tolerance_rad = 5e-13;
+  /// Fill stretch and bulge even when the solver does not need them (the table solver skips the chain).
+  bool chamber_detail = true;
+};
+
+/// Outcome of one evaluation.
+enum class EvaluationStatus {
+  kOk,            ///< pressure in the model's domain
+  kVacuum,        ///< gauge < 0: outside the model; the straight (rest) finger is returned
+  kNotFinite,     ///< NaN or infinite pressure: refused, the previous state is kept
+};
+
+/// Everything the model says about the finger at one pressure. Sized once for N chambers.
+struct FingerState {
+  double gauge_pa = 0.0;                 ///< pressure the state was computed for (Pa, gauge; 0 for vacuum)
+  Eigen::VectorXd stretch;               ///< lambda_n per chamber (-)
+  Eigen::VectorXd bulge_m;               ///< h_n per chamber (m)
+  Eigen::VectorXd half_angle_rad;        ///< theta_n per chamber (rad)
+  Eigen::VectorXd joint_angle_rad;       ///< q_n = theta_{n-1} + theta_n, n = 1..N (rad)
+  Eigen::Matrix2Xd backbone_m;           ///< O_0 .. O_{N+1} as columns (m); O_{N+1} is the tip
+  double tip_angle_rad = 0.0;            ///< Theta_N: direction of the last segment = sum of joint angles
+  bool in_contact = false;               ///< some wall pair pushes (theta_n > 0)
+  EvaluationStatus status = EvaluationStatus::kOk;
+
+  /// Tip position O_{N+1}.
+  Eigen::Vector2d tip() const { return backbone_m.col(backbone_m.cols() - 1); }
+};
+
+class FingerModel {
+ public:
+  /// Builds the model; the table solver also builds its table here (a few milliseconds).
+  explicit FingerModel(const FingerParameters& parameters, const ModelOptions& options = ModelOptions());
+
+  /// Evaluates the finger at @p gauge_pa. Returns the model's own state, which stays valid until the next call.
+  /// The same pressure as the previous call returns at once. NaN/inf: status kNotFinite and the previous numbers;
+  /// negative: status kVacuum and the rest shape.
+  const FingerState& evaluate(double gauge_pa);
+
+  /// The state of the last evaluation (the rest shape before any).
+  const FingerState& state() const { return state_; }
+
+  const FingerParameters& parameters() const { return parameters_; }
+  const ModelOptions& options() const { return options_; }
+  int chamberCount() const { return parameters_.chamber_count; }
+
+  /// Number of distinct chamber geometries solved per pressure (1 for identical chambers).
+  int distinctChamberCount() const { return static_cast<int>(groups_.size()); }
+
+  /// How many evaluations did real work (the rest were answered from the cache of the unchanged pressure).
+  long computationCount() const { return computations_; }
+
+  /// Gauge pressure (Pa) at which the first wall pair touches (theta leaves 0).
+  double contactGaugePa() const { return contact_gauge_pa_; }
+
+  /// Largest |theta_table - theta_robust| measured on the table's check grid (rad); 0 for other solvers.
+  double tableMeasuredErrorRad() const { return table_error_rad_; }
+
+  /// Segments per distinct chamber in the table (0 for other solvers).
+  int tableSegmentCount() const;
+
+  /// Inverse model: the gauge pressure (Pa) at which the tip direction Theta_N reaches @p tip_angle_rad.
+  /// @param[out] gauge_pa the pressure, when reachable
+  /// @param[out] message why not, otherwise
+  /// @return false when the angle is negative, not finite, or beyond what any pressure up to @p max_gauge_pa gives
+  bool gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, double& gauge_pa, std::string& message) const;
+
+  /// Tip direction Theta_N at @p gauge_pa without touching the cached state (for inversion and calibration).
+  double tipAngleAt(double gauge_pa) const;
+
+ private:
+  struct ChamberGroup {
+    double chamber_height_m, wall_critical_height_m, chamber_gap_m, shear_modulus_pa;
+    double contact_gauge_pa;
+    // Table solver: per segment, 8 monomial coefficients (in the local variable x in [-1, 1]) for each of
+    // theta, cos(theta), sin(theta), interleaved so one segment is one cache line pair.
+    std::vector<double> table;
+    double table_u_begin = 0.0, table_u_end = 0.0, table_inv_width = 0.0;
+    int table_segments = 0;
+  };
+
+  struct GroupResult {
+    double stretch, bulge_m;
+    HalfAngle half;
+  };
+
+  GroupResult solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const;
+  void buildTable(ChamberGroup& group);
+  void writeState(double gauge_pa, FingerState& out) const;
+
+  FingerParameters parameters_;
+  ModelOptions options_;
+  std::vector<ChamberGroup> groups_;
+  std::vector<int> group_of_chamber_;
+  double contact_gauge_pa_ = 0.0;
+  double table_error_rad_ = 0.0;
+  FingerState state_;
+  bool has_last_ = false;
+  long computations_ = 0;
+  double last_gauge_pa_ = 0.0;
+  // Scratch for writeState: per-group results, sized at construction (no allocation per evaluation).
+  mutable std::vector<GroupResult> scratch_;
+};
+
+/// Gauge pressure (Pa) at which a chamber's bulge reaches its gap (the contact pressure): the inverse chain
+/// h = c -> delta -> g -> P, all in closed form.
+double contactGaugePa(double chamber_height_m, double chamber_gap_m, double shear_modulus_pa,
+                      double atmospheric_pa);
+
+/// Inverse stages 3 -> 1: the gauge pressure (Pa) that produces bulge @p bulge_m (m).
+double gaugeForBulge(double bulge_m, double chamber_height_m, double shear_modulus_pa, double atmospheric_pa);
+
+}  // namespace pneumatic_finger

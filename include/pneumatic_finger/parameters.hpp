@@ -1,0 +1,95 @@
+// The actuator's parameters: the one definition of every key (name, symbol, unit, default, allowed range),
+// read by the model library, the command-line tools, the ROS node and the generated docs alike.
+//
+// Keys and symbols follow ../shared/MODEL.md ("Geometry and parameters"). The defaults are the calibrated
+// actuator of Sierra & Ordonez-Avila 2022 (see docs/ACCURACY.md and config/finger.yaml, which
+// finger_calibrate writes and a test keeps equal to this table).
+#pragma once
+
+#include <cstddef>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace pneumatic_finger {
+
+/// Thrown when a parameter is missing its form, has a wrong type, or lies outside its allowed range.
+/// The message always names the key, the offending value and what is allowed.
+class ParameterError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// How a key may be given.
+enum class ParameterShape {
+  kScalar,         ///< one number
+  kScalarInteger,  ///< one whole number
+  kPerChamber,     ///< one number for all chambers, or a list of exactly chamber_count numbers
+};
+
+/// The definition of one key: everything the library, the tools, the node and the docs know about it.
+struct ParameterSpec {
+  const char* key;          ///< YAML / rosparam key
+  const char* symbol;       ///< symbol in MODEL.md and the paper
+  const char* unit;         ///< SI unit, "-" when dimensionless
+  double default_value;     ///< value used when the key is absent
+  double min_value;         ///< lower bound of the allowed range
+  bool min_inclusive;       ///< whether min_value itself is allowed
+  double max_value;         ///< upper bound of the allowed range (always inclusive)
+  ParameterShape shape;     ///< scalar, integer or per-chamber
+  const char* description;  ///< one line for docs and --help
+};
+
+/// All keys, in the order of MODEL.md's table.
+const std::vector<ParameterSpec>& parameterSpecs();
+
+/// The spec of @p key, or nullptr when no such key exists.
+const ParameterSpec* findParameterSpec(const std::string& key);
+
+/// A value as it arrives from YAML, rosparam or the command line, before validation:
+/// either one number or a list of numbers.
+struct RawParameterValue {
+  std::vector<double> values;  ///< one entry for a scalar
+  bool is_list = false;        ///< true when given as a list (even of length 1)
+};
+
+/// key -> raw value; keys not present take their default.
+using RawParameterMap = std::map<std::string, RawParameterValue>;
+
+/// The validated actuator. Per-chamber quantities always have chamber_count entries (a scalar is expanded).
+struct FingerParameters {
+  int chamber_count = 0;                         ///< N
+  std::vector<double> chamber_height_m;          ///< L_n
+  std::vector<double> wall_critical_height_m;    ///< b_n
+  std::vector<double> chamber_gap_m;             ///< c_n
+  std::vector<double> chamber_thickness_m;       ///< d_n
+  std::vector<double> chamber_width_m;           ///< e_n
+  std::vector<double> segment_length_m;          ///< Z_n, n = 1..N (segment n carries chamber n)
+  double base_segment_length_m = 0.0;            ///< Z0
+  std::vector<double> shear_modulus_pa;          ///< mu_n
+  double atmospheric_pressure_pa = 0.0;          ///< P_o
+
+  /// The defaults of parameterSpecs() (the calibrated paper actuator).
+  static FingerParameters defaults();
+
+  /// Validates @p raw against parameterSpecs() and builds the actuator.
+  /// @throws ParameterError naming the key, the value and the allowed range, for an unknown key, a wrong shape,
+  ///         a list of the wrong length, a non-finite or out-of-range value, or inconsistent geometry (b > L).
+  static FingerParameters fromRaw(const RawParameterMap& raw);
+
+  /// The same actuator as a raw map (lists collapsed to scalars where all entries are equal).
+  RawParameterMap toRaw() const;
+};
+
+/// Parses "KEY=VALUE" or "KEY=[v1,v2,...]" (as given to --set) into @p raw.
+/// @throws ParameterError for a malformed assignment, an unknown key or a value that is not a number.
+void parseParameterAssignment(const std::string& assignment, RawParameterMap& raw);
+
+/// Formats a number with 17 significant digits (round-trip exact), as every tool prints numbers.
+std::string formatExact(double value);
+
+/// Describes the allowed range of @p spec, e.g. "(0, 1]" or "integer in [1, 64]".
+std::string describeRange(const ParameterSpec& spec);
+
+}  // namespace pneumatic_finger

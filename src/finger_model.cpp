@@ -1,0 +1,357 @@
+#include "pneumatic_finger/finger_model.hpp"
+
+#include <algorithm>
+#include <array>
+#include <limits>
+#include <cmath>
+#include <sstream>
+
+namespace pneumatic_finger {
+
+namespace {
+
+constexpr int kTableDegree = 7;                   // per-segment polynomial degree
+constexpr int kTableNodes = kTableDegree + 1;     // Chebyshev nodes per segment
+constexpr int kTableFunctions = 3;                // theta, cos(theta), sin(theta)
+constexpr int kTableStride = kTableNodes * kTableFunctions;
+constexpr int kTableMaxSegments = 4096;
+constexpr double kPi = 3.14159265358979323846;
+
+// Chebyshev interpolation of f on [-1, 1] at the kTableNodes first-kind nodes, converted to monomial
+// coefficients (index = power). Degree 7 keeps the conversion well conditioned (|coefficients| grow by < 2^7).
+template <typename F>
+std::array<double, kTableNodes> monomialInterpolant(F&& f) {
+  std::array<double, kTableNodes> values{};
+  for (int j = 0; j < kTableNodes; ++j) values[j] = f(std::cos(kPi * (j + 0.5) / kTableNodes));
+  std::array<double, kTableNodes> cheb{};
+  for (int k = 0; k < kTableNodes; ++k) {
+    double sum = 0.0;
+    for (int j = 0; j < kTableNodes; ++j) sum += values[j] * std::cos(kPi * k * (j + 0.5) / kTableNodes);
+    cheb[k] = (k == 0 ? 1.0 : 2.0) * sum / kTableNodes;
+  }
+  // Monomial coefficients of T_k by the recurrence T_{k+1} = 2x T_k - T_{k-1}.
+  std::array<std::array<double, kTableNodes>, kTableNodes> t{};
+  t[0][0] = 1.0;
+  t[1][1] = 1.0;
+  for (int k = 1; k + 1 < kTableNodes; ++k) {
+    for (int i = 0; i < kTableNodes; ++i) {
+      t[k + 1][i] = (i > 0 ? 2.0 * t[k][i - 1] : 0.0) - t[k - 1][i];
+    }
+  }
+  std::array<double, kTableNodes> mono{};
+  for (int k = 0; k < kTableNodes; ++k) {
+    for (int i = 0; i < kTableNodes; ++i) mono[i] += cheb[k] * t[k][i];
+  }
+  return mono;
+}
+
+}  // namespace
+
+const char* solverName(SolverKind kind) {
+  switch (kind) {
+    case SolverKind::kRobust: return "robust";
+    case SolverKind::kPaper: return "paper";
+    case SolverKind::kTable: return "table";
+  }
+  return "robust";
+}
+
+SolverKind parseSolverName(const std::string& name) {
+  for (SolverKind k : {SolverKind::kRobust, SolverKind::kPaper, SolverKind::kTable}) {
+    if (name == solverName(k)) return k;
+  }
+  throw ParameterError("unknown solver '" + name + "'; known solvers: robust, paper, table");
+}
+
+double gaugeForBulge(double bulge_m, double chamber_height_m, double shear_modulus_pa, double atmospheric_pa) {
+  if (!(bulge_m > 0.0)) return 0.0;
+  // Stage 3 inverted: sqrt(2 lambda^2 - 1) = 1 + x with x = 2h/L, so lambda^2 - 1 = x (2 + x)/2.
+  const double x = 2.0 * bulge_m / chamber_height_m;
+  const double lambda_sq_m1 = 0.5 * x * (2.0 + x);
+  const double delta = lambda_sq_m1 / (std::sqrt(1.0 + lambda_sq_m1) + 1.0);
+  // Stage 2 inverted: g = delta^2 (3 + delta)/(1 + delta).
+  const double g = delta * delta * (3.0 + delta) / (1.0 + delta);
+  // Stage 1 inverted: P^2 + 2 P_o P - g P_o mu = 0, positive root without cancellation.
+  const double gpm = g * atmospheric_pa * shear_modulus_pa;
+  return gpm / (atmospheric_pa + std::sqrt(atmospheric_pa * atmospheric_pa + gpm));
+}
+
+double contactGaugePa(double chamber_height_m, double chamber_gap_m, double shear_modulus_pa,
+                      double atmospheric_pa) {
+  return gaugeForBulge(chamber_gap_m, chamber_height_m, shear_modulus_pa, atmospheric_pa);
+}
+
+FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions& options)
+    : parameters_(parameters), options_(options) {
+  const int n = parameters_.chamber_count;
+  group_of_chamber_.resize(static_cast<std::size_t>(n));
+  contact_gauge_pa_ = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    ChamberGroup g{parameters_.chamber_height_m[k], parameters_.wall_critical_height_m[k],
+                   parameters_.chamber_gap_m[k], parameters_.shear_modulus_pa[k], 0.0, {}, 0, 0, 0, 0};
+    auto same = [&g](const ChamberGroup& o) {
+      return o.chamber_height_m == g.chamber_height_m && o.wall_critical_height_m == g.wall_critical_height_m &&
+             o.chamber_gap_m == g.chamber_gap_m && o.shear_modulus_pa == g.shear_modulus_pa;
+    };
+    auto it = std::find_if(groups_.begin(), groups_.end(), same);
+    if (it == groups_.end()) {
+      g.contact_gauge_pa = pneumatic_finger::contactGaugePa(g.chamber_height_m, g.chamber_gap_m, g.shear_modulus_pa,
+                                          parameters_.atmospheric_pressure_pa);
+      groups_.push_back(g);
+      it = groups_.end() - 1;
+    }
+    group_of_chamber_[k] = static_cast<int>(it - groups_.begin());
+    contact_gauge_pa_ = std::min(contact_gauge_pa_, it->contact_gauge_pa);
+  }
+  if (options_.solver == SolverKind::kTable) {
+    for (auto& g : groups_) buildTable(g);
+  }
+  state_.stretch = Eigen::VectorXd::Ones(n);
+  state_.bulge_m = Eigen::VectorXd::Zero(n);
+  state_.half_angle_rad = Eigen::VectorXd::Zero(n);
+  state_.joint_angle_rad = Eigen::VectorXd::Zero(n);
+  state_.backbone_m = Eigen::Matrix2Xd::Zero(2, n + 2);
+  scratch_.resize(groups_.size());
+  writeState(0.0, state_);
+}
+
+int FingerModel::tableSegmentCount() const {
+  int most = 0;
+  for (const auto& g : groups_) most = std::max(most, g.table_segments);
+  return most;
+}
+
+void FingerModel::buildTable(ChamberGroup& group) {
+  const double u_begin = std::sqrt(group.contact_gauge_pa);
+  const double u_end = std::sqrt(options_.table_max_gauge_pa);
+  if (!(u_end > u_begin)) return;  // never in contact within the table's range: theta = 0 or robust above
+  const double b = group.wall_critical_height_m, c = group.chamber_gap_m;
+  auto exact = [&](double u) {
+    const double g = energyGroup(u * u, parameters_.atmospheric_pressure_pa, group.shear_modulus_pa);
+    return halfAngle(bulge(stretchExcess(g), group.chamber_height_m), c, b);
+  };
+  double achieved = 0.0;
+  for (int segments = 8; segments <= kTableMaxSegments; segments *= 2) {
+    const double width = (u_end - u_begin) / segments;
+    group.table.assign(static_cast<std::size_t>(segments) * kTableStride, 0.0);
+    for (int s = 0; s < segments; ++s) {
+      const double u0 = u_begin + s * width;
+      const auto at = [&](double x) { return exact(u0 + 0.5 * (x + 1.0) * width); };
+      const auto theta = monomialInterpolant([&](double x) { return at(x).rad; });
+      const auto cosine = monomialInterpolant([&](double x) { return at(x).cos; });
+      const auto sine = monomialInterpolant([&](double x) { return at(x).sin; });
+      double* row = &group.table[static_cast<std::size_t>(s) * kTableStride];
+      for (int i = 0; i < kTableNodes; ++i) {
+        row[i * kTableFunctions + 0] = theta[static_cast<std::size_t>(i)];
+        row[i * kTableFunctions + 1] = cosine[static_cast<std::size_t>(i)];
+        row[i * kTableFunctions + 2] = sine[static_cast<std::size_t>(i)];
+      }
+    }
+    group.table_u_begin = u_begin;
+    group.table_u_end = u_end;
+    group.table_inv_width = 1.0 / width;
+    group.table_segments = segments;
+    // Measure, do not assume: compare with the robust solver at 9 interior points of every segment
+    // (none of them an interpolation node) plus both ends.
+    achieved = 0.0;
+    for (int s = 0; s < segments; ++s) {
+      for (int j = 0; j <= 10; ++j) {
+        const double u = u_begin + (s + j / 10.0) * width;
+        const double p = u * u;
+        const HalfAngle want = exact(u);
+        const GroupResult got = solveGroup(group, p, false);
+        achieved = std::max({achieved, std::fabs(got.half.rad - want.rad), std::fabs(got.half.cos - want.cos),
+                             std::fabs(got.half.sin - want.sin)});
+      }
+    }
+    if (achieved <= options_.table_tolerance_rad) break;
+  }
+  table_error_rad_ = std::max(table_error_rad_, achieved);
+}
+
+FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const {
+  GroupResult r{1.0, 0.0, HalfAngle{}};
+  const double p_o = parameters_.atmospheric_pressure_pa;
+  switch (options_.solver) {
+    case SolverKind::kRobust: {
+      const double delta = stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa));
+      r.stretch = 1.0 + delta;
+      r.bulge_m = bulge(delta, group.chamber_height_m);
+      r.half = halfAngle(r.bulge_m, group.chamber_gap_m, group.wall_critical_height_m);
+      return r;
+    }
+    case SolverKind::kPaper: {
+      r.stretch = paper::stretch(energyGroup(gauge_pa, p_o, group.shear_modulus_pa));
+      r.bulge_m = paper::bulge(r.stretch, group.chamber_height_m);
+      const double theta = paper::halfAngle(r.bulge_m, group.chamber_gap_m, group.wall_critical_height_m);
+      r.half.rad = theta;
+      r.half.cos = std::cos(theta);
+      r.half.sin = std::sin(theta);
+      return r;
+    }
+    case SolverKind::kTable: {
+      if (detail) {
+        const double delta = stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa));
+        r.stretch = 1.0 + delta;
+        r.bulge_m = bulge(delta, group.chamber_height_m);
+      }
+      if (gauge_pa <= group.contact_gauge_pa) return r;  // walls apart: theta = 0 exactly
+      const double u = std::sqrt(gauge_pa);
+      if (!(u <= group.table_u_end) || group.table_segments == 0) {
+        const double delta = stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa));
+        r.half = halfAngle(bulge(delta, group.chamber_height_m), group.chamber_gap_m, group.wall_critical_height_m);
+        return r;
+      }
+      const double pos = (u - group.table_u_begin) * group.table_inv_width;
+      int s = static_cast<int>(pos);
+      s = std::min(std::max(s, 0), group.table_segments - 1);
+      const double x = 2.0 * (pos - s) - 1.0;
+      const double* row = &group.table[static_cast<std::size_t>(s) * kTableStride];
+      double th = row[kTableDegree * kTableFunctions + 0];
+      double co = row[kTableDegree * kTableFunctions + 1];
+      double si = row[kTableDegree * kTableFunctions + 2];
+      for (int i = kTableDegree - 1; i >= 0; --i) {
+        th = th * x + row[i * kTableFunctions + 0];
+        co = co * x + row[i * kTableFunctions + 1];
+        si = si * x + row[i * kTableFunctions + 2];
+      }
+      // Near contact the interpolant may dip a rounding error below 0: theta is 0 there by definition.
+      if (th < 0.0) {
+        th = 0.0;
+        co = 1.0;
+        si = 0.0;
+      }
+      r.half.rad = th;
+      r.half.cos = co;
+      r.half.sin = si;
+      return r;
+    }
+  }
+  return r;
+}
+
+void FingerModel::writeState(double gauge_pa, FingerState& out) const {
+  const bool detail = options_.chamber_detail;
+  for (std::size_t g = 0; g < groups_.size(); ++g) scratch_[g] = solveGroup(groups_[g], gauge_pa, detail);
+  const int n = parameters_.chamber_count;
+  // Stages 5-6: q_n = theta_{n-1} + theta_n; Theta_n = Theta_{n-1} + q_n; O_{n+1} = O_n + Z_n (cos, sin)(Theta_n).
+  // The direction is carried as a unit complex number and rotated by (cos, sin) of both half angles, so the
+  // whole backbone costs no trigonometric call.
+  double theta_prev = 0.0, cos_prev = 1.0, sin_prev = 0.0;
+  double dir_c = 1.0, dir_s = 0.0, tip_angle = 0.0;
+  double x = parameters_.base_segment_length_m, y = 0.0;
+  bool contact = false;
+  out.backbone_m(0, 0) = 0.0;
+  out.backbone_m(1, 0) = 0.0;
+  out.backbone_m(0, 1) = x;
+  out.backbone_m(1, 1) = y;
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const GroupResult& r = scratch_[static_cast<std::size_t>(group_of_chamber_[k])];
+    out.stretch[i] = r.stretch;
+    out.bulge_m[i] = r.bulge_m;
+    out.half_angle_rad[i] = r.half.rad;
+    contact = contact || r.half.rad > 0.0;
+    const double q = theta_prev + r.half.rad;
+    out.joint_angle_rad[i] = q;
+    tip_angle += q;
+    const double rot_c = cos_prev * r.half.cos - sin_prev * r.half.sin;
+    const double rot_s = sin_prev * r.half.cos + cos_prev * r.half.sin;
+    const double c_new = dir_c * rot_c - dir_s * rot_s;
+    dir_s = dir_s * rot_c + dir_c * rot_s;
+    dir_c = c_new;
+    const double z = parameters_.segment_length_m[k];
+    x += z * dir_c;
+    y += z * dir_s;
+    out.backbone_m(0, i + 2) = x;
+    out.backbone_m(1, i + 2) = y;
+    theta_prev = r.half.rad;
+    cos_prev = r.half.cos;
+    sin_prev = r.half.sin;
+  }
+  out.tip_angle_rad = tip_angle;
+  out.in_contact = contact;
+  out.gauge_pa = gauge_pa;
+}
+
+const FingerState& FingerModel::evaluate(double gauge_pa) {
+  if (!std::isfinite(gauge_pa)) {
+    state_.status = EvaluationStatus::kNotFinite;
+    has_last_ = false;  // the next finite pressure recomputes and resets the status
+    return state_;
+  }
+  if (has_last_ && gauge_pa == last_gauge_pa_) return state_;  // unchanged pressure: nothing to do
+  const bool vacuum = gauge_pa < 0.0;
+  writeState(vacuum ? 0.0 : gauge_pa, state_);
+  ++computations_;
+  state_.gauge_pa = gauge_pa;
+  state_.status = vacuum ? EvaluationStatus::kVacuum : EvaluationStatus::kOk;
+  has_last_ = true;
+  last_gauge_pa_ = gauge_pa;
+  return state_;
+}
+
+double FingerModel::tipAngleAt(double gauge_pa) const {
+  // Theta_N = sum_n q_n = 2 sum_n theta_n - theta_N.
+  double sum = 0.0, last = 0.0;
+  for (std::size_t g = 0; g < groups_.size(); ++g) scratch_[g] = solveGroup(groups_[g], gauge_pa, false);
+  for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
+    last = scratch_[static_cast<std::size_t>(group_of_chamber_[k])].half.rad;
+    sum += last;
+  }
+  return 2.0 * sum - last;
+}
+
+bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, double& gauge_pa,
+                                   std::string& message) const {
+  std::ostringstream why;
+  if (!std::isfinite(tip_angle_rad) || tip_angle_rad < 0.0) {
+    why << "tip angle " << formatExact(tip_angle_rad) << " rad is not a finite angle >= 0 (flexion is positive)";
+    message = why.str();
+    return false;
+  }
+  const int n = parameters_.chamber_count;
+  const double limit = (2 * n - 1) * kPi / 2;
+  if (tip_angle_rad >= limit) {
+    why << "tip angle " << formatExact(tip_angle_rad) << " rad is beyond the model's limit (2N-1) pi/2 = "
+        << formatExact(limit) << " rad, which no finite pressure reaches";
+    message = why.str();
+    return false;
+  }
+  if (tip_angle_rad == 0.0) {
+    gauge_pa = 0.0;
+    return true;
+  }
+  double answer;
+  if (groups_.size() == 1) {
+    // Identical chambers: Theta_N = (2N - 1) theta, and every stage inverts in closed form.
+    const ChamberGroup& g = groups_[0];
+    const double theta = tip_angle_rad / (2 * n - 1);
+    const double h = bulgeForHalfAngle(theta, g.chamber_gap_m, g.wall_critical_height_m);
+    answer = gaugeForBulge(h, g.chamber_height_m, g.shear_modulus_pa, parameters_.atmospheric_pressure_pa);
+  } else {
+    // Unequal chambers: Theta_N(P) is non-decreasing, so bisect on [0, max].
+    if (tipAngleAt(max_gauge_pa) < tip_angle_rad) {
+      answer = std::numeric_limits<double>::infinity();
+    } else {
+      double lo = 0.0, hi = max_gauge_pa;
+      for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (tipAngleAt(mid) < tip_angle_rad ? lo : hi) = mid;
+      }
+      answer = hi;
+    }
+  }
+  if (!(answer <= max_gauge_pa)) {
+    why << "tip angle " << formatExact(tip_angle_rad) << " rad needs more than the allowed " << formatExact(max_gauge_pa)
+        << " Pa gauge";
+    if (std::isfinite(answer)) why << " (" << formatExact(answer) << " Pa)";
+    message = why.str();
+    return false;
+  }
+  gauge_pa = answer;
+  return true;
+}
+
+}  // namespace pneumatic_finger

@@ -1,0 +1,214 @@
+#include "pneumatic_finger/parameters.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <sstream>
+
+namespace pneumatic_finger {
+
+namespace {
+
+// The single table of keys. Ranges are physical plausibility bounds for a finger-sized actuator: wide enough for
+// any design a researcher might try, narrow enough that a unit mistake (mm for m, kPa for Pa) is refused.
+// shear_modulus_pa and chamber_gap_m are effective values: the calibrated minimax fit to the paper's Table 1
+// (docs/ACCURACY.md, reproduced by `finger_calibrate`).
+const std::vector<ParameterSpec> kSpecs = {
+    {"chamber_count", "N", "-", 7, 1, true, 64, ParameterShape::kScalarInteger,
+     "number of pneumatic chambers after the passive base segment"},
+    {"chamber_height_m", "L", "m", 0.0115, 0, false, 0.5, ParameterShape::kPerChamber,
+     "chamber height (wall length at rest); the wall bulges into an ellipse with one radius L/2"},
+    {"wall_critical_height_m", "b", "m", 0.00575, 0, false, 0.5, ParameterShape::kPerChamber,
+     "height of the wall's thinnest point, in (0, L]; L/2 for a uniform wall"},
+    {"chamber_gap_m", "c", "m", 5.2e-5, 0, true, 0.1, ParameterShape::kPerChamber,
+     "effective gap between facing walls of neighbouring chambers (calibrated)"},
+    {"chamber_thickness_m", "d", "m", 0.005, 0, false, 0.5, ParameterShape::kPerChamber,
+     "chamber size along the finger"},
+    {"chamber_width_m", "e", "m", 0.007, 0, false, 0.5, ParameterShape::kPerChamber,
+     "chamber size across the finger"},
+    {"segment_length_m", "Z", "m", 0.010, 0, false, 0.5, ParameterShape::kPerChamber,
+     "joint-to-joint pitch of the segment that carries each chamber"},
+    {"base_segment_length_m", "Z0", "m", 0.015, 0, false, 1.0, ParameterShape::kScalar,
+     "length of the passive base segment, mount to joint 1"},
+    {"shear_modulus_pa", "mu", "Pa", 2.2e8, 0, false, 1e12, ParameterShape::kPerChamber,
+     "effective Neo-Hookean shear modulus of the elastomer (calibrated)"},
+    {"atmospheric_pressure_pa", "P_o", "Pa", 101325, 1e3, true, 1e6, ParameterShape::kScalar,
+     "ambient pressure; gauge = absolute - P_o"},
+};
+
+std::string keyAndValue(const ParameterSpec& spec, double value) {
+  std::ostringstream s;
+  s << "parameter '" << spec.key << "' = " << formatExact(value) << " is outside its allowed range "
+    << describeRange(spec) << " " << spec.unit;
+  return s.str();
+}
+
+void checkValue(const ParameterSpec& spec, double value) {
+  if (!std::isfinite(value)) {
+    throw ParameterError(std::string("parameter '") + spec.key + "' = " + formatExact(value) +
+                         " is not a finite number; allowed: " + describeRange(spec) + " " + spec.unit);
+  }
+  const bool above_min = spec.min_inclusive ? value >= spec.min_value : value > spec.min_value;
+  if (!above_min || value > spec.max_value) throw ParameterError(keyAndValue(spec, value));
+  if (spec.shape == ParameterShape::kScalarInteger && value != std::floor(value)) {
+    throw ParameterError(std::string("parameter '") + spec.key + "' = " + formatExact(value) +
+                         " is not a whole number; allowed: " + describeRange(spec));
+  }
+}
+
+// Expands a scalar or checks a list against N.
+std::vector<double> perChamber(const ParameterSpec& spec, const RawParameterMap& raw, int chamber_count) {
+  const auto it = raw.find(spec.key);
+  if (it == raw.end()) return std::vector<double>(static_cast<std::size_t>(chamber_count), spec.default_value);
+  const RawParameterValue& v = it->second;
+  for (double x : v.values) checkValue(spec, x);
+  if (!v.is_list) return std::vector<double>(static_cast<std::size_t>(chamber_count), v.values.at(0));
+  if (v.values.size() != static_cast<std::size_t>(chamber_count)) {
+    std::ostringstream s;
+    s << "parameter '" << spec.key << "' is a list of " << v.values.size() << " values but chamber_count is "
+      << chamber_count << "; give one value for all chambers or a list of exactly " << chamber_count;
+    throw ParameterError(s.str());
+  }
+  return v.values;
+}
+
+double scalar(const ParameterSpec& spec, const RawParameterMap& raw) {
+  const auto it = raw.find(spec.key);
+  if (it == raw.end()) return spec.default_value;
+  if (it->second.is_list || it->second.values.size() != 1) {
+    throw ParameterError(std::string("parameter '") + spec.key + "' must be a single number, not a list");
+  }
+  checkValue(spec, it->second.values[0]);
+  return it->second.values[0];
+}
+
+const ParameterSpec& spec(const char* key) { return *findParameterSpec(key); }
+
+}  // namespace
+
+const std::vector<ParameterSpec>& parameterSpecs() { return kSpecs; }
+
+const ParameterSpec* findParameterSpec(const std::string& key) {
+  for (const auto& s : kSpecs) {
+    if (key == s.key) return &s;
+  }
+  return nullptr;
+}
+
+std::string formatExact(double value) {
+  char buffer[40];
+  std::snprintf(buffer, sizeof(buffer), "%.17g", value);
+  return buffer;
+}
+
+std::string describeRange(const ParameterSpec& spec) {
+  std::ostringstream s;
+  if (spec.shape == ParameterShape::kScalarInteger) s << "integer in ";
+  s << (spec.min_inclusive ? "[" : "(") << spec.min_value << ", " << spec.max_value << "]";
+  return s.str();
+}
+
+FingerParameters FingerParameters::defaults() { return fromRaw({}); }
+
+FingerParameters FingerParameters::fromRaw(const RawParameterMap& raw) {
+  for (const auto& entry : raw) {
+    if (findParameterSpec(entry.first) == nullptr) {
+      throw ParameterError("unknown parameter '" + entry.first + "'");
+    }
+    if (entry.second.values.empty()) {
+      throw ParameterError("parameter '" + entry.first + "' has no value");
+    }
+  }
+  FingerParameters p;
+  p.chamber_count = static_cast<int>(scalar(spec("chamber_count"), raw));
+  const int n = p.chamber_count;
+  p.chamber_height_m = perChamber(spec("chamber_height_m"), raw, n);
+  p.wall_critical_height_m = perChamber(spec("wall_critical_height_m"), raw, n);
+  p.chamber_gap_m = perChamber(spec("chamber_gap_m"), raw, n);
+  p.chamber_thickness_m = perChamber(spec("chamber_thickness_m"), raw, n);
+  p.chamber_width_m = perChamber(spec("chamber_width_m"), raw, n);
+  p.segment_length_m = perChamber(spec("segment_length_m"), raw, n);
+  p.base_segment_length_m = scalar(spec("base_segment_length_m"), raw);
+  p.shear_modulus_pa = perChamber(spec("shear_modulus_pa"), raw, n);
+  p.atmospheric_pressure_pa = scalar(spec("atmospheric_pressure_pa"), raw);
+  // MODEL.md stage 3-4: b is a height on the wall, so it cannot exceed the wall (chamber) height L.
+  for (int i = 0; i < n; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    if (p.wall_critical_height_m[k] > p.chamber_height_m[k]) {
+      std::ostringstream s;
+      s << "parameter 'wall_critical_height_m' = " << formatExact(p.wall_critical_height_m[k]) << " m (chamber "
+        << i + 1 << ") exceeds chamber_height_m = " << formatExact(p.chamber_height_m[k])
+        << " m; allowed: (0, chamber_height_m]";
+      throw ParameterError(s.str());
+    }
+  }
+  return p;
+}
+
+RawParameterMap FingerParameters::toRaw() const {
+  RawParameterMap raw;
+  auto put_list = [&raw](const char* key, const std::vector<double>& v) {
+    const bool uniform = std::all_of(v.begin(), v.end(), [&v](double x) { return x == v.front(); });
+    raw[key] = uniform ? RawParameterValue{{v.front()}, false} : RawParameterValue{v, true};
+  };
+  raw["chamber_count"] = {{static_cast<double>(chamber_count)}, false};
+  put_list("chamber_height_m", chamber_height_m);
+  put_list("wall_critical_height_m", wall_critical_height_m);
+  put_list("chamber_gap_m", chamber_gap_m);
+  put_list("chamber_thickness_m", chamber_thickness_m);
+  put_list("chamber_width_m", chamber_width_m);
+  put_list("segment_length_m", segment_length_m);
+  raw["base_segment_length_m"] = {{base_segment_length_m}, false};
+  put_list("shear_modulus_pa", shear_modulus_pa);
+  raw["atmospheric_pressure_pa"] = {{atmospheric_pressure_pa}, false};
+  return raw;
+}
+
+namespace {
+
+double parseNumber(const std::string& text, const std::string& key) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(begin, &end);
+  while (end != nullptr && (*end == ' ' || *end == '\t')) ++end;
+  if (end == begin || end == nullptr || *end != '\0') {
+    throw ParameterError("parameter '" + key + "': '" + text + "' is not a number");
+  }
+  return v;
+}
+
+std::string trim(const std::string& s) {
+  const auto first = s.find_first_not_of(" \t");
+  if (first == std::string::npos) return "";
+  const auto last = s.find_last_not_of(" \t");
+  return s.substr(first, last - first + 1);
+}
+
+}  // namespace
+
+void parseParameterAssignment(const std::string& assignment, RawParameterMap& raw) {
+  const auto eq = assignment.find('=');
+  if (eq == std::string::npos) {
+    throw ParameterError("--set expects KEY=VALUE, got '" + assignment + "'");
+  }
+  const std::string key = trim(assignment.substr(0, eq));
+  const std::string value = trim(assignment.substr(eq + 1));
+  if (findParameterSpec(key) == nullptr) throw ParameterError("unknown parameter '" + key + "'");
+  RawParameterValue parsed;
+  if (!value.empty() && value.front() == '[') {
+    if (value.back() != ']') throw ParameterError("parameter '" + key + "': list '" + value + "' lacks ']'");
+    parsed.is_list = true;
+    std::stringstream items(value.substr(1, value.size() - 2));
+    std::string item;
+    while (std::getline(items, item, ',')) parsed.values.push_back(parseNumber(trim(item), key));
+  } else {
+    parsed.values.push_back(parseNumber(value, key));
+  }
+  if (parsed.values.empty()) throw ParameterError("parameter '" + key + "' has no value");
+  raw[key] = parsed;
+}
+
+}  // namespace pneumatic_finger

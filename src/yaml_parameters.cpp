@@ -1,0 +1,79 @@
+#include "pneumatic_finger/yaml_parameters.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace pneumatic_finger {
+
+namespace {
+
+double toNumber(const YAML::Node& node, const std::string& key, const std::string& origin) {
+  if (!node.IsScalar()) throw ParameterError(origin + ": parameter '" + key + "' must be a number");
+  try {
+    return node.as<double>();
+  } catch (const YAML::Exception&) {
+    throw ParameterError(origin + ": parameter '" + key + "' = '" + node.Scalar() + "' is not a number");
+  }
+}
+
+void fromNode(const YAML::Node& root, const std::string& origin, RawParameterMap& raw) {
+  if (root.IsNull()) return;  // an empty file: all defaults
+  if (!root.IsMap()) throw ParameterError(origin + ": expected a mapping of parameter keys to values");
+  for (const auto& item : root) {
+    const std::string key = item.first.as<std::string>();
+    if (findParameterSpec(key) == nullptr) throw ParameterError(origin + ": unknown parameter '" + key + "'");
+    RawParameterValue value;
+    if (item.second.IsSequence()) {
+      value.is_list = true;
+      for (const auto& element : item.second) value.values.push_back(toNumber(element, key, origin));
+      if (value.values.empty()) throw ParameterError(origin + ": parameter '" + key + "' is an empty list");
+    } else {
+      value.values.push_back(toNumber(item.second, key, origin));
+    }
+    raw[key] = value;
+  }
+}
+
+}  // namespace
+
+void loadRawParametersFromYamlText(const std::string& text, const std::string& origin, RawParameterMap& raw) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ParameterError(origin + ": not valid YAML: " + e.what());
+  }
+  fromNode(root, origin, raw);
+}
+
+void loadRawParametersFromYamlFile(const std::string& path, RawParameterMap& raw) {
+  std::ifstream in(path);
+  if (!in) throw ParameterError("cannot read parameter file '" + path + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  loadRawParametersFromYamlText(text.str(), path, raw);
+}
+
+std::string parametersToYaml(const FingerParameters& parameters) {
+  std::ostringstream out;
+  const RawParameterMap raw = parameters.toRaw();
+  for (const ParameterSpec& spec : parameterSpecs()) {
+    const RawParameterValue& v = raw.at(spec.key);
+    out << "# " << spec.description << " (" << spec.symbol << ", " << spec.unit << ", allowed "
+        << describeRange(spec) << ")\n"
+        << spec.key << ": ";
+    if (v.is_list) {
+      out << "[";
+      for (std::size_t i = 0; i < v.values.size(); ++i) out << (i ? ", " : "") << formatExact(v.values[i]);
+      out << "]";
+    } else {
+      out << formatExact(v.values[0]);
+    }
+    out << "\n";
+  }
+  return out.str();
+}
+
+}  // namespace pneumatic_finger

@@ -1,0 +1,146 @@
+// finger_model, run as a user would: header, digits, exit codes, and what goes to stdout and stderr.
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+
+#include <cstdio>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace {
+
+struct CliRun {
+  int status;
+  std::string out, err;
+};
+
+CliRun run(const std::string& args) {
+  const std::string err_file = testing::TempDir() + "/finger_model_stderr.txt";
+  const std::string cmd = std::string(FINGER_MODEL_EXE) + " " + args + " 2>" + err_file;
+  FILE* pipe = popen(cmd.c_str(), "r");
+  CliRun r{-1, "", ""};
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) r.out.append(buf, n);
+  const int raw = pclose(pipe);
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+  std::ifstream e(err_file);
+  std::stringstream ss;
+  ss << e.rdbuf();
+  r.err = ss.str();
+  return r;
+}
+
+std::vector<std::string> lines(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream ss(s);
+  std::string line;
+  while (std::getline(ss, line)) out.push_back(line);
+  return out;
+}
+
+std::vector<std::string> fields(const std::string& line) {
+  std::vector<std::string> out;
+  std::stringstream ss(line);
+  std::string f;
+  while (std::getline(ss, f, ',')) out.push_back(f);
+  return out;
+}
+
+}  // namespace
+
+TEST(Cli, HeaderAndOneRowPerPressure) {
+  const CliRun r = run("--gauge-pa 0 --gauge-pa 98066.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto l = lines(r.out);
+  ASSERT_EQ(l.size(), 3u);
+  EXPECT_EQ(l[0],
+            "gauge_pa,stretch,bulge_m,half_angle_rad,joint_1_rad,joint_2_rad,joint_3_rad,joint_4_rad,joint_5_rad,"
+            "joint_6_rad,joint_7_rad,tip_x_m,tip_y_m");
+  EXPECT_EQ(fields(l[1]).size(), 13u);
+  // At rest: the straight finger, 15 mm + 7 x 10 mm long.
+  EXPECT_EQ(fields(l[1])[1], "1");
+  EXPECT_DOUBLE_EQ(std::stod(fields(l[1])[11]), 0.085);
+  EXPECT_EQ(fields(l[1])[12], "0");
+  EXPECT_EQ(r.err, "");
+}
+
+TEST(Cli, NumbersHaveSeventeenSignificantDigitsAndRoundTrip) {
+  const CliRun r = run("--gauge-pa 150000");
+  ASSERT_EQ(r.status, 0);
+  const auto f = fields(lines(r.out)[1]);
+  const std::string theta = f[3];
+  std::string digits;
+  for (char c : theta.substr(0, theta.find('e'))) {
+    if (isdigit(static_cast<unsigned char>(c))) digits += c;
+  }
+  EXPECT_EQ(digits.substr(digits.find_first_not_of('0')).size(), 17u) << theta;
+  EXPECT_GT(std::stod(theta), 0.0);
+}
+
+TEST(Cli, ColumnsFollowChamberCountAndSweep) {
+  const CliRun r = run("--set chamber_count=3 --sweep-pa 0:2e5:5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto l = lines(r.out);
+  ASSERT_EQ(l.size(), 6u);
+  EXPECT_EQ(l[0], "gauge_pa,stretch,bulge_m,half_angle_rad,joint_1_rad,joint_2_rad,joint_3_rad,tip_x_m,tip_y_m");
+  EXPECT_EQ(fields(l[5])[0], "200000");
+  EXPECT_EQ(fields(l[3])[0], "100000");
+}
+
+TEST(Cli, SolversAgreeOnTheValidatedRange) {
+  const CliRun robust = run("--gauge-pa 196133");
+  const CliRun paper = run("--solver paper --gauge-pa 196133");
+  const CliRun table = run("--solver table --gauge-pa 196133");
+  ASSERT_EQ(paper.status, 0);
+  ASSERT_EQ(table.status, 0);
+  const double t = std::stod(fields(lines(robust.out)[1])[3]);
+  EXPECT_NEAR(std::stod(fields(lines(paper.out)[1])[3]), t, 1e-13);
+  EXPECT_NEAR(std::stod(fields(lines(table.out)[1])[3]), t, 1e-12);
+}
+
+TEST(Cli, BadInputExitsTwoWithOneLineNamingItAndNoStdout) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--gauge-pa nan", "--gauge-pa"},
+      {"--gauge-pa inf", "--gauge-pa"},
+      {"--gauge-pa -inf", "--gauge-pa"},
+      {"--gauge-pa 1e5 --gauge-pa abc", "'abc'"},
+      {"--set chamber_gapp_m=1 --gauge-pa 1", "chamber_gapp_m"},
+      {"--set chamber_gap_m=-1 --gauge-pa 1", "chamber_gap_m"},
+      {"--set chamber_count=2.5 --gauge-pa 1", "chamber_count"},
+      {"--set wall_critical_height_m=0.5 --gauge-pa 1", "wall_critical_height_m"},
+      {"--solver quick --gauge-pa 1", "quick"},
+      {"--config /nonexistent.yaml --gauge-pa 1", "/nonexistent.yaml"},
+      {"--sweep-pa 0:1", "FROM:TO:COUNT"},
+      {"--sweep-pa 0:1:0", "COUNT"},
+      {"", "no pressure"},
+      {"--frobnicate", "--frobnicate"},
+  };
+  for (const auto& c : cases) {
+    const CliRun r = run(c.first);
+    EXPECT_EQ(r.status, 2) << c.first;
+    EXPECT_EQ(r.out, "") << c.first;
+    EXPECT_EQ(lines(r.err).size(), 1u) << c.first << ": " << r.err;
+    EXPECT_NE(r.err.find(c.second), std::string::npos) << c.first << ": " << r.err;
+  }
+}
+
+TEST(Cli, VacuumWarnsAndPrintsTheStraightFinger) {
+  const CliRun r = run("--gauge-pa -20000");
+  ASSERT_EQ(r.status, 0);
+  EXPECT_NE(r.err.find("warning"), std::string::npos);
+  EXPECT_NE(r.err.find("vacuum"), std::string::npos);
+  const auto f = fields(lines(r.out)[1]);
+  EXPECT_EQ(f[0], "-20000");
+  for (int j = 4; j <= 10; ++j) EXPECT_EQ(f[static_cast<std::size_t>(j)], "0");
+  EXPECT_EQ(f[12], "0");
+}
+
+TEST(Cli, ParameterTableListsEveryKey) {
+  const CliRun r = run("--parameters");
+  ASSERT_EQ(r.status, 0);
+  for (const char* key : {"chamber_count", "chamber_gap_m", "shear_modulus_pa", "atmospheric_pressure_pa"}) {
+    EXPECT_NE(r.out.find(std::string("`") + key + "`"), std::string::npos) << key;
+  }
+}

@@ -1,0 +1,150 @@
+// The parameter definition: defaults, ranges, lists, YAML, --set, and that the shipped file is the definition.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pneumatic_finger/parameters.hpp"
+#include "pneumatic_finger/yaml_parameters.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+std::string refusal(const pf::RawParameterMap& raw) {
+  try {
+    pf::FingerParameters::fromRaw(raw);
+  } catch (const pf::ParameterError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+pf::RawParameterMap one(const std::string& key, std::vector<double> v, bool list = false) {
+  pf::RawParameterMap raw;
+  raw[key] = {std::move(v), list};
+  return raw;
+}
+
+}  // namespace
+
+TEST(Parameters, EveryKeyOfModelMdIsDefinedOnce) {
+  const std::vector<std::string> model_md = {
+      "chamber_count", "chamber_height_m", "wall_critical_height_m", "chamber_gap_m", "chamber_thickness_m",
+      "chamber_width_m", "segment_length_m", "base_segment_length_m", "shear_modulus_pa", "atmospheric_pressure_pa"};
+  ASSERT_EQ(pf::parameterSpecs().size(), model_md.size());
+  for (const auto& key : model_md) EXPECT_NE(pf::findParameterSpec(key), nullptr) << key;
+  for (const auto& spec : pf::parameterSpecs()) {
+    // Every default lies in its own allowed range: the defaults pass the same validation as user input.
+    pf::RawParameterMap raw = one(spec.key, {spec.default_value});
+    EXPECT_EQ(refusal(raw), "") << spec.key;
+  }
+}
+
+TEST(Parameters, DefaultsAreThePaperActuator) {
+  const auto p = pf::FingerParameters::defaults();
+  EXPECT_EQ(p.chamber_count, 7);
+  EXPECT_EQ(p.chamber_height_m[6], 0.0115);
+  EXPECT_EQ(p.wall_critical_height_m[0], 0.00575);
+  EXPECT_EQ(p.segment_length_m[3], 0.010);
+  EXPECT_EQ(p.base_segment_length_m, 0.015);
+  EXPECT_EQ(p.atmospheric_pressure_pa, 101325);
+}
+
+TEST(Parameters, ShippedParameterFileEqualsTheDefinition) {
+  // config/finger.yaml is what the node and the tools load; it must say what parameterSpecs() says.
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml", raw);
+  for (const auto& spec : pf::parameterSpecs()) {
+    ASSERT_TRUE(raw.count(spec.key)) << "config/finger.yaml lacks " << spec.key;
+    EXPECT_EQ(raw[spec.key].values, std::vector<double>{spec.default_value}) << spec.key;
+  }
+}
+
+TEST(Parameters, OutOfRangeNamesKeyValueAndRange) {
+  const std::string msg = refusal(one("shear_modulus_pa", {-3}));
+  EXPECT_NE(msg.find("shear_modulus_pa"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("-3"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("(0, 1e+12]"), std::string::npos) << msg;
+}
+
+TEST(Parameters, NonFiniteValuesAreRefused) {
+  for (double bad : {NAN, INFINITY, -INFINITY}) {
+    const std::string msg = refusal(one("chamber_gap_m", {bad}));
+    EXPECT_NE(msg.find("chamber_gap_m"), std::string::npos) << msg;
+    EXPECT_NE(msg.find("not a finite number"), std::string::npos) << msg;
+  }
+}
+
+TEST(Parameters, ChamberCountMustBeAWholeNumberInRange) {
+  EXPECT_NE(refusal(one("chamber_count", {2.5})).find("not a whole number"), std::string::npos);
+  EXPECT_NE(refusal(one("chamber_count", {0})).find("chamber_count"), std::string::npos);
+  EXPECT_NE(refusal(one("chamber_count", {65})).find("integer in [1, 64]"), std::string::npos);
+}
+
+TEST(Parameters, PerChamberListsMustHaveLengthN) {
+  const std::string msg = refusal(one("chamber_gap_m", {1e-5, 2e-5}, true));
+  EXPECT_NE(msg.find("chamber_gap_m"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("list of 2 values but chamber_count is 7"), std::string::npos) << msg;
+  // A list for a key that has no per-chamber form is refused too.
+  EXPECT_NE(refusal(one("base_segment_length_m", {0.01, 0.02}, true)).find("single number"), std::string::npos);
+}
+
+TEST(Parameters, WallCriticalHeightCannotExceedChamberHeight) {
+  pf::RawParameterMap raw;
+  raw["chamber_height_m"] = {{0.01}, false};
+  raw["wall_critical_height_m"] = {{0.006, 0.006, 0.006, 0.011, 0.006, 0.006, 0.006}, true};
+  const std::string msg = refusal(raw);
+  EXPECT_NE(msg.find("wall_critical_height_m"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("chamber 4"), std::string::npos) << msg;
+}
+
+TEST(Parameters, UnknownKeyIsRefused) {
+  EXPECT_NE(refusal(one("chamber_hieght_m", {0.01})).find("unknown parameter 'chamber_hieght_m'"), std::string::npos);
+}
+
+TEST(Parameters, YamlListsScalarsAndErrorsNameTheOrigin) {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlText("chamber_count: 3\nchamber_gap_m: [1e-5, 2e-5, 3e-5]\n", "inline", raw);
+  const auto p = pf::FingerParameters::fromRaw(raw);
+  EXPECT_EQ(p.chamber_gap_m, (std::vector<double>{1e-5, 2e-5, 3e-5}));
+  EXPECT_EQ(p.chamber_height_m.size(), 3u);
+  auto yamlError = [](const std::string& text) {
+    pf::RawParameterMap r;
+    try {
+      pf::loadRawParametersFromYamlText(text, "bad.yaml", r);
+    } catch (const pf::ParameterError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(yamlError("chamber_gap_m: wide\n").find("bad.yaml: parameter 'chamber_gap_m' = 'wide' is not a number"),
+            std::string::npos);
+  EXPECT_NE(yamlError("chamber_gap_m: [1, [2]]\n").find("chamber_gap_m"), std::string::npos);
+  EXPECT_NE(yamlError("- a\n- b\n").find("expected a mapping"), std::string::npos);
+  EXPECT_NE(yamlError("a: [\n").find("not valid YAML"), std::string::npos);
+  EXPECT_NE(yamlError("shear: 1\n").find("unknown parameter 'shear'"), std::string::npos);
+  EXPECT_NE(yamlError("chamber_gap_m: []\n").find("empty list"), std::string::npos);
+}
+
+TEST(Parameters, YamlRoundTripIsExact) {
+  pf::RawParameterMap raw;
+  raw["chamber_gap_m"] = {{1e-5, 2e-5, 3e-5, 4e-5, 5e-5, 6e-5, 0.1 / 3}, true};
+  raw["shear_modulus_pa"] = {{1.0 / 3 * 1e9}, false};
+  const auto p = pf::FingerParameters::fromRaw(raw);
+  pf::RawParameterMap back;
+  pf::loadRawParametersFromYamlText(pf::parametersToYaml(p), "written", back);
+  const auto q = pf::FingerParameters::fromRaw(back);
+  EXPECT_EQ(q.chamber_gap_m, p.chamber_gap_m);
+  EXPECT_EQ(q.shear_modulus_pa, p.shear_modulus_pa);
+}
+
+TEST(Parameters, SetAssignmentsParse) {
+  pf::RawParameterMap raw;
+  pf::parseParameterAssignment("chamber_count=3", raw);
+  pf::parseParameterAssignment("chamber_gap_m=[1e-5, 2e-5,3e-5]", raw);
+  EXPECT_EQ(pf::FingerParameters::fromRaw(raw).chamber_gap_m[1], 2e-5);
+  EXPECT_THROW(pf::parseParameterAssignment("chamber_count", raw), pf::ParameterError);
+  EXPECT_THROW(pf::parseParameterAssignment("chamber_count=seven", raw), pf::ParameterError);
+  EXPECT_THROW(pf::parseParameterAssignment("nonsense=1", raw), pf::ParameterError);
+  EXPECT_THROW(pf::parseParameterAssignment("chamber_gap_m=[1e-5", raw), pf::ParameterError);
+}

@@ -1,0 +1,171 @@
+// Properties the model must have whatever the numbers: contact, monotonicity, geometry, finiteness,
+// scalar/list equivalence, and "model only what a scene needs".
+#include <gtest/gtest.h>
+
+#include <cfloat>
+#include <cmath>
+#include <cstring>
+#include <random>
+
+#include "pneumatic_finger/finger_model.hpp"
+#include "test_support.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+const pf::FingerParameters kPaper = pf::FingerParameters::defaults();
+}
+
+TEST(Property, HalfAngleIsZeroBelowContactAndPositiveAbove) {
+  pf::FingerModel model(kPaper);
+  const double pc = model.contactGaugePa();
+  ASSERT_GT(pc, 0.0);
+  for (double f : {0.0, 0.5, 0.9, 0.999999}) EXPECT_EQ(model.evaluate(pc * f).half_angle_rad[0], 0.0) << f;
+  for (double f : {1.000001, 1.1, 2.0, 10.0}) EXPECT_GT(model.evaluate(pc * f).half_angle_rad[0], 0.0) << f;
+  EXPECT_FALSE(model.evaluate(pc * 0.5).in_contact);
+  EXPECT_TRUE(model.evaluate(pc * 2).in_contact);
+}
+
+TEST(Property, HalfAngleIsNonDecreasingInPressure) {
+  for (auto solver : {pf::SolverKind::kRobust, pf::SolverKind::kTable}) {
+    pf::ModelOptions options;
+    options.solver = solver;
+    pf::FingerModel model(kPaper, options);
+    double prev = -1;
+    for (double p = 0; p <= 4e5; p += 37.0) {
+      const double theta = model.evaluate(p).half_angle_rad[0];
+      EXPECT_GE(theta, prev) << pf::solverName(solver) << " at P = " << p;
+      prev = theta;
+    }
+  }
+}
+
+TEST(Property, TipDirectionIsTheSumOfJointAngles) {
+  pf::FingerModel model(kPaper);
+  for (double p : {3e4, 1e5, 2e5, 5e5, 2e6}) {
+    const pf::FingerState& s = model.evaluate(p);
+    const int n = model.chamberCount();
+    const Eigen::Vector2d last = s.backbone_m.col(n + 1) - s.backbone_m.col(n);
+    const double direction = std::atan2(last.y(), last.x());
+    EXPECT_NEAR(std::remainder(direction - s.joint_angle_rad.sum(), 2 * M_PI), 0.0, 1e-13) << "P = " << p;
+    EXPECT_DOUBLE_EQ(s.tip_angle_rad, s.joint_angle_rad.sum());
+  }
+}
+
+TEST(Property, NoNaNForAnyFiniteInput) {
+  // Random bit patterns cover subnormals, huge values and both signs; plus every accepted extreme geometry.
+  std::mt19937_64 rng(20221121);
+  std::vector<pf::FingerModel> models;
+  models.emplace_back(kPaper);
+  for (double gap : {0.0, 0.1}) {
+    for (double mu : {1e-300, 1e12}) {
+      pf::RawParameterMap raw;
+      raw["chamber_gap_m"] = {{gap}, false};
+      raw["shear_modulus_pa"] = {{mu < 1 ? 1e-3 : mu}, false};
+      models.emplace_back(pf::FingerParameters::fromRaw(raw));
+    }
+  }
+  for (auto& model : models) {
+    for (int i = 0; i < 20000; ++i) {
+      double p;
+      do {
+        const std::uint64_t bits = rng();
+        std::memcpy(&p, &bits, sizeof p);
+      } while (!std::isfinite(p));
+      const pf::FingerState& s = model.evaluate(p);
+      ASSERT_TRUE(s.backbone_m.allFinite() && s.joint_angle_rad.allFinite() && s.stretch.allFinite() &&
+                  s.bulge_m.allFinite())
+          << "P = " << p;
+    }
+  }
+}
+
+TEST(Property, ListOfEqualValuesEqualsItsScalar) {
+  pf::RawParameterMap scalar, list;
+  scalar["chamber_gap_m"] = {{4e-5}, false};
+  list["chamber_gap_m"] = {std::vector<double>(7, 4e-5), true};
+  list["shear_modulus_pa"] = {std::vector<double>(7, 2.2e8), true};
+  pf::FingerModel a(pf::FingerParameters::fromRaw(scalar)), b(pf::FingerParameters::fromRaw(list));
+  EXPECT_EQ(b.distinctChamberCount(), 1);
+  for (double p : {0.0, 5e4, 1e5, 2e5}) {
+    const pf::FingerState sa = a.evaluate(p);
+    const pf::FingerState& sb = b.evaluate(p);
+    EXPECT_EQ(sa.joint_angle_rad, sb.joint_angle_rad);  // bit for bit
+    EXPECT_EQ(sa.backbone_m, sb.backbone_m);
+  }
+}
+
+TEST(Property, IdenticalChambersAreSolvedOnce) {
+  EXPECT_EQ(pf::FingerModel(kPaper).distinctChamberCount(), 1);
+  pf::RawParameterMap raw;
+  raw["chamber_gap_m"] = {{5e-5, 5e-5, 5e-5, 6e-5, 5e-5, 5e-5, 5e-5}, true};
+  EXPECT_EQ(pf::FingerModel(pf::FingerParameters::fromRaw(raw)).distinctChamberCount(), 2);
+  // Geometry that does not enter theta (thickness, width, segment length) does not split a group.
+  pf::RawParameterMap visual;
+  visual["segment_length_m"] = {{0.01, 0.011, 0.012, 0.013, 0.014, 0.015, 0.016}, true};
+  visual["chamber_width_m"] = {{0.007, 0.008, 0.009, 0.007, 0.007, 0.007, 0.007}, true};
+  EXPECT_EQ(pf::FingerModel(pf::FingerParameters::fromRaw(visual)).distinctChamberCount(), 1);
+}
+
+TEST(Property, UnchangedPressureIsNotRecomputed) {
+  pf::FingerModel model(kPaper);
+  const long before = model.computationCount();
+  model.evaluate(1e5);
+  model.evaluate(1e5);
+  model.evaluate(1e5);
+  EXPECT_EQ(model.computationCount(), before + 1);
+  model.evaluate(1.5e5);
+  EXPECT_EQ(model.computationCount(), before + 2);
+  model.evaluate(NAN);  // refused: no computation, and the next good value is computed afresh
+  model.evaluate(1.5e5);
+  EXPECT_EQ(model.computationCount(), before + 3);
+}
+
+TEST(Property, TableSolverErrorIsMeasuredAndWithinTolerance) {
+  pf::ModelOptions options;
+  options.solver = pf::SolverKind::kTable;
+  pf::FingerModel table(kPaper, options);
+  EXPECT_GT(table.tableSegmentCount(), 0);
+  EXPECT_GT(table.tableMeasuredErrorRad(), 0.0);  // measured, so never exactly 0 for a real interpolant
+  EXPECT_LE(table.tableMeasuredErrorRad(), options.table_tolerance_rad);
+  // Against the quad reference on a grid the table builder never saw (offset primes), inside its range.
+  pf_test::FingerError worst;
+  for (double p = 13.0; p <= options.table_max_gauge_pa; p += 997.0) {
+    worst.merge(pf_test::fingerError(table.evaluate(p), pf_test::referenceFinger(kPaper, p)));
+  }
+  EXPECT_LE(worst.half_angle_rad, pf_test::kAngleTolerance);
+  EXPECT_LE(worst.point_m, pf_test::kPointTolerance);
+  RecordProperty("table_max_half_angle_error_rad", std::to_string(worst.half_angle_rad));
+  // Outside its range it hands over to the robust solver.
+  pf::FingerModel robust(kPaper);
+  EXPECT_EQ(table.evaluate(1e6).half_angle_rad[0], robust.evaluate(1e6).half_angle_rad[0]);
+}
+
+TEST(Property, InverseModelRoundTrips) {
+  pf::FingerModel model(kPaper);
+  for (double p : {1e4, 5e4, 1e5, 1.5e5, 2e5}) {
+    const double tip = model.evaluate(p).tip_angle_rad;
+    double back = 0;
+    std::string why;
+    ASSERT_TRUE(model.gaugeForTipAngle(tip, 1e6, back, why)) << why;
+    EXPECT_NEAR(back, p, 1e-9 * p);
+  }
+  double out = 0;
+  std::string why;
+  EXPECT_FALSE(model.gaugeForTipAngle(-0.1, 1e6, out, why));
+  EXPECT_NE(why.find("-0.1"), std::string::npos) << why;
+  EXPECT_FALSE(model.gaugeForTipAngle(3.0, 2e5, out, why));  // needs more than 2e5 Pa
+  EXPECT_NE(why.find("needs more than"), std::string::npos) << why;
+  EXPECT_FALSE(model.gaugeForTipAngle(100.0, 1e300, out, why));  // beyond (2N-1) pi/2
+}
+
+TEST(Property, InverseModelBisectsForUnequalChambers) {
+  pf::RawParameterMap raw;
+  raw["chamber_gap_m"] = {{3e-5, 4e-5, 5e-5, 6e-5, 7e-5, 8e-5, 9e-5}, true};
+  pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
+  const double tip = model.evaluate(1.2e5).tip_angle_rad;
+  double back = 0;
+  std::string why;
+  ASSERT_TRUE(model.gaugeForTipAngle(tip, 1e6, back, why)) << why;
+  EXPECT_NEAR(back, 1.2e5, 1e-6);
+}

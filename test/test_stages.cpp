@@ -1,0 +1,125 @@
+// Each stage of MODEL.md, and the whole finger, against the quad-precision reference over a dense sweep.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pneumatic_finger/finger_model.hpp"
+#include "pneumatic_finger/stages.hpp"
+#include "test_support.hpp"
+
+namespace pf = pneumatic_finger;
+using pf_test::absError;
+
+namespace {
+
+const pf::FingerParameters kPaper = pf::FingerParameters::defaults();
+reference::ChamberGeometry paperChamber() { return pf_test::chambersOf(kPaper)[0]; }
+
+// 0 to 5 kg/cm^2 (2.5 times the validated range) linearly, plus 1e-3 Pa .. 5e5 Pa logarithmically.
+const std::vector<double> kSweep = pf_test::pressureSweep(5 * 98066.5, 400, 20);
+
+}  // namespace
+
+TEST(Stage1EnergyGroup, MatchesReferenceToRelativeUlps) {
+  for (double p : kSweep) {
+    const double got = pf::energyGroup(p, kPaper.atmospheric_pressure_pa, kPaper.shear_modulus_pa[0]);
+    const double want = reference::chamberChain(p, kPaper.atmospheric_pressure_pa, paperChamber()).energy_group;
+    EXPECT_LE(absError(got, want), 4e-16 * want) << "P = " << p;
+  }
+}
+
+TEST(Stage1EnergyGroup, ZeroAndVacuumGiveZero) {
+  EXPECT_EQ(pf::energyGroup(0.0, 101325, 2e8), 0.0);
+  EXPECT_EQ(pf::energyGroup(-5e4, 101325, 2e8), 0.0);
+}
+
+TEST(Stage2Stretch, ExcessMatchesReferenceToRelativeUlps) {
+  for (double p : kSweep) {
+    const auto want = reference::chamberChain(p, kPaper.atmospheric_pressure_pa, paperChamber());
+    const double got = pf::stretchExcess(want.energy_group);
+    EXPECT_LE(absError(got, want.stretch_excess), 4e-16 * want.stretch_excess) << "P = " << p;
+  }
+}
+
+TEST(Stage2Stretch, SolvesTheCubicOverTwentyDecadesOfG) {
+  // lambda^3 - (g + 3) lambda + 2 = 0 <=> delta^2 (3 + delta) = g (1 + delta); check the residual relative
+  // to the size of the terms, from g = 1e-30 to g = 1e30.
+  for (double e = -30; e <= 30; e += 0.25) {
+    const double g = std::pow(10.0, e);
+    const double d = pf::stretchExcess(g);
+    const double lhs = d * d * (3 + d), rhs = g * (1 + d);
+    EXPECT_LE(std::fabs(lhs - rhs), 8e-16 * rhs) << "g = " << g;
+  }
+}
+
+TEST(Stage3Bulge, MatchesReference) {
+  for (double p : kSweep) {
+    const auto want = reference::chamberChain(p, kPaper.atmospheric_pressure_pa, paperChamber());
+    const double got = pf::bulge(pf::stretchExcess(want.energy_group), kPaper.chamber_height_m[0]);
+    // Five roundings (delta's own, 2 + delta, the product, the square root, the quotient): at most ~3.6 ulp.
+    EXPECT_LE(absError(got, want.bulge_m), 8e-16 * want.bulge_m) << "P = " << p;
+  }
+}
+
+TEST(Stage4HalfAngle, MatchesReferenceForTheReferenceBulge) {
+  // Feed the reference's own bulge so that only stage 4 is measured.
+  const double b = kPaper.wall_critical_height_m[0], c = kPaper.chamber_gap_m[0];
+  for (double p : kSweep) {
+    const auto want = reference::chamberChain(p, kPaper.atmospheric_pressure_pa, paperChamber());
+    const pf::HalfAngle got = pf::halfAngle(want.bulge_m, c, b);
+    EXPECT_LE(absError(got.rad, want.half_angle_rad), 1e-15) << "P = " << p;
+    EXPECT_LE(absError(got.cos, std::cos(want.half_angle_rad)), 1e-15);
+    EXPECT_LE(absError(got.sin, std::sin(want.half_angle_rad)), 1e-15);
+  }
+}
+
+TEST(Stage4HalfAngle, InvertsWangsRelationOverItsWholeRange) {
+  // theta -> h(theta) -> theta round trip from 1e-12 rad to within 1e-6 rad of pi/2.
+  const double b = 0.00575, c = 0.0005;
+  for (double theta = 1e-12; theta < 1.5707963; theta = theta < 1e-3 ? theta * 3 : theta + 0.01) {
+    const double h = pf::bulgeForHalfAngle(theta, c, b);
+    EXPECT_LE(absError(pf::halfAngle(h, c, b).rad, theta), 1e-13 + 1e-15 * theta) << "theta = " << theta;
+  }
+}
+
+TEST(Stage5JointAngles, AreSumsOfNeighbouringHalfAngles) {
+  // Unequal chambers so that q_n = theta_{n-1} + theta_n is visible chamber by chamber.
+  pf::RawParameterMap raw;
+  raw["chamber_count"] = {{4}, false};
+  raw["chamber_gap_m"] = {{0.0, 2e-5, 5e-5, 1e-4}, true};
+  pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
+  const pf::FingerState& s = model.evaluate(150000);
+  EXPECT_EQ(s.joint_angle_rad[0], s.half_angle_rad[0]);
+  for (int n = 1; n < 4; ++n) EXPECT_EQ(s.joint_angle_rad[n], s.half_angle_rad[n - 1] + s.half_angle_rad[n]);
+  EXPECT_GT(s.half_angle_rad[0], s.half_angle_rad[3]);  // a smaller gap bends more
+}
+
+TEST(Stage6Backbone, WholeFingerMatchesReferenceOverDenseSweep) {
+  pf::FingerModel model(kPaper);
+  pf_test::FingerError worst;
+  for (double p : kSweep) worst.merge(pf_test::fingerError(model.evaluate(p), pf_test::referenceFinger(kPaper, p)));
+  EXPECT_TRUE(worst.finite);
+  EXPECT_LE(worst.half_angle_rad, pf_test::kAngleTolerance);
+  EXPECT_LE(worst.joint_angle_rad, pf_test::kAngleTolerance);
+  EXPECT_LE(worst.tip_angle_rad, pf_test::kAngleTolerance);
+  EXPECT_LE(worst.point_m, pf_test::kPointTolerance);
+  RecordProperty("max_half_angle_error_rad", std::to_string(worst.half_angle_rad));
+  RecordProperty("max_point_error_m", std::to_string(worst.point_m));
+}
+
+TEST(Stage6Backbone, UnequalChambersMatchReference) {
+  pf::RawParameterMap raw;
+  raw["chamber_gap_m"] = {{0.0, 1e-5, 3e-5, 5.2e-5, 8e-5, 1.2e-4, 2e-4}, true};
+  raw["segment_length_m"] = {{0.010, 0.011, 0.009, 0.010, 0.012, 0.008, 0.010}, true};
+  raw["shear_modulus_pa"] = {{1e8, 2e8, 3e8, 2.2e8, 2.2e8, 5e8, 1e9}, true};
+  const pf::FingerParameters params = pf::FingerParameters::fromRaw(raw);
+  pf::FingerModel model(params);
+  EXPECT_EQ(model.distinctChamberCount(), 7);
+  pf_test::FingerError worst;
+  for (double p : pf_test::pressureSweep(3e5, 60, 4)) {
+    worst.merge(pf_test::fingerError(model.evaluate(p), pf_test::referenceFinger(params, p)));
+  }
+  EXPECT_LE(worst.half_angle_rad, pf_test::kAngleTolerance);
+  EXPECT_LE(worst.joint_angle_rad, pf_test::kAngleTolerance);
+  EXPECT_LE(worst.point_m, pf_test::kPointTolerance);
+}
