@@ -22,7 +22,7 @@ const std::vector<ParameterSpec> kSpecs = {
      "chamber height (wall length at rest); the wall bulges into an ellipse with one radius L/2"},
     {"wall_critical_height_m", "b", "m", 0.00575, 0, false, 0.5, ParameterShape::kPerChamber,
      "height of the wall's thinnest point, in (0, L]; L/2 for a uniform wall"},
-    {"chamber_gap_m", "c", "m", 5.2e-5, 0, true, 0.1, ParameterShape::kPerChamber,
+    {"chamber_gap_m", "c", "m", 4.9640761700248786e-05, 0, true, 0.1, ParameterShape::kPerChamber,
      "effective gap between facing walls of neighbouring chambers (calibrated)"},
     {"chamber_thickness_m", "d", "m", 0.005, 0, false, 0.5, ParameterShape::kPerChamber,
      "chamber size along the finger"},
@@ -32,7 +32,7 @@ const std::vector<ParameterSpec> kSpecs = {
      "joint-to-joint pitch of the segment that carries each chamber"},
     {"base_segment_length_m", "Z0", "m", 0.015, 0, false, 1.0, ParameterShape::kScalar,
      "length of the passive base segment, mount to joint 1"},
-    {"shear_modulus_pa", "mu", "Pa", 2.2e8, 0, false, 1e12, ParameterShape::kPerChamber,
+    {"shear_modulus_pa", "mu", "Pa", 223531464.01998678, 0, false, 1e12, ParameterShape::kPerChamber,
      "effective Neo-Hookean shear modulus of the elastomer (calibrated)"},
     {"atmospheric_pressure_pa", "P_o", "Pa", 101325, 1e3, true, 1e6, ParameterShape::kScalar,
      "ambient pressure; gauge = absolute - P_o"},
@@ -100,6 +100,15 @@ const ParameterSpec* findParameterSpec(const std::string& key) {
 std::string formatExact(double value) {
   char buffer[40];
   std::snprintf(buffer, sizeof(buffer), "%.17g", value);
+  return buffer;
+}
+
+std::string formatShortest(double value) {
+  char buffer[40];
+  for (int digits = 15; digits <= 17; ++digits) {
+    std::snprintf(buffer, sizeof(buffer), "%.*g", digits, value);
+    if (std::strtod(buffer, nullptr) == value) break;
+  }
   return buffer;
 }
 

@@ -66,10 +66,10 @@ std::string parametersToYaml(const FingerParameters& parameters) {
         << spec.key << ": ";
     if (v.is_list) {
       out << "[";
-      for (std::size_t i = 0; i < v.values.size(); ++i) out << (i ? ", " : "") << formatExact(v.values[i]);
+      for (std::size_t i = 0; i < v.values.size(); ++i) out << (i ? ", " : "") << formatShortest(v.values[i]);
       out << "]";
     } else {
-      out << formatExact(v.values[0]);
+      out << formatShortest(v.values[0]);
     }
     out << "\n";
   }

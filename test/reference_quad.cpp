@@ -64,6 +64,10 @@ ChamberChain chamberChain(double gauge_pa, double atmospheric_pa, const ChamberG
           static_cast<double>(theta)};
 }
 
+double halfAngleForBulge(double bulge_m, double gap_m, double wall_critical_height_m) {
+  return static_cast<double>(halfAngleQ(bulge_m, gap_m, wall_critical_height_m));
+}
+
 Finger finger(double gauge_pa, double atmospheric_pa, const std::vector<ChamberGeometry>& chambers,
               const std::vector<double>& segment_length_m, double base_segment_length_m) {
   const std::size_t n = chambers.size();

@@ -24,6 +24,9 @@ struct ChamberChain {
 
 ChamberChain chamberChain(double gauge_pa, double atmospheric_pa, const ChamberGeometry& chamber);
 
+/// Stage 4 alone: the half angle for a given bulge (eq 15 by bisection in quad).
+double halfAngleForBulge(double bulge_m, double gap_m, double wall_critical_height_m);
+
 struct Finger {
   std::vector<double> half_angle_rad;   // theta_n
   std::vector<double> joint_angle_rad;  // q_n

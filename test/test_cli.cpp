@@ -144,3 +144,41 @@ TEST(Cli, ParameterTableListsEveryKey) {
     EXPECT_NE(r.out.find(std::string("`") + key + "`"), std::string::npos) << key;
   }
 }
+
+TEST(CalibrateCli, PrintsTableTwoAndWritesTheParameterFile) {
+  const std::string out_file = testing::TempDir() + "/calibrated.yaml";
+  const std::string cmd = std::string(FINGER_CALIBRATE_EXE) + " --output " + out_file + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+  ASSERT_EQ(pclose(pipe), 0) << out;
+  EXPECT_NE(out.find("measured_avg_deg  model_avg_deg  error_deg  joint1_measured_deg"), std::string::npos);
+  EXPECT_NE(out.find("leave_one_out_error_deg"), std::string::npos);
+  EXPECT_NE(out.find("largest |error| 0.532 deg"), std::string::npos) << out;
+  // The written file is the shipped one, byte for byte: config/finger.yaml is reproducible.
+  std::ifstream written(out_file), shipped(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml");
+  std::stringstream a, b;
+  a << written.rdbuf();
+  b << shipped.rdbuf();
+  EXPECT_EQ(a.str(), b.str());
+}
+
+TEST(CalibrateCli, MalformedDataExitsTwoNamingTheLine) {
+  const std::string bad = testing::TempDir() + "/bad.csv";
+  std::ofstream(bad) << "gauge_pa,joint_1_rad,joint_2_rad\n1e5,0.1,oops\n";
+  const CliRun r = [&] {
+    const std::string cmd = std::string(FINGER_CALIBRATE_EXE) + " --data " + bad + " 2>&1 >/dev/null";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    CliRun run{0, "", ""};
+    char buf[4096];
+    std::size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) run.err.append(buf, n);
+    const int raw = pclose(pipe);
+    run.status = WEXITSTATUS(raw);
+    return run;
+  }();
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("bad.csv:2: 'oops' in column joint_2_rad"), std::string::npos) << r.err;
+}

@@ -84,7 +84,7 @@ TEST(Property, ListOfEqualValuesEqualsItsScalar) {
   pf::RawParameterMap scalar, list;
   scalar["chamber_gap_m"] = {{4e-5}, false};
   list["chamber_gap_m"] = {std::vector<double>(7, 4e-5), true};
-  list["shear_modulus_pa"] = {std::vector<double>(7, 2.2e8), true};
+  list["shear_modulus_pa"] = {std::vector<double>(7, kPaper.shear_modulus_pa[0]), true};
   pf::FingerModel a(pf::FingerParameters::fromRaw(scalar)), b(pf::FingerParameters::fromRaw(list));
   EXPECT_EQ(b.distinctChamberCount(), 1);
   for (double p : {0.0, 5e4, 1e5, 2e5}) {

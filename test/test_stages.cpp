@@ -24,7 +24,8 @@ TEST(Stage1EnergyGroup, MatchesReferenceToRelativeUlps) {
   for (double p : kSweep) {
     const double got = pf::energyGroup(p, kPaper.atmospheric_pressure_pa, kPaper.shear_modulus_pa[0]);
     const double want = reference::chamberChain(p, kPaper.atmospheric_pressure_pa, paperChamber()).energy_group;
-    EXPECT_LE(absError(got, want), 4e-16 * want) << "P = " << p;
+    // Four roundings in the library plus the reference's final one: at most 5 half-ulps.
+    EXPECT_LE(absError(got, want), 5 * 0x1p-53 * want) << "P = " << p;
   }
 }
 

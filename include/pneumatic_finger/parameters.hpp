@@ -89,6 +89,10 @@ void parseParameterAssignment(const std::string& assignment, RawParameterMap& ra
 /// Formats a number with 17 significant digits (round-trip exact), as every tool prints numbers.
 std::string formatExact(double value);
 
+/// Formats a number with the fewest significant digits (15 to 17) that read back to the same double, as the
+/// parameter files are written.
+std::string formatShortest(double value);
+
 /// Describes the allowed range of @p spec, e.g. "(0, 1]" or "integer in [1, 64]".
 std::string describeRange(const ParameterSpec& spec);
 

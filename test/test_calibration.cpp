@@ -1,0 +1,139 @@
+// Calibration: recovers known parameters, reaches the accuracy target on the paper's data, refuses bad files.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "pneumatic_finger/calibration.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+const std::string kTable1 = std::string(PACKAGE_SOURCE_DIR) + "/data/sierra2022_table1.csv";
+constexpr double kDeg = 180.0 / M_PI;
+
+double largestError(const std::vector<pf::Residual>& r) {
+  double worst = 0;
+  for (const auto& x : r) worst = std::max(worst, std::fabs(x.error_rad()));
+  return worst;
+}
+
+// Measurements made by the model itself at the given parameters.
+std::vector<pf::Measurement> synthetic(const pf::FingerParameters& truth, const std::vector<double>& pressures) {
+  pf::FingerModel model(truth);
+  std::vector<pf::Measurement> out;
+  for (double p : pressures) {
+    const pf::FingerState& s = model.evaluate(p);
+    out.push_back({0, p, std::vector<double>(s.joint_angle_rad.data(), s.joint_angle_rad.data() + 7), NAN});
+  }
+  return out;
+}
+
+std::string refusal(const std::string& csv, std::size_t min_rows = 4) {
+  try {
+    pf::parseMeasurementsCsv(csv, "m.csv", min_rows);
+  } catch (const pf::ParameterError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+const char* const kHeader = "gauge_pa,joint_1_rad,joint_2_rad,joint_3_rad,joint_4_rad,joint_5_rad,joint_6_rad,joint_7_rad\n";
+
+}  // namespace
+
+TEST(Calibration, RecoversKnownMuAndGapFromModelData) {
+  pf::RawParameterMap raw;
+  raw["shear_modulus_pa"] = {{3.7e8}, false};
+  raw["chamber_gap_m"] = {{8.5e-5}, false};
+  const pf::FingerParameters truth = pf::FingerParameters::fromRaw(raw);
+  const auto data = synthetic(truth, {49033.25, 98066.5, 147099.75, 196133.0});
+  // Start from parameters far from the truth: the search is global over its brackets.
+  for (auto objective : {pf::CalibrationObjective::kMinimax, pf::CalibrationObjective::kLeastSquares}) {
+    const auto fit = pf::calibrate(pf::FingerParameters::defaults(), {"shear_modulus_pa", "chamber_gap_m"}, data,
+                                   objective);
+    EXPECT_NEAR(fit.values[0], 3.7e8, 3.7e8 * 1e-6) << pf::objectiveName(objective);
+    EXPECT_NEAR(fit.values[1], 8.5e-5, 8.5e-5 * 1e-6) << pf::objectiveName(objective);
+    EXPECT_LT(largestError(fit.residuals), 1e-10);
+  }
+}
+
+TEST(Calibration, RecoversOneKeyAlone) {
+  pf::RawParameterMap raw;
+  raw["chamber_gap_m"] = {{2e-5}, false};
+  const pf::FingerParameters truth = pf::FingerParameters::fromRaw(raw);
+  const auto fit = pf::calibrate(pf::FingerParameters::defaults(), {"chamber_gap_m"},
+                                 synthetic(truth, {5e4, 1e5, 2e5}), pf::CalibrationObjective::kMinimax);
+  EXPECT_NEAR(fit.values[0], 2e-5, 2e-5 * 1e-6);
+}
+
+TEST(Calibration, PaperDataReachesTheTargetAtAMinimaxOptimum) {
+  const auto data = pf::readMeasurementsCsv(kTable1, 4);
+  ASSERT_EQ(data.size(), 4u);
+  const auto fit = pf::calibrate(pf::FingerParameters::defaults(), {"shear_modulus_pa", "chamber_gap_m"}, data,
+                                 pf::CalibrationObjective::kMinimax);
+  const double worst_deg = largestError(fit.residuals) * kDeg;
+  EXPECT_LE(worst_deg, 0.56);  // issue 7's target; the paper reports 0.647 deg
+  // An optimum, checked independently of the search: every small move of either parameter makes it worse.
+  for (std::size_t k = 0; k < 2; ++k) {
+    for (double f : {0.999, 1.001}) {
+      pf::FingerParameters moved = fit.parameters;
+      auto& v = k == 0 ? moved.shear_modulus_pa : moved.chamber_gap_m;
+      for (double& x : v) x *= f;
+      EXPECT_GT(largestError(pf::residuals(moved, data)), largestError(fit.residuals)) << k << " " << f;
+    }
+  }
+  // Minimax equioscillates: at least three of the four errors share the largest magnitude.
+  int at_max = 0;
+  for (const auto& r : fit.residuals) at_max += std::fabs(std::fabs(r.error_rad()) - largestError(fit.residuals)) < 1e-9;
+  EXPECT_GE(at_max, 3);
+  // The shipped defaults are this fit.
+  EXPECT_DOUBLE_EQ(pf::FingerParameters::defaults().shear_modulus_pa[0], fit.values[0]);
+  EXPECT_DOUBLE_EQ(pf::FingerParameters::defaults().chamber_gap_m[0], fit.values[1]);
+}
+
+TEST(Calibration, PaperAverageColumnGivesTheReferenceOptimum) {
+  // Issue 7 quotes the best minimax fit "near 0.550 deg (mu ~ 2.2e8 Pa, c ~ 0.052 mm)", for the paper's printed
+  // averages (which differ from the mean of its printed joints).
+  const auto data = pf::readMeasurementsCsv(kTable1, 4, "paper_avg_rad");
+  const auto fit = pf::calibrate(pf::FingerParameters::defaults(), {"shear_modulus_pa", "chamber_gap_m"}, data,
+                                 pf::CalibrationObjective::kMinimax);
+  EXPECT_NEAR(largestError(fit.residuals) * kDeg, 0.550, 0.0005);
+  EXPECT_NEAR(fit.values[0], 2.2e8, 0.01e8);
+  EXPECT_NEAR(fit.values[1], 5.2e-5, 0.1e-5);
+}
+
+TEST(Calibration, MalformedCsvIsRefusedNamingTheLine) {
+  EXPECT_NE(refusal("# c\npressure,joint_1_rad,joint_2_rad\n1,2,3\n").find("m.csv:2: header has no 'gauge_pa'"),
+            std::string::npos);
+  EXPECT_NE(refusal("gauge_pa,joint_1_rad\n1,2\n").find("m.csv:1: header needs columns"), std::string::npos);
+  const std::string bad_number = std::string(kHeader) + "1e5,0.1,0.1,0.1,0.1,0.1,0.1,0.1\n2e5,0.1,0.1,x,0.1,0.1,0.1,0.1\n";
+  EXPECT_NE(refusal(bad_number).find("m.csv:3: 'x' in column joint_3_rad is not a finite number"), std::string::npos)
+      << refusal(bad_number);
+  const std::string short_row = std::string(kHeader) + "1e5,0.1,0.1\n";
+  EXPECT_NE(refusal(short_row).find("m.csv:2: has 3 fields, the header 8"), std::string::npos) << refusal(short_row);
+  const std::string few = std::string(kHeader) + "1e5,0.1,0.1,0.1,0.1,0.1,0.1,0.1\n";
+  EXPECT_NE(refusal(few).find("only 1 data rows; at least 4"), std::string::npos) << refusal(few);
+  const std::string nan_row = std::string(kHeader) + "nan,0.1,0.1,0.1,0.1,0.1,0.1,0.1\n";
+  EXPECT_NE(refusal(nan_row, 1).find("m.csv:2: 'nan' in column gauge_pa"), std::string::npos);
+  EXPECT_NE(refusal("").find("no header"), std::string::npos);
+  EXPECT_EQ(refusal(std::string(kHeader) + "1,1,1,1,1,1,1,1\n", 1), "");  // a well-formed file passes
+}
+
+TEST(Calibration, RefusesWhatItCannotFit) {
+  const auto data = pf::readMeasurementsCsv(kTable1, 4);
+  const auto base = pf::FingerParameters::defaults();
+  EXPECT_THROW(pf::calibrate(base, {"atmospheric_pressure_pa"}, data, pf::CalibrationObjective::kMinimax),
+               pf::ParameterError);
+  EXPECT_THROW(pf::calibrate(base, {"chamber_gap_m", "chamber_gap_m"}, data, pf::CalibrationObjective::kMinimax),
+               pf::ParameterError);
+  EXPECT_THROW(pf::calibrate(base, {"chamber_gap_m", "shear_modulus_pa", "chamber_height_m"}, data,
+                             pf::CalibrationObjective::kMinimax),
+               pf::ParameterError);
+  pf::RawParameterMap raw;
+  raw["chamber_count"] = {{5}, false};
+  EXPECT_THROW(pf::calibrate(pf::FingerParameters::fromRaw(raw), {"chamber_gap_m"}, data,
+                             pf::CalibrationObjective::kMinimax),
+               pf::ParameterError);  // 7 measured joints, 5 chambers
+  EXPECT_THROW(pf::parseObjective("median"), pf::ParameterError);
+}
