@@ -107,13 +107,9 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
   if (options_.solver == SolverKind::kTable) {
     for (auto& g : groups_) buildTable(g);
   }
-  state_.stretch = Eigen::VectorXd::Ones(n);
-  state_.bulge_m = Eigen::VectorXd::Zero(n);
-  state_.half_angle_rad = Eigen::VectorXd::Zero(n);
-  state_.joint_angle_rad = Eigen::VectorXd::Zero(n);
-  state_.backbone_m = Eigen::Matrix2Xd::Zero(2, n + 2);
   scratch_.resize(groups_.size());
-  writeState(0.0, state_);
+  chamber_half_.resize(static_cast<std::size_t>(n));
+  state_ = restState(parameters_);
 }
 
 int FingerModel::tableSegmentCount() const {
@@ -231,47 +227,66 @@ FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, doub
   return r;
 }
 
-void FingerModel::writeState(double gauge_pa, FingerState& out) const {
-  const bool detail = options_.chamber_detail;
-  for (std::size_t g = 0; g < groups_.size(); ++g) scratch_[g] = solveGroup(groups_[g], gauge_pa, detail);
-  const int n = parameters_.chamber_count;
-  // Stages 5-6: q_n = theta_{n-1} + theta_n; Theta_n = Theta_{n-1} + q_n; O_{n+1} = O_n + Z_n (cos, sin)(Theta_n).
-  // The direction is carried as a unit complex number and rotated by (cos, sin) of both half angles, so the
-  // whole backbone costs no trigonometric call.
+FingerState restState(const FingerParameters& parameters) {
+  const int n = parameters.chamber_count;
+  FingerState s;
+  s.stretch = Eigen::VectorXd::Ones(n);
+  s.bulge_m = Eigen::VectorXd::Zero(n);
+  s.half_angle_rad = Eigen::VectorXd::Zero(n);
+  s.joint_angle_rad = Eigen::VectorXd::Zero(n);
+  s.backbone_m = Eigen::Matrix2Xd::Zero(2, n + 2);
+  const std::vector<HalfAngle> straight(static_cast<std::size_t>(n));
+  jointsAndBackbone(parameters, straight.data(), s);
+  return s;
+}
+
+void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half, FingerState& out) {
+  const int n = parameters.chamber_count;
   double theta_prev = 0.0, cos_prev = 1.0, sin_prev = 0.0;
   double dir_c = 1.0, dir_s = 0.0, tip_angle = 0.0;
-  double x = parameters_.base_segment_length_m, y = 0.0;
+  double x = parameters.base_segment_length_m, y = 0.0;
   bool contact = false;
   out.backbone_m(0, 0) = 0.0;
   out.backbone_m(1, 0) = 0.0;
   out.backbone_m(0, 1) = x;
   out.backbone_m(1, 1) = y;
   for (int i = 0; i < n; ++i) {
-    const auto k = static_cast<std::size_t>(i);
-    const GroupResult& r = scratch_[static_cast<std::size_t>(group_of_chamber_[k])];
-    out.stretch[i] = r.stretch;
-    out.bulge_m[i] = r.bulge_m;
-    out.half_angle_rad[i] = r.half.rad;
-    contact = contact || r.half.rad > 0.0;
-    const double q = theta_prev + r.half.rad;
+    const HalfAngle& h = half[i];
+    out.half_angle_rad[i] = h.rad;
+    contact = contact || h.rad > 0.0;
+    const double q = theta_prev + h.rad;  // eq 37: q_n = theta_{n-1} + theta_n
     out.joint_angle_rad[i] = q;
     tip_angle += q;
-    const double rot_c = cos_prev * r.half.cos - sin_prev * r.half.sin;
-    const double rot_s = sin_prev * r.half.cos + cos_prev * r.half.sin;
+    // (cos, sin)(q) = (cos, sin)(theta_{n-1}) * (cos, sin)(theta_n); Theta_n = Theta_{n-1} + q.
+    const double rot_c = cos_prev * h.cos - sin_prev * h.sin;
+    const double rot_s = sin_prev * h.cos + cos_prev * h.sin;
     const double c_new = dir_c * rot_c - dir_s * rot_s;
     dir_s = dir_s * rot_c + dir_c * rot_s;
     dir_c = c_new;
-    const double z = parameters_.segment_length_m[k];
+    const double z = parameters.segment_length_m[static_cast<std::size_t>(i)];  // eq 38
     x += z * dir_c;
     y += z * dir_s;
     out.backbone_m(0, i + 2) = x;
     out.backbone_m(1, i + 2) = y;
-    theta_prev = r.half.rad;
-    cos_prev = r.half.cos;
-    sin_prev = r.half.sin;
+    theta_prev = h.rad;
+    cos_prev = h.cos;
+    sin_prev = h.sin;
   }
   out.tip_angle_rad = tip_angle;
   out.in_contact = contact;
+}
+
+void FingerModel::writeState(double gauge_pa, FingerState& out) const {
+  const bool detail = options_.chamber_detail;
+  for (std::size_t g = 0; g < groups_.size(); ++g) scratch_[g] = solveGroup(groups_[g], gauge_pa, detail);
+  for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
+    const GroupResult& r = scratch_[static_cast<std::size_t>(group_of_chamber_[k])];
+    const auto i = static_cast<Eigen::Index>(k);
+    out.stretch[i] = r.stretch;
+    out.bulge_m[i] = r.bulge_m;
+    chamber_half_[k] = r.half;
+  }
+  jointsAndBackbone(parameters_, chamber_half_.data(), out);
   out.gauge_pa = gauge_pa;
 }
 

@@ -63,6 +63,16 @@ struct FingerState {
   Eigen::Vector2d tip() const { return backbone_m.col(backbone_m.cols() - 1); }
 };
 
+/// Stages 5-6 (eq 37-38): joint angles q_n = theta_{n-1} + theta_n, the tip direction Theta_N and the backbone
+/// O_0..O_{N+1}, from each chamber's half angle (with its cosine and sine). Fills joint_angle_rad, half_angle_rad,
+/// backbone_m, tip_angle_rad and in_contact of @p out, which must be sized for parameters.chamber_count.
+/// The direction is carried as a unit complex number rotated by (cos, sin) of both half angles, so the whole
+/// backbone costs no trigonometric call.
+void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half_angles, FingerState& out);
+
+/// A FingerState sized for @p parameters, at rest (the straight finger).
+FingerState restState(const FingerParameters& parameters);
+
 class FingerModel {
  public:
   /// Builds the model; the table solver also builds its table here (a few milliseconds).
@@ -134,8 +144,9 @@ class FingerModel {
   bool has_last_ = false;
   long computations_ = 0;
   double last_gauge_pa_ = 0.0;
-  // Scratch for writeState: per-group results, sized at construction (no allocation per evaluation).
+  // Scratch for writeState: per-group results and per-chamber half angles, sized at construction.
   mutable std::vector<GroupResult> scratch_;
+  mutable std::vector<HalfAngle> chamber_half_;
 };
 
 /// Gauge pressure (Pa) at which a chamber's bulge reaches its gap (the contact pressure): the inverse chain
