@@ -6,8 +6,10 @@ set -euo pipefail
 PACKAGES=(
   # build: catkin, compiler, core library (package.xml: catkin, eigen, yaml-cpp)
   build-essential cmake catkin python3-catkin-pkg libeigen3-dev libyaml-cpp-dev
-  # tests (package.xml: gtest; test_depend)
-  libgtest-dev googletest
+  # benchmarks (package.xml: benchmark, gsl)
+  libbenchmark-dev libgsl-dev
+  # tests (package.xml: gtest; test_depend) and the docs' plots
+  libgtest-dev googletest python3-matplotlib
   # lint (checked by scripts/test.sh)
   catkin-lint
 )

@@ -1,0 +1,257 @@
+// finger_bench: speed against error for every way of evaluating the finger, side by side in one run.
+//
+// Each variant evaluates the whole finger (N = 7: stages 1-6, joint angles and backbone) at pressures that change
+// on every call (so the unchanged-pressure cache never answers). Counters carry, from the same run, the largest
+// error against the quad-precision reference: over the validated range (0..2 kg/cm^2) and over MODEL.md's hard
+// cases separately, where `hard_failures` counts pressures at which the variant returned no finite answer.
+#include <benchmark/benchmark.h>
+#include <gsl/gsl_errno.h>
+#include <gsl/gsl_poly.h>
+
+#include <unsupported/Eigen/Polynomials>
+
+#include <cmath>
+#include <functional>
+#include <limits>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/finger_model.hpp"
+#include "pneumatic_finger/stages.hpp"
+#include "reference_quad.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+const pf::FingerParameters kParams = pf::FingerParameters::defaults();
+
+// A whole-finger evaluator: pressure in, state out.
+struct Variant {
+  virtual ~Variant() = default;
+  virtual const pf::FingerState& evaluate(double gauge_pa) = 0;
+};
+
+struct ModelVariant : Variant {
+  explicit ModelVariant(pf::SolverKind kind, bool detail) {
+    pf::ModelOptions o;
+    o.solver = kind;
+    o.chamber_detail = detail;
+    model = std::make_unique<pf::FingerModel>(kParams, o);
+  }
+  const pf::FingerState& evaluate(double p) override { return model->evaluate(p); }
+  std::unique_ptr<pf::FingerModel> model;
+};
+
+// What a user might write instead: the robust stages 1-3, then eq 16-22's quartic handed to a general polynomial
+// root finder, the real root in [0, 1] that satisfies Wang's relation, theta = asin(y). Identical chambers are
+// still solved once.
+struct PolynomialVariant : Variant {
+  using RootFinder = std::function<int(const double* coeffs_low_to_high, double* re, double* im)>;
+  explicit PolynomialVariant(RootFinder f) : find(std::move(f)), state(pf::restState(kParams)),
+                                             half(static_cast<std::size_t>(kParams.chamber_count)) {}
+  const pf::FingerState& evaluate(double p) override {
+    const double c = kParams.chamber_gap_m[0], b = kParams.wall_critical_height_m[0];
+    const double g = pf::energyGroup(p, kParams.atmospheric_pressure_pa, kParams.shear_modulus_pa[0]);
+    const double h = pf::bulge(pf::stretchExcess(g), kParams.chamber_height_m[0]);
+    pf::HalfAngle a;
+    if (h > c) {
+      const auto q = pf::paper::quarticCoefficients(h, c, b);  // A y^4 + ... + E
+      const double low_to_high[5] = {q[4], q[3], q[2], q[1], q[0]};
+      double re[4], im[4];
+      const int count = find(low_to_high, re, im);
+      double best = std::numeric_limits<double>::quiet_NaN(), best_residual = 1e-6;
+      for (int i = 0; i < count; ++i) {
+        if (std::fabs(im[i]) > 1e-9 || !(re[i] >= 0 && re[i] <= 1)) continue;
+        const double theta = std::asin(re[i]);
+        const double residual = std::fabs(pf::bulgeForHalfAngle(theta, c, b) - h) / h;
+        if (residual < best_residual) {
+          best_residual = residual;
+          best = theta;
+        }
+      }
+      a.rad = best;
+      a.cos = std::cos(best);
+      a.sin = std::sin(best);
+    }
+    std::fill(half.begin(), half.end(), a);
+    pf::jointsAndBackbone(kParams, half.data(), state);
+    return state;
+  }
+  RootFinder find;
+  pf::FingerState state;
+  std::vector<pf::HalfAngle> half;
+};
+
+std::unique_ptr<Variant> eigenVariant() {
+  auto solver = std::make_shared<Eigen::PolynomialSolver<double, 4>>();
+  return std::make_unique<PolynomialVariant>([solver](const double* c, double* re, double* im) {
+    Eigen::Matrix<double, 5, 1> coeffs;
+    for (int i = 0; i < 5; ++i) coeffs[i] = c[i];
+    solver->compute(coeffs);
+    const auto& roots = solver->roots();
+    for (int i = 0; i < 4; ++i) {
+      re[i] = roots[i].real();
+      im[i] = roots[i].imag();
+    }
+    return 4;
+  });
+}
+
+std::unique_ptr<Variant> gslVariant() {
+  gsl_set_error_handler_off();  // a failed solve is reported by its return code, not by abort()
+  std::shared_ptr<gsl_poly_complex_workspace> w(gsl_poly_complex_workspace_alloc(5), gsl_poly_complex_workspace_free);
+  return std::make_unique<PolynomialVariant>([w](const double* c, double* re, double* im) {
+    double z[8];
+    if (gsl_poly_complex_solve(c, 5, w.get(), z) != GSL_SUCCESS) return 0;
+    for (int i = 0; i < 4; ++i) {
+      re[i] = z[2 * i];
+      im[i] = z[2 * i + 1];
+    }
+    return 4;
+  });
+}
+
+std::unique_ptr<Variant> makeVariant(const std::string& name) {
+  if (name == "robust") return std::make_unique<ModelVariant>(pf::SolverKind::kRobust, true);
+  if (name == "paper") return std::make_unique<ModelVariant>(pf::SolverKind::kPaper, true);
+  if (name == "table") return std::make_unique<ModelVariant>(pf::SolverKind::kTable, false);
+  if (name == "eigen_companion") return eigenVariant();
+  return gslVariant();
+}
+
+const std::vector<double>& validatedPressures() {
+  static const std::vector<double> p = [] {
+    std::vector<double> v;
+    for (int i = 0; i < 1024; ++i) v.push_back(196133.0 * (i + 0.5) / 1024);  // 0..2 kg/cm^2
+    return v;
+  }();
+  return p;
+}
+
+// MODEL.md's hard cases, as pressures on the default actuator.
+const std::vector<double>& hardPressures() {
+  static const std::vector<double> p = [] {
+    std::vector<double> v;
+    for (double x = 1e-9; x < 10; x *= 10) v.push_back(x);  // near rest
+    const double pc = pf::contactGaugePa(kParams.chamber_height_m[0], kParams.chamber_gap_m[0],
+                                         kParams.shear_modulus_pa[0], kParams.atmospheric_pressure_pa);
+    for (int k = 1; k <= 15; ++k) {
+      v.push_back(pc * (1 - std::pow(10.0, -k)));
+      v.push_back(pc * (1 + std::pow(10.0, -k)));
+    }
+    for (double e = 7.5; e <= 9.0; e += 0.1) v.push_back(std::pow(10.0, e));  // resolvent branch band
+    for (double x : {1e10, 1e12, 1e15, 1e50, 1e100, 1e300}) v.push_back(x);  // theta -> pi/2
+    return v;
+  }();
+  return p;
+}
+
+struct Errors {
+  double theta = 0, tip = 0;
+  int failures = 0;
+};
+
+Errors measureErrors(Variant& v, const std::vector<double>& pressures) {
+  Errors e;
+  for (double p : pressures) {
+    std::vector<reference::ChamberGeometry> chambers(static_cast<std::size_t>(kParams.chamber_count),
+                                                     {kParams.chamber_height_m[0], kParams.wall_critical_height_m[0],
+                                                      kParams.chamber_gap_m[0], kParams.shear_modulus_pa[0]});
+    const reference::Finger ref = reference::finger(p, kParams.atmospheric_pressure_pa, chambers,
+                                                    kParams.segment_length_m, kParams.base_segment_length_m);
+    const pf::FingerState& s = v.evaluate(p);
+    const Eigen::Vector2d tip = s.tip();
+    const double dt = std::fabs(s.half_angle_rad[0] - ref.half_angle_rad[0]);
+    const double dx = std::hypot(tip.x() - ref.x_m.back(), tip.y() - ref.y_m.back());
+    if (!std::isfinite(dt) || !std::isfinite(dx)) {
+      ++e.failures;
+      continue;
+    }
+    e.theta = std::max(e.theta, dt);
+    e.tip = std::max(e.tip, dx);
+  }
+  return e;
+}
+
+// Google Benchmark calls a benchmark function several times (to size its iterations); the reference is
+// computed once per variant and case set.
+const Errors& cachedErrors(const std::string& name, bool hard, Variant& v, const std::vector<double>& pressures) {
+  static std::map<std::pair<std::string, bool>, Errors> cache;
+  const auto key = std::make_pair(name, hard);
+  auto it = cache.find(key);
+  if (it == cache.end()) it = cache.emplace(key, measureErrors(v, pressures)).first;
+  return it->second;
+}
+
+void benchVariant(benchmark::State& state, const std::string& name, bool hard) {
+  const std::vector<double>& pressures = hard ? hardPressures() : validatedPressures();
+  auto variant = makeVariant(name);
+  const Errors err = cachedErrors(name, hard, *variant, pressures);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const pf::FingerState& s = variant->evaluate(pressures[i]);
+    benchmark::DoNotOptimize(s.backbone_m.data());
+    benchmark::ClobberMemory();
+    if (++i == pressures.size()) i = 0;
+  }
+  state.counters["max_theta_error_rad"] = err.theta;
+  state.counters["max_tip_error_m"] = err.tip;
+  state.counters["failures"] = err.failures;
+  state.counters["pressures"] = static_cast<double>(pressures.size());
+  state.SetLabel(hard ? "hard cases" : "validated range");
+}
+
+// The stages alone, over the validated range, to show where the time of a robust evaluation goes.
+void benchStages(benchmark::State& state, int stage) {
+  const std::vector<double>& pressures = validatedPressures();
+  const double p_o = kParams.atmospheric_pressure_pa, mu = kParams.shear_modulus_pa[0];
+  const double l = kParams.chamber_height_m[0], b = kParams.wall_critical_height_m[0], c = kParams.chamber_gap_m[0];
+  std::vector<double> g(pressures.size()), delta(pressures.size()), h(pressures.size());
+  std::vector<pf::HalfAngle> theta(pressures.size());
+  for (std::size_t i = 0; i < pressures.size(); ++i) {
+    g[i] = pf::energyGroup(pressures[i], p_o, mu);
+    delta[i] = pf::stretchExcess(g[i]);
+    h[i] = pf::bulge(delta[i], l);
+    theta[i] = pf::halfAngle(h[i], c, b);
+  }
+  pf::FingerState out = pf::restState(kParams);
+  std::vector<pf::HalfAngle> seven(7);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    switch (stage) {
+      case 1: benchmark::DoNotOptimize(pf::energyGroup(pressures[i], p_o, mu)); break;
+      case 2: benchmark::DoNotOptimize(pf::stretchExcess(g[i])); break;
+      case 3: benchmark::DoNotOptimize(pf::bulge(delta[i], l)); break;
+      case 4: benchmark::DoNotOptimize(pf::halfAngle(h[i], c, b)); break;
+      default:
+        std::fill(seven.begin(), seven.end(), theta[i]);
+        pf::jointsAndBackbone(kParams, seven.data(), out);
+        benchmark::DoNotOptimize(out.backbone_m.data());
+    }
+    if (++i == pressures.size()) i = 0;
+  }
+  state.SetLabel(stage == 1 ? "energy group g(P)" : stage == 2 ? "stretch delta(g)" : stage == 3 ? "bulge h(delta)"
+                 : stage == 4 ? "half angle theta(h)" : "joints + backbone (N = 7)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  for (const char* name : {"robust", "table", "paper", "eigen_companion", "gsl_complex"}) {
+    for (bool hard : {false, true}) {
+      benchmark::RegisterBenchmark((std::string(name) + (hard ? "/hard" : "/validated")).c_str(),
+                                   [name, hard](benchmark::State& s) { benchVariant(s, name, hard); });
+    }
+  }
+  for (int stage = 1; stage <= 5; ++stage) {
+    benchmark::RegisterBenchmark(("robust_stage/" + std::to_string(stage)).c_str(),
+                                 [stage](benchmark::State& s) { benchStages(s, stage); });
+  }
+  benchmark::Initialize(&argc, argv);
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}
