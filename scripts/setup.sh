@@ -7,7 +7,7 @@ PACKAGES=(
   # build: catkin, compiler, core library (package.xml: catkin, eigen, yaml-cpp)
   build-essential cmake catkin python3-catkin-pkg libeigen3-dev libyaml-cpp-dev
   # benchmarks (package.xml: benchmark, gsl)
-  libbenchmark-dev libgsl-dev
+  libbenchmark-dev libgsl-dev pkg-config
   # tests (package.xml: gtest; test_depend) and the docs' plots
   libgtest-dev googletest python3-matplotlib
   # lint (checked by scripts/test.sh)

@@ -12,6 +12,11 @@ mkdir -p "$ROOT/build/lint"
 ln -sfn "$ROOT" "$ROOT/build/lint/pneumatic_finger"
 catkin_lint -W2 --strict "$ROOT/build/lint/pneumatic_finger"
 
+# The benchmark in smoke mode: it must run and its numbers must be finite (timings are never tests).
+"$ROOT/build/devel/lib/pneumatic_finger/finger_bench" --benchmark_min_time=0.002 --benchmark_format=json \
+  >"$ROOT/build/bench_smoke.json" 2>/dev/null
+/usr/bin/python3 "$ROOT/scripts/check_bench_smoke.py" "$ROOT/build/bench_smoke.json"
+
 # Each run gets its own ROS master port and ROS_HOME under build/, so two runs never collide.
 port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
 export ROS_HOSTNAME=localhost ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$ROOT/build/ros_home"

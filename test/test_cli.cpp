@@ -182,3 +182,12 @@ TEST(CalibrateCli, MalformedDataExitsTwoNamingTheLine) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("bad.csv:2: 'oops' in column joint_2_rad"), std::string::npos) << r.err;
 }
+
+TEST(Cli, ReadmeParameterTableIsTheGeneratedOne) {
+  const CliRun r = run("--parameters");
+  std::ifstream readme(std::string(PACKAGE_SOURCE_DIR) + "/README.md");
+  std::stringstream text;
+  text << readme.rdbuf();
+  EXPECT_NE(text.str().find(r.out), std::string::npos)
+      << "README.md's parameter table differs from `finger_model --parameters`; paste the new output";
+}

@@ -1,0 +1,19 @@
+"""Checks a finger_bench JSON report (smoke mode): every benchmark ran, and all its numbers are finite.
+
+usage: python3 scripts/check_bench_smoke.py REPORT.json
+"""
+import json
+import math
+import sys
+
+report = json.load(open(sys.argv[1]))
+runs = report["benchmarks"]
+bad = [(r["name"], k) for r in runs for k, v in r.items() if isinstance(v, float) and not math.isfinite(v)]
+names = {r["name"] for r in runs}
+expected = {f"{v}/{s}" for v in ("robust", "table", "paper", "eigen_companion", "gsl_complex")
+            for s in ("validated", "hard")} | {f"robust_stage/{i}" for i in range(1, 6)}
+missing = expected - names
+if bad or missing:
+    print(f"bench smoke: FAILED: non-finite {bad}, missing {sorted(missing)}")
+    sys.exit(1)
+print(f"bench smoke: ok ({len(runs)} benchmarks, all numbers finite)")
