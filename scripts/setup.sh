@@ -6,6 +6,15 @@ set -euo pipefail
 PACKAGES=(
   # build: catkin, compiler, core library (package.xml: catkin, eigen, yaml-cpp)
   build-essential cmake catkin python3-catkin-pkg libeigen3-dev libyaml-cpp-dev
+  # the ROS node (package.xml: roscpp, message_generation/runtime, std/sensor/geometry/diagnostic msgs,
+  # diagnostic_updater, tf2, tf2_ros, tf2_msgs, urdfdom) and its tools (rostest, roslaunch, check_urdf, rviz)
+  libroscpp-dev ros-message-generation ros-message-runtime libstd-msgs-dev ros-std-msgs python3-std-msgs
+  libsensor-msgs-dev ros-sensor-msgs python3-sensor-msgs libgeometry-msgs-dev ros-geometry-msgs
+  python3-geometry-msgs libdiagnostic-msgs-dev ros-diagnostic-msgs python3-diagnostic-msgs
+  libdiagnostic-updater-dev libtf2-dev libtf2-msgs-dev ros-tf2-msgs python3-tf2-msgs libtf2-ros-dev python3-tf2-ros
+  liburdfdom-dev liburdfdom-tools librostest-dev python3-rostest python3-roslaunch python3-rosmaster
+  python3-rostopic python3-rosnode python3-rosparam python3-rosservice rosbash ros-robot-state-publisher
+  rviz xvfb imagemagick
   # benchmarks (package.xml: benchmark, gsl)
   libbenchmark-dev libgsl-dev pkg-config
   # tests (package.xml: gtest; test_depend) and the docs' plots

@@ -8,9 +8,11 @@ export PATH="/usr/bin:/bin:$PATH"
 
 echo "lint: catkin_lint"
 # catkin_lint checks that the folder is named after the package; the clone's folder name is not ours to choose.
-mkdir -p "$ROOT/build/lint"
-ln -sfn "$ROOT" "$ROOT/build/lint/pneumatic_finger"
-catkin_lint -W2 --strict "$ROOT/build/lint/pneumatic_finger"
+# The link lives outside the tree: inside it, rospack would crawl the package into itself.
+lint_dir=$(mktemp -d)
+ln -s "$ROOT" "$lint_dir/pneumatic_finger"
+catkin_lint -W2 --strict "$lint_dir/pneumatic_finger"
+rm -rf "$lint_dir"
 
 # The benchmark in smoke mode: it must run and its numbers must be finite (timings are never tests).
 "$ROOT/build/devel/lib/pneumatic_finger/finger_bench" --benchmark_min_time=0.002 --benchmark_format=json \

@@ -191,3 +191,33 @@ TEST(Cli, ReadmeParameterTableIsTheGeneratedOne) {
   EXPECT_NE(text.str().find(r.out), std::string::npos)
       << "README.md's parameter table differs from `finger_model --parameters`; paste the new output";
 }
+
+TEST(UrdfCli, GeneratedUrdfPassesCheckUrdfWithPrefixedNames) {
+  const std::string file = testing::TempDir() + "/finger.urdf";
+  const std::string gen = std::string(FINGER_URDF_EXE) + " --prefix finger_b_ --parent flange --xyz 0,0.02,0.01 --rpy 0,0,2.0944 -o " + file;
+  ASSERT_EQ(std::system(gen.c_str()), 0);
+  FILE* pipe = popen(("check_urdf " + file + " 2>&1").c_str(), "r");
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+  ASSERT_EQ(pclose(pipe), 0) << out;
+  EXPECT_NE(out.find("Successfully Parsed XML"), std::string::npos) << out;
+  EXPECT_NE(out.find("root Link: flange"), std::string::npos) << out;
+  for (const char* link : {"finger_b_segment_0", "finger_b_segment_7", "finger_b_tip"}) {
+    EXPECT_NE(out.find(link), std::string::npos) << link;
+  }
+  // The joints: revolute about +z, named like joint_states, with limits from the model.
+  std::ifstream in(file);
+  std::stringstream xml;
+  xml << in.rdbuf();
+  EXPECT_NE(xml.str().find("<joint name=\"finger_b_joint_7\" type=\"revolute\">"), std::string::npos);
+  EXPECT_NE(xml.str().find("<axis xyz=\"0 0 1\""), std::string::npos);
+  EXPECT_EQ(xml.str().find("<mesh"), std::string::npos);  // simple shapes only
+}
+
+TEST(UrdfCli, InvalidPrefixIsRefused) {
+  const std::string cmd = std::string(FINGER_URDF_EXE) + " --prefix 'bad name' >/dev/null 2>&1";
+  const int raw = std::system(cmd.c_str());
+  EXPECT_EQ(WEXITSTATUS(raw), 2);
+}

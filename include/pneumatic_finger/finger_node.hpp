@@ -1,0 +1,89 @@
+// The ROS wrapper: regulator pressure in; joint states, tf, the finger's state, diagnostics and a URDF out.
+// All modelling is the core's (FingerModel, fingerUrdf); this class only reads parameters and moves messages.
+#pragma once
+
+#include <diagnostic_updater/diagnostic_updater.h>
+#include <ros/ros.h>
+#include <sensor_msgs/FluidPressure.h>
+#include <sensor_msgs/JointState.h>
+#include <tf2_ros/static_transform_broadcaster.h>
+#include <tf2_ros/transform_broadcaster.h>
+
+#include <deque>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/FingerModelState.h"
+#include "pneumatic_finger/PressureForTipAngle.h"
+#include "pneumatic_finger/finger_model.hpp"
+#include "pneumatic_finger/finger_urdf.hpp"
+
+namespace pneumatic_finger {
+
+/// The node's own parameters (besides the actuator keys of parameterSpecs()): one definition, read by the node
+/// and printed by `finger_node --parameters` for the README.
+struct NodeParameterSpec {
+  const char* key;
+  const char* type;           ///< "string", "double", "double[3]"
+  const char* default_value;  ///< as text
+  const char* unit;
+  const char* allowed;
+  const char* description;
+};
+const std::vector<NodeParameterSpec>& nodeParameterSpecs();
+
+/// Everything the node reads at start-up, validated.
+struct NodeSettings {
+  FingerParameters finger;
+  FingerUrdfOptions urdf;
+  SolverKind solver = SolverKind::kRobust;
+  double max_rate_hz = 0.0;
+  double stale_timeout_s = 1.0;
+  double validated_max_gauge_pa = 196133.0;
+  std::string description_param = "robot_description";
+  std::string pressure_topic = "pressure";
+  std::string joint_states_topic = "joint_states";
+  std::string finger_state_topic = "finger_state";
+};
+
+/// Reads and validates every parameter from the private handle.
+/// @throws ParameterError naming the key, the value and what is allowed
+NodeSettings readNodeSettings(const ros::NodeHandle& private_nh);
+
+class FingerNode {
+ public:
+  /// Publishes the URDF and the static frames and starts listening. @throws ParameterError on a bad parameter.
+  FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh);
+
+ private:
+  void onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg);
+  bool onInverse(PressureForTipAngle::Request& req, PressureForTipAngle::Response& res);
+  void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void publish(const FingerState& state, const ros::Time& stamp);
+
+  NodeSettings settings_;
+  std::unique_ptr<FingerModel> model_;
+  ros::Subscriber pressure_sub_;
+  ros::Publisher joint_states_pub_, finger_state_pub_;
+  ros::ServiceServer inverse_srv_;
+  tf2_ros::TransformBroadcaster tf_;
+  tf2_ros::StaticTransformBroadcaster static_tf_;
+  diagnostic_updater::Updater diagnostics_;
+  ros::Timer diagnostics_timer_;
+
+  // Preallocated outgoing messages: the per-message cycle fills them in place.
+  sensor_msgs::JointState joint_states_;
+  FingerModelState finger_state_;
+  std::vector<geometry_msgs::TransformStamped> transforms_;
+
+  // Input bookkeeping for throttling and diagnostics.
+  ros::Time last_processed_, last_received_;
+  std::deque<ros::Time> recent_;  // receive times within the last second, for the input rate
+  long received_ = 0, refused_not_finite_ = 0, refused_negative_absolute_ = 0, vacuum_ = 0, out_of_range_ = 0,
+       throttled_ = 0;
+  double last_gauge_pa_ = 0.0;
+  std::string last_refusal_;
+};
+
+}  // namespace pneumatic_finger

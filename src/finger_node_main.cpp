@@ -1,0 +1,38 @@
+// finger_node: creates the private handle, builds the wrapper, spins. A bad parameter stops it with a message.
+#include <ros/ros.h>
+
+#include <iostream>
+
+#include "pneumatic_finger/finger_node.hpp"
+
+namespace {
+
+// `finger_node --parameters`: the node's own parameters as Markdown, for the README (no ROS master needed).
+void printParameters() {
+  std::cout << "| parameter | type | default | unit | allowed | meaning |\n|---|---|---|---|---|---|\n";
+  for (const auto& s : pneumatic_finger::nodeParameterSpecs()) {
+    std::cout << "| `~" << s.key << "` | " << s.type << " | `" << s.default_value << "` | " << s.unit << " | "
+              << s.allowed << " | " << s.description << " |\n";
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc > 1 && std::string(argv[1]) == "--parameters") {
+    printParameters();
+    return 0;
+  }
+  ros::init(argc, argv, "finger_node");
+  ros::NodeHandle nh;
+  ros::NodeHandle private_nh("~");
+  try {
+    pneumatic_finger::FingerNode node(nh, private_nh);
+    ros::spin();
+  } catch (const pneumatic_finger::ParameterError& e) {
+    ROS_FATAL("finger_node: %s", e.what());
+    std::cerr << "finger_node: error: " << e.what() << std::endl;
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,273 @@
+// rostest: the running finger_node against the core model (test/finger_node.test starts it).
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+#include <sensor_msgs/FluidPressure.h>
+#include <sensor_msgs/JointState.h>
+#include <tf2/LinearMath/Transform.h>
+#include <tf2_msgs/TFMessage.h>
+#include <tf2_ros/buffer.h>
+#include <tf2_ros/transform_listener.h>
+#include <urdf_parser/urdf_parser.h>
+
+#include <sys/wait.h>
+
+#include <map>
+#include <mutex>
+#include <set>
+
+#include "pneumatic_finger/FingerModelState.h"
+#include "pneumatic_finger/PressureForTipAngle.h"
+#include "pneumatic_finger/finger_model.hpp"
+#include "pneumatic_finger/yaml_parameters.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+const std::string kPrefix = "test_";
+const std::array<double, 3> kMountXyz{{0.01, -0.02, 0.03}}, kMountRpy{{0.1, -0.2, 0.3}};
+
+pf::FingerParameters packageParameters() {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml", raw);
+  return pf::FingerParameters::fromRaw(raw);
+}
+
+// Collects everything the node publishes, with who published each tf child frame.
+struct Listener {
+  std::mutex mutex;
+  std::map<ros::Time, sensor_msgs::JointState> joint_states;
+  std::map<ros::Time, pf::FingerModelState> finger_states;
+  std::map<std::string, std::set<std::string>> frame_publishers;
+
+  void onJointState(const sensor_msgs::JointState::ConstPtr& m) {
+    std::lock_guard<std::mutex> lock(mutex);
+    joint_states[m->header.stamp] = *m;
+  }
+  void onFingerState(const pf::FingerModelState::ConstPtr& m) {
+    std::lock_guard<std::mutex> lock(mutex);
+    finger_states[m->header.stamp] = *m;
+  }
+  void onTf(const ros::MessageEvent<tf2_msgs::TFMessage const>& event) {
+    std::lock_guard<std::mutex> lock(mutex);
+    for (const auto& t : event.getMessage()->transforms) frame_publishers[t.child_frame_id].insert(event.getPublisherName());
+  }
+};
+
+class FingerNodeTest : public testing::Test {
+ protected:
+  static void SetUpTestSuite() {
+    nh_ = new ros::NodeHandle;
+    listener_ = new Listener;
+    buffer_ = new tf2_ros::Buffer(ros::Duration(30));
+    tf_listener_ = new tf2_ros::TransformListener(*buffer_);
+    subs_.push_back(nh_->subscribe("joint_states", 100, &Listener::onJointState, listener_));
+    subs_.push_back(nh_->subscribe("finger_state", 100, &Listener::onFingerState, listener_));
+    subs_.push_back(nh_->subscribe("/tf", 1000, &Listener::onTf, listener_));
+    subs_.push_back(nh_->subscribe("/tf_static", 100, &Listener::onTf, listener_));
+    pressure_ = nh_->advertise<sensor_msgs::FluidPressure>("pressure", 100, true);
+    const ros::Time deadline = ros::Time::now() + ros::Duration(30);
+    while (pressure_.getNumSubscribers() == 0 && ros::Time::now() < deadline) ros::Duration(0.05).sleep();
+  }
+
+  // Publishes a gauge pressure and waits until the node's joint_states with the same stamp arrive.
+  static ros::Time publishAndWait(double gauge_pa) {
+    sensor_msgs::FluidPressure msg;
+    msg.header.stamp = ros::Time::now();
+    msg.fluid_pressure = gauge_pa + 101325.0;
+    pressure_.publish(msg);
+    const ros::Time deadline = ros::Time::now() + ros::Duration(10);
+    while (ros::Time::now() < deadline) {
+      {
+        std::lock_guard<std::mutex> lock(listener_->mutex);
+        if (listener_->joint_states.count(msg.header.stamp) && listener_->finger_states.count(msg.header.stamp)) break;
+      }
+      ros::Duration(0.005).sleep();
+    }
+    return msg.header.stamp;
+  }
+
+  static ros::NodeHandle* nh_;
+  static Listener* listener_;
+  static tf2_ros::Buffer* buffer_;
+  static tf2_ros::TransformListener* tf_listener_;
+  static std::vector<ros::Subscriber> subs_;
+  static ros::Publisher pressure_;
+};
+
+ros::NodeHandle* FingerNodeTest::nh_ = nullptr;
+Listener* FingerNodeTest::listener_ = nullptr;
+tf2_ros::Buffer* FingerNodeTest::buffer_ = nullptr;
+tf2_ros::TransformListener* FingerNodeTest::tf_listener_ = nullptr;
+std::vector<ros::Subscriber> FingerNodeTest::subs_;
+ros::Publisher FingerNodeTest::pressure_;
+
+const std::vector<double> kGauges = {0.0, 3e4, 98066.5, 150000.0, 196133.0, 280000.0};
+
+}  // namespace
+
+TEST_F(FingerNodeTest, JointStatesEqualTheCoreModel) {
+  pf::FingerModel model(packageParameters());
+  for (double p : kGauges) {
+    const ros::Time stamp = publishAndWait(p);
+    std::lock_guard<std::mutex> lock(listener_->mutex);
+    ASSERT_TRUE(listener_->joint_states.count(stamp)) << "no joint_states for P = " << p;
+    const auto& js = listener_->joint_states[stamp];
+    const pf::FingerState& want = model.evaluate(p);
+    ASSERT_EQ(js.position.size(), 7u);
+    for (int i = 0; i < 7; ++i) {
+      EXPECT_EQ(js.name[static_cast<std::size_t>(i)], kPrefix + "joint_" + std::to_string(i + 1));
+      EXPECT_NEAR(js.position[static_cast<std::size_t>(i)], want.joint_angle_rad[i], 1e-9) << "P = " << p;
+    }
+  }
+}
+
+TEST_F(FingerNodeTest, TipFrameResolvesFromTheParentAndEqualsTheModel) {
+  pf::FingerModel model(packageParameters());
+  tf2::Quaternion mount_q;
+  mount_q.setRPY(kMountRpy[0], kMountRpy[1], kMountRpy[2]);
+  const tf2::Transform mount(mount_q, tf2::Vector3(kMountXyz[0], kMountXyz[1], kMountXyz[2]));
+  for (double p : kGauges) {
+    const ros::Time stamp = publishAndWait(p);
+    geometry_msgs::TransformStamped got;
+    ASSERT_NO_THROW(got = buffer_->lookupTransform("tool0", kPrefix + "tip", stamp, ros::Duration(5))) << "P = " << p;
+    const pf::FingerState& want = model.evaluate(p);
+    tf2::Quaternion yaw;
+    yaw.setRPY(0, 0, want.tip_angle_rad);
+    const tf2::Transform expected = mount * tf2::Transform(yaw, tf2::Vector3(want.tip().x(), want.tip().y(), 0));
+    EXPECT_NEAR(got.transform.translation.x, expected.getOrigin().x(), 1e-9) << "P = " << p;
+    EXPECT_NEAR(got.transform.translation.y, expected.getOrigin().y(), 1e-9);
+    EXPECT_NEAR(got.transform.translation.z, expected.getOrigin().z(), 1e-9);
+    const tf2::Quaternion r(got.transform.rotation.x, got.transform.rotation.y, got.transform.rotation.z,
+                            got.transform.rotation.w);
+    EXPECT_NEAR(std::fabs(r.dot(expected.getRotation())), 1.0, 1e-12);
+    // Every joint axis too, against the backbone points O_1..O_N.
+    for (int n = 1; n <= 7; ++n) {
+      const auto seg = buffer_->lookupTransform("tool0", kPrefix + "segment_" + std::to_string(n), stamp);
+      const tf2::Vector3 o = mount * tf2::Vector3(want.backbone_m(0, n), want.backbone_m(1, n), 0);
+      EXPECT_NEAR(seg.transform.translation.x, o.x(), 1e-9) << "segment " << n;
+      EXPECT_NEAR(seg.transform.translation.y, o.y(), 1e-9) << "segment " << n;
+    }
+  }
+}
+
+TEST_F(FingerNodeTest, FingerStateCarriesTheModel) {
+  pf::FingerModel model(packageParameters());
+  for (double p : {5e4, 250000.0}) {
+    const ros::Time stamp = publishAndWait(p);
+    std::lock_guard<std::mutex> lock(listener_->mutex);
+    ASSERT_TRUE(listener_->finger_states.count(stamp));
+    const auto& s = listener_->finger_states[stamp];
+    const pf::FingerState& want = model.evaluate(p);
+    EXPECT_EQ(s.header.frame_id, kPrefix + "segment_0");
+    EXPECT_NEAR(s.gauge_pa, p, 1e-9);
+    ASSERT_EQ(s.backbone.size(), 9u);
+    EXPECT_NEAR(s.backbone[8].x, want.tip().x(), 1e-12);
+    EXPECT_NEAR(s.backbone[8].y, want.tip().y(), 1e-12);
+    EXPECT_NEAR(s.tip_angle_rad, want.tip_angle_rad, 1e-12);
+    EXPECT_NEAR(s.stretch[3], want.stretch[3], 1e-12);
+    EXPECT_NEAR(s.half_angle_rad[6], want.half_angle_rad[6], 1e-12);
+    EXPECT_TRUE(s.in_contact);
+    EXPECT_EQ(s.in_validated_range, p <= 196133.0);
+    EXPECT_EQ(s.status, pf::FingerModelState::STATUS_OK);
+  }
+}
+
+TEST_F(FingerNodeTest, UrdfParameterParsesAndNamesTheJointStatesJoints) {
+  std::string xml;
+  ASSERT_TRUE(nh_->getParam("robot_description", xml));
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
+  ASSERT_TRUE(model);
+  EXPECT_EQ(model->getRoot()->name, "tool0");
+  const ros::Time stamp = publishAndWait(1e5);
+  std::lock_guard<std::mutex> lock(listener_->mutex);
+  for (const std::string& name : listener_->joint_states[stamp].name) {
+    const auto joint = model->getJoint(name);
+    ASSERT_TRUE(joint) << name;
+    EXPECT_EQ(joint->type, urdf::Joint::REVOLUTE);
+    EXPECT_EQ(joint->axis.z, 1.0);
+    EXPECT_GT(joint->limits->upper, listener_->joint_states[stamp].position[0]);
+  }
+  EXPECT_TRUE(model->getLink(kPrefix + "tip"));
+}
+
+TEST_F(FingerNodeTest, EveryFrameHasExactlyOnePublisher) {
+  publishAndWait(1.2e5);
+  ros::Duration(0.5).sleep();
+  std::string xml;
+  ASSERT_TRUE(nh_->getParam("robot_description", xml));
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(xml);
+  std::lock_guard<std::mutex> lock(listener_->mutex);
+  // Every link below the parent is some frame's child, published by one node; nothing else is published.
+  std::set<std::string> links;
+  for (const auto& l : model->links_) {
+    if (l.first != "tool0") links.insert(l.first);
+  }
+  std::set<std::string> frames;
+  for (const auto& f : listener_->frame_publishers) {
+    frames.insert(f.first);
+    EXPECT_EQ(f.second.size(), 1u) << f.first << " has " << f.second.size() << " publishers";
+  }
+  EXPECT_EQ(frames, links);
+}
+
+TEST_F(FingerNodeTest, InverseServiceRoundTrips) {
+  ros::ServiceClient client = nh_->serviceClient<pf::PressureForTipAngle>("pressure_for_tip_angle");
+  ASSERT_TRUE(client.waitForExistence(ros::Duration(10)));
+  pf::FingerModel model(packageParameters());
+  pf::PressureForTipAngle srv;
+  srv.request.tip_angle_rad = model.evaluate(123456.0).tip_angle_rad;
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_TRUE(srv.response.success) << srv.response.message;
+  EXPECT_NEAR(srv.response.gauge_pa, 123456.0, 1e-6);
+  EXPECT_NEAR(srv.response.absolute_pa, 123456.0 + 101325.0, 1e-6);
+  srv.request.tip_angle_rad = 2.5;  // needs more than max_gauge_pa
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_NE(srv.response.message.find("needs more than"), std::string::npos) << srv.response.message;
+  srv.request.tip_angle_rad = -0.1;
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_FALSE(srv.response.success);
+}
+
+TEST(FingerNodeParameters, BadParametersStopTheNodeNamingTheKey) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"_chamber_gap_m:=-1", "chamber_gap_m"},
+      {"_chamber_gap_m:=wide", "chamber_gap_m"},
+      {"_chamber_count:=2.5", "chamber_count"},
+      {"_chamber_gap_m:=[1e-5,2e-5]", "chamber_gap_m"},
+      {"_wall_critical_height_m:=0.02", "wall_critical_height_m"},
+      {"_frame_prefix:=9fingers", "frame_prefix"},
+      {"_frame_prefix:=a-b", "frame_prefix"},
+      {"_parent_frame:=/tool0", "parent_frame"},
+      {"_mount_xyz_m:=[1,2]", "mount_xyz_m"},
+      {"_solver:=quick", "solver"},
+      {"_max_rate_hz:=-5", "max_rate_hz"},
+      {"_stale_timeout_s:=0", "stale_timeout_s"},
+      {"_chamber_gapp_m:=1", "chamber_gapp_m"},
+  };
+  int k = 0;
+  for (const auto& c : cases) {
+    const std::string cmd = std::string("timeout 30 ") + FINGER_NODE_EXE + " __name:=bad_node_" + std::to_string(k++) +
+                            " " + c.first + " 2>&1";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    std::string out;
+    char buf[4096];
+    std::size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+    const int raw = pclose(pipe);
+    EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 2) << c.first << ": " << out;
+    EXPECT_NE(out.find("finger_node: error: "), std::string::npos) << c.first << ": " << out;
+    EXPECT_NE(out.find(c.second), std::string::npos) << c.first << ": " << out;
+  }
+}
+
+int main(int argc, char** argv) {
+  testing::InitGoogleTest(&argc, argv);
+  ros::init(argc, argv, "finger_node_test");
+  ros::AsyncSpinner spinner(2);
+  spinner.start();
+  const int result = RUN_ALL_TESTS();
+  ros::shutdown();
+  return result;
+}
