@@ -221,3 +221,17 @@ TEST(UrdfCli, InvalidPrefixIsRefused) {
   const int raw = std::system(cmd.c_str());
   EXPECT_EQ(WEXITSTATUS(raw), 2);
 }
+
+TEST(Cli, ReadmeNodeParameterTableIsTheGeneratedOne) {
+  FILE* pipe = popen((std::string(FINGER_NODE_EXE) + " --parameters").c_str(), "r");
+  std::string out;
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+  ASSERT_EQ(pclose(pipe), 0);
+  std::ifstream readme(std::string(PACKAGE_SOURCE_DIR) + "/README.md");
+  std::stringstream text;
+  text << readme.rdbuf();
+  EXPECT_NE(text.str().find(out), std::string::npos)
+      << "README.md's node parameter table differs from `finger_node --parameters`; paste the new output";
+}

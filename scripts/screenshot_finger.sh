@@ -1,0 +1,24 @@
+#!/usr/bin/env bash
+# Renders one finger in rviz under Xvfb, bent by a published pressure, to docs/finger_rviz.png.
+# usage: bash scripts/screenshot_finger.sh [GAUGE_PA] [OUTPUT.png]     (after scripts/build.sh)
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+GAUGE="${1:-196133}"
+OUT="${2:-$ROOT/docs/finger_rviz.png}"
+export PATH="/usr/bin:/bin:$PATH"
+# shellcheck disable=SC1091
+set +u; source "$ROOT/build/devel/setup.bash"; set -u
+port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
+export ROS_HOSTNAME=localhost ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$ROOT/build/ros_home"
+display=":$((port % 400 + 100))"
+pids=()
+cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }
+trap cleanup EXIT
+Xvfb "$display" -screen 0 1200x800x24 -nolisten tcp >/dev/null 2>&1 & pids+=($!)
+DISPLAY="$display" roslaunch --port "$port" pneumatic_finger finger.launch rviz:=true >"$ROOT/build/screenshot.log" 2>&1 & pids+=($!)
+sleep 6
+absolute=$(/usr/bin/python3 -c "print($GAUGE + 101325)")
+rostopic pub -r 5 /pressure sensor_msgs/FluidPressure "{header: {stamp: now}, fluid_pressure: $absolute}" >/dev/null 2>&1 & pids+=($!)
+sleep 12
+DISPLAY="$display" import -window root "$OUT"
+echo "wrote $OUT (gauge $GAUGE Pa)"
