@@ -1,12 +1,27 @@
 #!/usr/bin/env bash
-# The main job: install what is missing, build, and show the paper's actuator over its validated pressure range.
+# The main job: install what is missing, build, and run the pick-and-place cell (three soft fingers on an arm).
+# With a display, rviz shows it; without one, the cell runs headless and its log says what happens.
+# usage: bash scripts/main.sh [LOOPS]   (LOOPS pick-and-place cycles, default 3; 0 runs until Ctrl-C)
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+LOOPS="${1:-3}"
 bash "$ROOT/scripts/setup.sh"
 bash "$ROOT/scripts/build.sh"
-"$ROOT/build/devel/lib/pneumatic_finger/finger_model" --sweep-pa 0:196133:9 | awk -F, '
-  NR == 1 { printf "%9s %7s %9s %9s %10s %10s %10s %9s %9s\n", "gauge_Pa", "kg/cm2", "stretch", "bulge_mm",
-            "theta_deg", "joint1_deg", "joint2_deg", "tip_x_mm", "tip_y_mm"; next }
-  { d = 180 / 3.141592653589793
-    printf "%9.0f %7.3f %9.6f %9.5f %10.4f %10.4f %10.4f %9.3f %9.3f\n", $1, $1 / 98066.5, $2, $3 * 1e3, $4 * d,
-           $5 * d, $6 * d, $(NF - 1) * 1e3, $NF * 1e3 }'
+export PATH="/usr/bin:/bin:$PATH"
+set +u; source "$ROOT/build/devel/setup.bash"; set -u
+port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
+export ROS_HOSTNAME=localhost ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$ROOT/build/ros_home"
+if [ -n "${DISPLAY:-}" ]; then
+  rviz=true
+  echo "main: starting the cell with rviz on $DISPLAY ($LOOPS cycles of 12 s)"
+else
+  rviz=false
+  cat <<MSG
+main: no display: running the cell headless ($LOOPS cycles of 12 s); the log below shows each phase.
+      To watch it, run this command on a machine with a display (rviz opens), or render a picture of it
+      mid-grasp with:  bash scripts/screenshot_cell.sh   (Xvfb; writes docs/cell_rviz.png)
+      While it runs, from another shell:  source build/devel/setup.bash && ROS_MASTER_URI=$ROS_MASTER_URI \\
+        rostopic echo /finger_a/finger_state/tip_angle_rad
+MSG
+fi
+exec roslaunch --port "$port" pneumatic_finger pick_and_place_cell.launch rviz:="$rviz" loop_count:="$LOOPS"

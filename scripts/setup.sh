@@ -14,7 +14,7 @@ PACKAGES=(
   libdiagnostic-updater-dev libtf2-dev libtf2-msgs-dev ros-tf2-msgs python3-tf2-msgs libtf2-ros-dev python3-tf2-ros
   liburdfdom-dev liburdfdom-tools librostest-dev python3-rostest python3-roslaunch python3-rosmaster
   python3-rostopic python3-rosnode python3-rosparam python3-rosservice rosbash ros-robot-state-publisher
-  rviz xvfb imagemagick
+  libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs rviz xvfb imagemagick
   # benchmarks (package.xml: benchmark, gsl)
   libbenchmark-dev libgsl-dev pkg-config
   # tests (package.xml: gtest; test_depend) and the docs' plots

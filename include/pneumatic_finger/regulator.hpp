@@ -1,0 +1,22 @@
+// The pressure source of the paper (section 3.1, eq 2-4): a constant volumetric air flow Q into chambers whose air
+// behaves as an ideal spring, V/V_o = P_abs/P_o. Then P_abs(t) = P_o (V_o + Q t)/V_o: the gauge pressure rises
+// linearly at P_o Q / V_o, and the stored energy is eq 4, W = P_o/(2 V_o) ((V_o + Q t)^2 - V_o^2). ROS-free.
+#pragma once
+
+#include "pneumatic_finger/parameters.hpp"
+
+namespace pneumatic_finger {
+
+/// Air volume of @p finger_count fingers at rest: V_o = finger_count * sum_n L_n d_n e_n (m^3).
+double restVolumeM3(const FingerParameters& parameters, int finger_count);
+
+/// Gauge pressure rise rate of a constant flow (Pa/s): dP/dt = P_o Q / V_o (ideal spring).
+double fillRatePaPerS(double flow_m3_per_s, double rest_volume_m3, double atmospheric_pa);
+
+/// Energy of eq 4 after filling for @p seconds at constant flow (J).
+double fillEnergyJ(double flow_m3_per_s, double rest_volume_m3, double atmospheric_pa, double seconds);
+
+/// One step of a regulator that fills (or vents) at @p rate_pa_per_s toward @p setpoint_pa and then holds it.
+double regulatorStep(double gauge_pa, double setpoint_pa, double rate_pa_per_s, double dt_s);
+
+}  // namespace pneumatic_finger

@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Renders the pick-and-place cell in rviz under Xvfb mid-grasp (the gripper closed on the object, lifting it) to
+# docs/cell_rviz.png.   usage: bash scripts/screenshot_cell.sh [OUTPUT.png] [PHASE]   (after scripts/build.sh)
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+OUT="${1:-$ROOT/docs/cell_rviz.png}"
+PHASE="${2:-lift}"
+export PATH="/usr/bin:/bin:$PATH"
+set +u; source "$ROOT/build/devel/setup.bash"; set -u
+port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
+export ROS_HOSTNAME=localhost ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$ROOT/build/ros_home"
+display=":$((port % 400 + 100))"
+pids=()
+cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }
+trap cleanup EXIT
+Xvfb "$display" -screen 0 1200x800x24 -nolisten tcp >/dev/null 2>&1 & pids+=($!)
+DISPLAY="$display" roslaunch --port "$port" pneumatic_finger pick_and_place_cell.launch rviz:=true \
+  >"$ROOT/build/screenshot_cell.log" 2>&1 & pids+=($!)
+sleep 8   # rviz start-up
+# Wait for the phase in the next cycle (rviz has then drawn the whole scene at least once).
+for _ in $(seq 1 120); do
+  phase=$(timeout 2 rostopic echo -n 1 /cell/phase 2>/dev/null | sed -n 's/^data: "*\([^"]*\)"*$/\1/p' || true)
+  [ "$phase" = "$PHASE" ] && break
+  sleep 0.25
+done
+sleep 0.5
+DISPLAY="$display" import -window root "$OUT"
+echo "wrote $OUT (phase: ${phase:-unknown})"
