@@ -276,8 +276,51 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
   out.in_contact = contact;
 }
 
+namespace {
+
+// Stages 5-6 for identical chambers: q_1 = theta, q_n = 2 theta, so the direction turns by the same e^(2 i theta)
+// at every joint and nothing per chamber needs to be looked up or copied.
+void jointsAndBackboneUniform(const FingerParameters& parameters, const HalfAngle& h, FingerState& out) {
+  const int n = parameters.chamber_count;
+  const double q = 2.0 * h.rad;
+  const double rot_c = (h.cos - h.sin) * (h.cos + h.sin);  // cos 2 theta, no cancellation near pi/4
+  const double rot_s = 2.0 * h.sin * h.cos;
+  out.half_angle_rad.setConstant(h.rad);
+  out.joint_angle_rad.setConstant(q);
+  out.joint_angle_rad[0] = h.rad;
+  double dir_c = h.cos, dir_s = h.sin;
+  double x = parameters.base_segment_length_m, y = 0.0;
+  double* points = out.backbone_m.data();  // column-major 2 x (N+2)
+  points[0] = 0.0;
+  points[1] = 0.0;
+  points[2] = x;
+  points[3] = y;
+  const double* z = parameters.segment_length_m.data();
+  for (int i = 0; i < n; ++i) {
+    x += z[i] * dir_c;
+    y += z[i] * dir_s;
+    points[2 * i + 4] = x;
+    points[2 * i + 5] = y;
+    const double c_new = dir_c * rot_c - dir_s * rot_s;
+    dir_s = dir_s * rot_c + dir_c * rot_s;
+    dir_c = c_new;
+  }
+  out.tip_angle_rad = h.rad + (n - 1) * q;
+  out.in_contact = h.rad > 0.0;
+}
+
+}  // namespace
+
 void FingerModel::writeState(double gauge_pa, FingerState& out) const {
   const bool detail = options_.chamber_detail;
+  if (groups_.size() == 1) {
+    const GroupResult r = solveGroup(groups_[0], gauge_pa, detail);
+    out.stretch.setConstant(r.stretch);
+    out.bulge_m.setConstant(r.bulge_m);
+    jointsAndBackboneUniform(parameters_, r.half, out);
+    out.gauge_pa = gauge_pa;
+    return;
+  }
   for (std::size_t g = 0; g < groups_.size(); ++g) scratch_[g] = solveGroup(groups_[g], gauge_pa, detail);
   for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
     const GroupResult& r = scratch_[static_cast<std::size_t>(group_of_chamber_[k])];

@@ -90,8 +90,8 @@ double bulge(double stretch_excess, double chamber_height_m) {
 HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m) {
   HalfAngle out;
   if (!(bulge_m > gap_m)) return out;  // walls not in contact (MODEL.md stage 4)
-  const double b = wall_critical_height_m;
-  const double big_h = 2.0 * bulge_m / b;
+  const double two_over_b = 2.0 / wall_critical_height_m;
+  const double big_h = bulge_m * two_over_b;
   if (!(big_h < 1e200)) {  // tan(theta) ~ H > 1e200: theta = pi/2 to the last bit
     out.rad = kHalfPi;
     out.cos = 0.0;
@@ -100,8 +100,10 @@ HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m)
   }
   // Eq 15 <=> t + m (w - 1) = D, with t = tan(theta), w = (1 + t^2)^(1/4), m = sqrt(2kH) = 2 sqrt(h c)/b and
   // D = H - m, formed as H (H - 2k)/(H + m) so that it keeps its digits where h -> c (both H and m -> 2k).
-  const double m = 2.0 * std::sqrt(bulge_m) * std::sqrt(gap_m) / b;
-  const double d = big_h * (2.0 * (bulge_m - gap_m) / b) / (big_h + m);
+  // (h c underflows to 0 only for c < 1e-154 m, where m < 1e-75 and dropping it changes nothing.)
+  const double m = std::sqrt(bulge_m * gap_m) * two_over_b;
+  const double d = big_h * ((bulge_m - gap_m) * two_over_b) / (big_h + m);
+  double w_solved = 0.0;  // (1 + t^2)^(1/4) from the polynomial solve, when it ran
   double t = d;  // c = 0: eq 15 is h = (b/2) tan(theta), nothing to solve
   int iterations = 0;
   if (m > 0.0 && d > 1e6) {
@@ -157,11 +159,16 @@ HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m)
       if (hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * hi) break;
     }
     t = d - m * v;
+    w_solved = 1.0 + v;
     ++iterations;
   }
   out.iterations = iterations;
   out.rad = std::atan(t);
-  if (t > kLargeTan) {
+  if (w_solved > 0.0) {
+    // cos(theta) = 1/sqrt(1 + t^2) = 1/w^2, and w is solved to well below an ulp of v: no square root needed.
+    out.cos = 1.0 / (w_solved * w_solved);
+    out.sin = t * out.cos;
+  } else if (t > kLargeTan) {
     out.cos = 1.0 / t;
     out.sin = 1.0;
   } else {
