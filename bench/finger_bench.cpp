@@ -237,6 +237,21 @@ void benchStages(benchmark::State& state, int stage) {
                  : stage == 4 ? "half angle theta(h)" : "joints + backbone (N = 7)");
 }
 
+// Latency of the primitives the solvers chain together: each result feeds the next call, so this is the
+// dependent-chain latency that bounds a full evaluation, not the throughput.
+void benchPrimitive(benchmark::State& state, int which) {
+  double x = 0.3;
+  for (auto _ : state) {
+    switch (which) {
+      case 0: x = std::sqrt(x) + 0.3; break;
+      case 1: x = 1.0 / (x + 0.7); break;
+      default: x = std::atan(x) + 0.3;
+    }
+    benchmark::DoNotOptimize(x);
+  }
+  state.SetLabel(which == 0 ? "sqrt" : which == 1 ? "division" : "atan (glibc)");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -249,6 +264,10 @@ int main(int argc, char** argv) {
   for (int stage = 1; stage <= 5; ++stage) {
     benchmark::RegisterBenchmark(("robust_stage/" + std::to_string(stage)).c_str(),
                                  [stage](benchmark::State& s) { benchStages(s, stage); });
+  }
+  for (int which = 0; which < 3; ++which) {
+    benchmark::RegisterBenchmark(("latency/" + std::to_string(which)).c_str(),
+                                 [which](benchmark::State& s) { benchPrimitive(s, which); });
   }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();
