@@ -17,6 +17,8 @@ PACKAGES=(
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs rviz xvfb imagemagick
   # benchmarks (package.xml: benchmark, gsl)
   libbenchmark-dev libgsl-dev pkg-config
+  # fuzzing (scripts/fuzz.sh; not run by the tests)
+  clang libclang-rt-14-dev
   # tests (package.xml: gtest; test_depend) and the docs' plots
   libgtest-dev googletest python3-matplotlib
   # lint (checked by scripts/test.sh)

@@ -20,8 +20,11 @@ const std::vector<NodeParameterSpec> kNodeSpecs = {
     {"max_rate_hz", "double", "0", "Hz", "[0, 100000]",
      "model cycles per second at most; 0 runs the model on every pressure message"},
     {"stale_timeout_s", "double", "1.0", "s", "(0, 3600]", "no pressure for longer than this is reported stale"},
+    {"stamp_tolerance_s", "double", "1.0", "s", "(0, 3600]",
+     "a pressure stamp that is zero or further than this from the receive time is replaced by the receive time"},
     {"max_gauge_pa", "double", "294199.5", "Pa", "(0, 1e7]",
-     "top of the model's range (3 kg/cm^2): URDF joint upper limits, the inverse service's limit, the table"},
+     "top of the model's range (3 kg/cm^2): higher pressures are clamped to it; URDF joint upper limits, the "
+     "inverse service's limit, the table"},
     {"validated_max_gauge_pa", "double", "196133", "Pa", "(0, max_gauge_pa]",
      "top of the validated range (the paper: 2 kg/cm^2); above it finger_state says so and diagnostics warn"},
     {"description_param", "string", "robot_description", "-", "a ROS name",
@@ -152,6 +155,7 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   }
   s.max_rate_hz = readDouble(nh, "max_rate_hz", 0.0, 0.0, false, 1e5);
   s.stale_timeout_s = readDouble(nh, "stale_timeout_s", 1.0, 0.0, true, 3600.0);
+  s.stamp_tolerance_s = readDouble(nh, "stamp_tolerance_s", 1.0, 0.0, true, 3600.0);
   s.urdf.max_gauge_pa = readDouble(nh, "max_gauge_pa", 294199.5, 0.0, true, 1e7);
   s.validated_max_gauge_pa = readDouble(nh, "validated_max_gauge_pa", 196133.0, 0.0, true, s.urdf.max_gauge_pa);
   s.description_param = readString(nh, "description_param", "robot_description");
@@ -245,6 +249,13 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh) : setti
            settings_.urdf.parent_frame.c_str(), nh.resolveName(settings_.description_param).c_str());
 }
 
+void FingerNode::refuse(long& counter, const std::string& why, const ros::Time& now) {
+  ++counter;
+  last_problem_ = now;
+  last_problem_text_ = why;
+  ROS_WARN_THROTTLE(5.0, "finger_node: refused a pressure message: %s; keeping the last state", why.c_str());
+}
+
 void FingerNode::onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg) {
   const ros::Time now = ros::Time::now();
   ++received_;
@@ -256,33 +267,60 @@ void FingerNode::onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg) {
     ++throttled_;
     return;
   }
+  // Bad values: refused, the last valid state stays (nothing is published).
   const double absolute = msg->fluid_pressure;
   if (!std::isfinite(absolute)) {
-    ++refused_not_finite_;
-    last_refusal_ = "pressure " + formatExact(absolute) + " Pa is not finite";
-    ROS_WARN_THROTTLE(5.0, "finger_node: refused %s; keeping the last state", last_refusal_.c_str());
+    refuse(refused_not_finite_, "pressure " + formatExact(absolute) + " Pa is not finite", now);
     return;
   }
   if (absolute < 0) {
-    ++refused_negative_absolute_;
-    last_refusal_ = "absolute pressure " + formatExact(absolute) + " Pa is negative";
-    ROS_WARN_THROTTLE(5.0, "finger_node: refused %s; keeping the last state", last_refusal_.c_str());
+    refuse(refused_negative_absolute_, "absolute pressure " + formatExact(absolute) + " Pa is negative", now);
+    return;
+  }
+  // Stamps: a zero stamp, or one implausibly far from now (a regulator with no or a wrong clock), is replaced by
+  // the receive time; a stamp not newer than the last published one is refused, since tf and the planners
+  // downstream must never see time run backwards or the same instant twice.
+  ros::Time stamp = msg->header.stamp;
+  if (stamp.isZero() || std::fabs((stamp - now).toSec()) > settings_.stamp_tolerance_s) {
+    ++stamps_replaced_;
+    last_problem_ = now;
+    last_problem_text_ = "stamp " + std::to_string(stamp.toSec()) + " s replaced by the receive time";
+    ROS_WARN_THROTTLE(5.0, "finger_node: %s", last_problem_text_.c_str());
+    stamp = now;
+  }
+  if (!last_published_stamp_.isZero() && stamp <= last_published_stamp_) {
+    refuse(refused_out_of_order_,
+           "stamp " + std::to_string(stamp.toSec()) + " s is not newer than the last published " +
+               std::to_string(last_published_stamp_.toSec()) + " s",
+           now);
     return;
   }
   last_processed_ = now;
-  const double gauge = absolute - settings_.finger.atmospheric_pressure_pa;
+  double gauge = absolute - settings_.finger.atmospheric_pressure_pa;
   last_gauge_pa_ = gauge;
+  // Above the model's range (a glitching regulator, or a finger driven past its rating): clamp to the top of the
+  // range, where the URDF's joint limits are, instead of curling the model toward pi/2 per wall.
+  const bool clamped = gauge > settings_.urdf.max_gauge_pa;
+  if (clamped) {
+    ++clamped_;
+    last_problem_ = now;
+    last_problem_text_ = "gauge pressure " + formatExact(gauge) + " Pa clamped to max_gauge_pa";
+    ROS_WARN_THROTTLE(5.0, "finger_node: %s", last_problem_text_.c_str());
+    gauge = settings_.urdf.max_gauge_pa;
+  }
   const FingerState& state = model_->evaluate(gauge);
   if (state.status == EvaluationStatus::kVacuum) {
     ++vacuum_;
-    ROS_WARN_THROTTLE(5.0, "finger_node: gauge pressure %.1f Pa is a vacuum, outside the model: straight finger",
-                      gauge);
+    last_problem_ = now;
+    last_problem_text_ = "gauge pressure " + formatExact(gauge) + " Pa is a vacuum: straight finger published";
+    ROS_WARN_THROTTLE(5.0, "finger_node: %s", last_problem_text_.c_str());
   }
   if (gauge > settings_.validated_max_gauge_pa) ++out_of_range_;
-  publish(state, msg->header.stamp.isZero() ? now : msg->header.stamp);
+  publish(state, stamp, clamped);
 }
 
-void FingerNode::publish(const FingerState& state, const ros::Time& stamp) {
+void FingerNode::publish(const FingerState& state, const ros::Time& stamp, bool clamped) {
+  last_published_stamp_ = stamp;
   const int n = settings_.finger.chamber_count;
   joint_states_.header.stamp = stamp;
   for (int i = 0; i < n; ++i) {
@@ -312,7 +350,8 @@ void FingerNode::publish(const FingerState& state, const ros::Time& stamp) {
   finger_state_.in_contact = state.in_contact;
   finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.validated_max_gauge_pa;
   finger_state_.status = state.status == EvaluationStatus::kVacuum ? FingerModelState::STATUS_VACUUM
-                                                                   : FingerModelState::STATUS_OK;
+                          : clamped                                  ? FingerModelState::STATUS_CLAMPED
+                                                                     : FingerModelState::STATUS_OK;
   tf_.sendTransform(transforms_);
   joint_states_pub_.publish(joint_states_);
   finger_state_pub_.publish(finger_state_);
@@ -332,12 +371,18 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   const ros::Time now = ros::Time::now();
   while (!recent_.empty() && (now - recent_.front()).toSec() > 1.0) recent_.pop_front();
   const double age = last_received_.isZero() ? -1.0 : (now - last_received_).toSec();
+  // A refusal or correction stays on the report for kProblemHoldS, longer than any diagnostics period, so that a
+  // single bad message is seen by whoever watches /diagnostics.
+  constexpr double kProblemHoldS = 5.0;
+  const bool recent_problem = !last_problem_.isZero() && (now - last_problem_).toSec() <= kProblemHoldS;
   if (last_received_.isZero()) {
     status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no pressure received yet");
   } else if (age > settings_.stale_timeout_s) {
-    status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR, "stale: no pressure for %.1f s", age);
-  } else if (last_gauge_pa_ > settings_.validated_max_gauge_pa || last_gauge_pa_ < 0) {
-    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "gauge pressure %.0f Pa outside the validated range",
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR, "stale: no pressure for %.1f s; last state kept", age);
+  } else if (recent_problem) {
+    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, last_problem_text_);
+  } else if (last_gauge_pa_ > settings_.validated_max_gauge_pa) {
+    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "gauge pressure %.0f Pa above the validated range",
                     last_gauge_pa_);
   } else {
     status.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
@@ -349,11 +394,14 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("messages received", received_);
   status.add("refused: not finite", refused_not_finite_);
   status.add("refused: negative absolute pressure", refused_negative_absolute_);
+  status.add("refused: stamp not newer than the last", refused_out_of_order_);
+  status.add("stamps replaced by the receive time", stamps_replaced_);
   status.add("vacuum (straight finger published)", vacuum_);
+  status.add("clamped to max_gauge_pa", clamped_);
   status.add("above the validated range", out_of_range_);
   status.add("skipped by max_rate_hz", throttled_);
   status.add("model evaluations (unchanged pressures reuse the last)", model_->computationCount());
-  if (!last_refusal_.empty()) status.add("last refusal", last_refusal_);
+  if (!last_problem_text_.empty()) status.add("last problem", last_problem_text_);
 }
 
 }  // namespace pneumatic_finger

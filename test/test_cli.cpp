@@ -235,3 +235,22 @@ TEST(Cli, ReadmeNodeParameterTableIsTheGeneratedOne) {
   EXPECT_NE(text.str().find(out), std::string::npos)
       << "README.md's node parameter table differs from `finger_node --parameters`; paste the new output";
 }
+
+TEST(Cli, EveryKeyOutOfRangeIsRefusedByBothToolsNamingIt) {
+  for (const std::string& key : {"chamber_count", "chamber_height_m", "wall_critical_height_m", "chamber_gap_m",
+                                 "chamber_thickness_m", "chamber_width_m", "segment_length_m", "base_segment_length_m",
+                                 "shear_modulus_pa", "atmospheric_pressure_pa"}) {
+    const CliRun model = run("--set " + key + "=-7 --gauge-pa 1e5");
+    EXPECT_EQ(model.status, 2) << key;
+    EXPECT_EQ(model.out, "") << key;
+    EXPECT_NE(model.err.find(key), std::string::npos) << model.err;
+    const std::string cmd = std::string(FINGER_CALIBRATE_EXE) + " --set " + key + "=-7 2>&1 >/dev/null";
+    FILE* pipe = popen(cmd.c_str(), "r");
+    std::string err;
+    char buf[4096];
+    std::size_t n;
+    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) err.append(buf, n);
+    EXPECT_EQ(WEXITSTATUS(pclose(pipe)), 2) << key;
+    EXPECT_NE(err.find(key), std::string::npos) << err;
+  }
+}

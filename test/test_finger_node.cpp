@@ -18,6 +18,7 @@
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/PressureForTipAngle.h"
 #include "pneumatic_finger/finger_model.hpp"
+#include "pneumatic_finger/parameters.hpp"
 #include "pneumatic_finger/yaml_parameters.hpp"
 
 namespace pf = pneumatic_finger;
@@ -230,8 +231,8 @@ TEST_F(FingerNodeTest, InverseServiceRoundTrips) {
   EXPECT_FALSE(srv.response.success);
 }
 
-TEST(FingerNodeParameters, BadParametersStopTheNodeNamingTheKey) {
-  const std::vector<std::pair<std::string, std::string>> cases = {
+TEST(FingerNodeParameters, EveryBadParameterStopsTheNodeNamingTheKey) {
+  std::vector<std::pair<std::string, std::string>> cases = {
       {"_chamber_gap_m:=-1", "chamber_gap_m"},
       {"_chamber_gap_m:=wide", "chamber_gap_m"},
       {"_chamber_count:=2.5", "chamber_count"},
@@ -245,7 +246,23 @@ TEST(FingerNodeParameters, BadParametersStopTheNodeNamingTheKey) {
       {"_max_rate_hz:=-5", "max_rate_hz"},
       {"_stale_timeout_s:=0", "stale_timeout_s"},
       {"_chamber_gapp_m:=1", "chamber_gapp_m"},
+      {"_stamp_tolerance_s:=-1", "stamp_tolerance_s"},
+      {"_max_gauge_pa:=0", "max_gauge_pa"},
+      {"_validated_max_gauge_pa:=1e9", "validated_max_gauge_pa"},
+      {"_frame_prefix:=5", "frame_prefix"},           // an int where a string is due
+      {"_parent_frame:=3.5", "parent_frame"},
+      {"_mount_rpy_rad:=[0,0,99]", "mount_rpy_rad"},
+      {"_mount_xyz_m:=near", "mount_xyz_m"},
+      {"_max_rate_hz:=fast", "max_rate_hz"},
+      {"_description_param:='bad name'", "description_param"},
+      {"_pressure_topic:='a b'", "pressure_topic"},
+      {"_joint_states_topic:=7", "joint_states_topic"},
+      {"_finger_state_topic:='x y'", "finger_state_topic"},
   };
+  // Every actuator key out of its range, as a rosparam (the node's other path in).
+  for (const auto& spec : pf::parameterSpecs()) {
+    cases.push_back({std::string("_") + spec.key + ":=-7", spec.key});
+  }
   int k = 0;
   for (const auto& c : cases) {
     const std::string cmd = std::string("timeout 30 ") + FINGER_NODE_EXE + " __name:=bad_node_" + std::to_string(k++) +

@@ -148,3 +148,35 @@ TEST(Parameters, SetAssignmentsParse) {
   EXPECT_THROW(pf::parseParameterAssignment("nonsense=1", raw), pf::ParameterError);
   EXPECT_THROW(pf::parseParameterAssignment("chamber_gap_m=[1e-5", raw), pf::ParameterError);
 }
+
+// Every key of the definition, each way it can be wrong, through the YAML loader that finger_model,
+// finger_calibrate and the node's config file share: refused, with the key named.
+TEST(Parameters, EveryKeyRefusesEveryKindOfBadValueNamingTheKey) {
+  for (const auto& spec : pf::parameterSpecs()) {
+    const std::string key = spec.key;
+    std::vector<std::string> bad = {
+        key + ": wide",                                        // wrong type
+        key + ": [1, two]",                                    // wrong type inside a list
+        key + ": " + pf::formatExact(spec.max_value * 10),     // above the range
+        key + ": " + pf::formatExact(spec.min_value - 1),      // below the range
+        key + ": .nan",                                        // not finite
+        key + ": {a: 1}",                                      // a mapping
+    };
+    if (spec.shape == pf::ParameterShape::kPerChamber) {
+      bad.push_back(key + ": [" + pf::formatExact(spec.default_value) + ", " + pf::formatExact(spec.default_value) + "]");
+    } else {
+      bad.push_back(key + ": [" + pf::formatExact(spec.default_value) + "]");  // a list where one number is due
+    }
+    for (const std::string& text : bad) {
+      std::string message;
+      try {
+        pf::RawParameterMap raw;
+        pf::loadRawParametersFromYamlText(text, "test.yaml", raw);
+        pf::FingerParameters::fromRaw(raw);
+      } catch (const pf::ParameterError& e) {
+        message = e.what();
+      }
+      EXPECT_NE(message.find(key), std::string::npos) << "'" << text << "' gave: '" << message << "'";
+    }
+  }
+}

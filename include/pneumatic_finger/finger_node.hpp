@@ -40,6 +40,7 @@ struct NodeSettings {
   SolverKind solver = SolverKind::kRobust;
   double max_rate_hz = 0.0;
   double stale_timeout_s = 1.0;
+  double stamp_tolerance_s = 1.0;
   double validated_max_gauge_pa = 196133.0;
   std::string description_param = "robot_description";
   std::string pressure_topic = "pressure";
@@ -60,7 +61,8 @@ class FingerNode {
   void onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg);
   bool onInverse(PressureForTipAngle::Request& req, PressureForTipAngle::Response& res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
-  void publish(const FingerState& state, const ros::Time& stamp);
+  void publish(const FingerState& state, const ros::Time& stamp, bool clamped);
+  void refuse(long& counter, const std::string& why, const ros::Time& now);
 
   NodeSettings settings_;
   std::unique_ptr<FingerModel> model_;
@@ -78,12 +80,12 @@ class FingerNode {
   std::vector<geometry_msgs::TransformStamped> transforms_;
 
   // Input bookkeeping for throttling and diagnostics.
-  ros::Time last_processed_, last_received_;
+  ros::Time last_processed_, last_received_, last_published_stamp_, last_problem_;
   std::deque<ros::Time> recent_;  // receive times within the last second, for the input rate
-  long received_ = 0, refused_not_finite_ = 0, refused_negative_absolute_ = 0, vacuum_ = 0, out_of_range_ = 0,
-       throttled_ = 0;
+  long received_ = 0, refused_not_finite_ = 0, refused_negative_absolute_ = 0, refused_out_of_order_ = 0,
+       stamps_replaced_ = 0, vacuum_ = 0, clamped_ = 0, out_of_range_ = 0, throttled_ = 0;
   double last_gauge_pa_ = 0.0;
-  std::string last_refusal_;
+  std::string last_problem_text_;  // the most recent refusal or correction, for diagnostics
 };
 
 }  // namespace pneumatic_finger

@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer target (clang, with AddressSanitizer and UndefinedBehaviorSanitizer) and runs it.
+# usage: bash scripts/fuzz.sh [SECONDS] [JOBS]     (default 600 s, 1 job); corpus in build/fuzz/corpus,
+# seeded from config/*.yaml; any crash input is written to build/fuzz/ and the script exits non-zero.
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+SECS="${1:-600}"
+JOBS="${2:-1}"
+OUT="$ROOT/build/fuzz"
+mkdir -p "$OUT/corpus"
+cp "$ROOT/config/finger.yaml" "$OUT/corpus/seed_finger.yaml"
+printf 'chamber_count: 3\nchamber_gap_m: [0, 1e-5, 0.1]\nshear_modulus_pa: [1e-300, 1e12, 2e8]\n' >"$OUT/corpus/seed_lists.yaml"
+clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
+  -fno-omit-frame-pointer -I"$ROOT/include" -isystem /usr/include/eigen3 \
+  "$ROOT/fuzz/fuzz_model.cpp" "$ROOT/src/parameters.cpp" "$ROOT/src/stages.cpp" "$ROOT/src/finger_model.cpp" \
+  "$ROOT/src/yaml_parameters.cpp" -lyaml-cpp -o "$OUT/fuzz_model"
+cd "$OUT"
+UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
+  ./fuzz_model -max_total_time="$SECS" -jobs="$JOBS" -workers="$JOBS" -max_len=4096 -timeout=10 \
+  -artifact_prefix="$OUT/" corpus
