@@ -7,6 +7,7 @@ ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 SECS="${1:-600}"
 JOBS="${2:-1}"
 OUT="$ROOT/build/fuzz"
+bash "$ROOT/scripts/setup.sh" clang libclang-rt-14-dev  # libFuzzer and the sanitizers' runtime
 mkdir -p "$OUT/corpus"
 cp "$ROOT/config/finger.yaml" "$OUT/corpus/seed_finger.yaml"
 printf 'chamber_count: 3\nchamber_gap_m: [0, 1e-5, 0.1]\nshear_modulus_pa: [1e-300, 1e12, 2e8]\n' >"$OUT/corpus/seed_lists.yaml"

@@ -3,7 +3,9 @@
 # Debian names; there is no rosdep index here). Does nothing when all are present. Needs root (or sudo) to install.
 set -euo pipefail
 
-PACKAGES=(
+# Extra packages can be asked for by name (scripts/fuzz.sh asks for clang): bash scripts/setup.sh [PACKAGE]...
+PACKAGES=("$@"
+
   # build: catkin, compiler, core library (package.xml: catkin, eigen, yaml-cpp)
   build-essential cmake catkin python3-catkin-pkg libeigen3-dev libyaml-cpp-dev
   # the ROS node (package.xml: roscpp, message_generation/runtime, std/sensor/geometry/diagnostic msgs,
@@ -17,8 +19,6 @@ PACKAGES=(
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs rviz xvfb imagemagick
   # benchmarks (package.xml: benchmark, gsl)
   libbenchmark-dev libgsl-dev pkg-config
-  # fuzzing (scripts/fuzz.sh; not run by the tests)
-  clang libclang-rt-14-dev
   # tests (package.xml: gtest; test_depend) and the docs' plots
   libgtest-dev googletest python3-matplotlib
   # lint (checked by scripts/test.sh)

@@ -26,10 +26,15 @@ rm -rf "$ROOT/build/test_results"
 # `make run_tests` exits 0 even when tests fail: the verdict is catkin_test_results'.
 make -C "$ROOT/build" run_tests >"$ROOT/build/run_tests.log" 2>&1 || true
 grep -E "^\[  (FAILED|PASSED) |tests? from .* ran|FAILURE|ERROR" "$ROOT/build/run_tests.log" || true
+# The unit tests again under AddressSanitizer and UndefinedBehaviorSanitizer (a second build); their results join
+# the others in build/test_results.
+sanitized_status=0
+bash "$ROOT/scripts/test_sanitized.sh" || sanitized_status=1
+
 set +e
 catkin_test_results "$ROOT/build/test_results" >/dev/null 2>&1
 catkin_status=$?
 /usr/bin/python3 "$ROOT/scripts/count_results.py" "$ROOT/build/test_results"
 count_status=$?
 set -e
-[ $catkin_status -eq 0 ] && [ $count_status -eq 0 ]
+[ $catkin_status -eq 0 ] && [ $count_status -eq 0 ] && [ $sanitized_status -eq 0 ]
