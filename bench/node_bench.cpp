@@ -120,6 +120,8 @@ int main(int argc, char** argv) {
     if (!measuring && (now - start).toSec() >= warmup) {
       std::lock_guard<std::mutex> lock(g_mutex);
       g_finger_js = g_finger_tf = g_rsp_tf = Series();
+      g_sent_pressure.clear();  // warm-up messages still in flight must not count
+      g_sent_joints.clear();
       cpu_finger0 = finger_pid ? cpuSeconds(finger_pid) : 0;
       cpu_rsp0 = rsp_pid ? cpuSeconds(rsp_pid) : 0;
       t0 = now;

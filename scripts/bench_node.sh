@@ -6,10 +6,8 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 RATE="${1:-1000}"
 SECS="${2:-10}"
-export PATH="/usr/bin:/bin:$PATH"
-set +u; source "$ROOT/build/devel/setup.bash"; set -u
-port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
-export ROS_HOSTNAME=localhost ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$ROOT/build/ros_home"
+source "$ROOT/scripts/ros_env.sh"
+port=$ROS_PORT
 urdf="$ROOT/build/bench_rsp.urdf"
 "$ROOT/build/devel/lib/pneumatic_finger/finger_urdf" --prefix rsp_ --parent rsp_mount -o "$urdf"
 roslaunch --port "$port" "$ROOT/bench/node_bench.launch" rsp_urdf:="$urdf" >"$ROOT/build/bench_node.log" 2>&1 &

@@ -7,10 +7,8 @@ ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 LOOPS="${1:-3}"
 bash "$ROOT/scripts/setup.sh"
 bash "$ROOT/scripts/build.sh"
-export PATH="/usr/bin:/bin:$PATH"
-set +u; source "$ROOT/build/devel/setup.bash"; set -u
-port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
-export ROS_HOSTNAME=localhost ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$ROOT/build/ros_home"
+source "$ROOT/scripts/ros_env.sh"
+port=$ROS_PORT
 if [ -n "${DISPLAY:-}" ]; then
   rviz=true
   echo "main: starting the cell with rviz on $DISPLAY ($LOOPS cycles of 12 s)"

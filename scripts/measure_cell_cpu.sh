@@ -4,10 +4,8 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 SECONDS_TO_RUN="${1:-24}"
-export PATH="/usr/bin:/bin:$PATH"
-set +u; source "$ROOT/build/devel/setup.bash"; set -u
-port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
-export ROS_HOSTNAME=localhost ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$ROOT/build/ros_home"
+source "$ROOT/scripts/ros_env.sh"
+port=$ROS_PORT
 roslaunch --port "$port" pneumatic_finger pick_and_place_cell.launch rviz:=false >"$ROOT/build/measure_cell.log" 2>&1 &
 launch=$!
 trap 'kill $launch 2>/dev/null; wait 2>/dev/null' EXIT

@@ -5,11 +5,8 @@ set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 GAUGE="${1:-196133}"
 OUT="${2:-$ROOT/docs/finger_rviz.png}"
-export PATH="/usr/bin:/bin:$PATH"
-# shellcheck disable=SC1091
-set +u; source "$ROOT/build/devel/setup.bash"; set -u
-port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
-export ROS_HOSTNAME=localhost ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$ROOT/build/ros_home"
+source "$ROOT/scripts/ros_env.sh"
+port=$ROS_PORT
 display=":$((port % 400 + 100))"
 pids=()
 cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }

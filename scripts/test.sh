@@ -20,8 +20,7 @@ rm -rf "$lint_dir"
 /usr/bin/python3 "$ROOT/scripts/check_bench_smoke.py" "$ROOT/build/bench_smoke.json"
 
 # Each run gets its own ROS master port and ROS_HOME under build/, so two runs never collide.
-port=$(/usr/bin/python3 -c 'import socket; s = socket.socket(); s.bind(("localhost", 0)); print(s.getsockname()[1])')
-export ROS_HOSTNAME=localhost ROS_MASTER_URI="http://localhost:$port" ROS_HOME="$ROOT/build/ros_home"
+source "$ROOT/scripts/ros_env.sh"
 rm -rf "$ROOT/build/test_results"
 # `make run_tests` exits 0 even when tests fail: the verdict is catkin_test_results'.
 make -C "$ROOT/build" run_tests >"$ROOT/build/run_tests.log" 2>&1 || true

@@ -16,6 +16,8 @@ make -C "$B" -j"$(nproc)" test_core test_no_allocation >>"$ROOT/build_sanitized.
   || { tail -50 "$ROOT/build_sanitized.log"; exit 1; }
 mkdir -p "$ROOT/build/test_results/sanitized"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
+# The sanitized libraries, not the main build's (a sourced devel space puts those on LD_LIBRARY_PATH first).
+export LD_LIBRARY_PATH="$B/devel/lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 status=0
 for t in test_core test_no_allocation; do
   "$B/devel/lib/pneumatic_finger/$t" --gtest_output="xml:$ROOT/build/test_results/sanitized/gtest-${t}_sanitized.xml" \

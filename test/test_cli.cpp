@@ -15,9 +15,10 @@ struct CliRun {
   std::string out, err;
 };
 
-CliRun run(const std::string& args) {
-  const std::string err_file = testing::TempDir() + "/finger_model_stderr.txt";
-  const std::string cmd = std::string(FINGER_MODEL_EXE) + " " + args + " 2>" + err_file;
+// Runs a shell command: exit status, stdout and stderr apart.
+CliRun runShell(const std::string& command) {
+  const std::string err_file = testing::TempDir() + "/cli_stderr.txt";
+  const std::string cmd = command + " 2>" + err_file;
   FILE* pipe = popen(cmd.c_str(), "r");
   CliRun r{-1, "", ""};
   char buf[4096];
@@ -30,6 +31,15 @@ CliRun run(const std::string& args) {
   ss << e.rdbuf();
   r.err = ss.str();
   return r;
+}
+
+CliRun run(const std::string& args) { return runShell(std::string(FINGER_MODEL_EXE) + " " + args); }
+
+std::string readFile(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
 }
 
 std::vector<std::string> lines(const std::string& s) {
@@ -147,73 +157,46 @@ TEST(Cli, ParameterTableListsEveryKey) {
 
 TEST(CalibrateCli, PrintsTableTwoAndWritesTheParameterFile) {
   const std::string out_file = testing::TempDir() + "/calibrated.yaml";
-  const std::string cmd = std::string(FINGER_CALIBRATE_EXE) + " --output " + out_file + " 2>&1";
-  FILE* pipe = popen(cmd.c_str(), "r");
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-  ASSERT_EQ(pclose(pipe), 0) << out;
-  EXPECT_NE(out.find("measured_avg_deg  model_avg_deg  error_deg  joint1_measured_deg"), std::string::npos);
-  EXPECT_NE(out.find("leave_one_out_error_deg"), std::string::npos);
-  EXPECT_NE(out.find("largest |error| 0.532 deg"), std::string::npos) << out;
+  const CliRun r = runShell(std::string(FINGER_CALIBRATE_EXE) + " --output " + out_file);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("measured_avg_deg  model_avg_deg  error_deg  joint1_measured_deg"), std::string::npos);
+  EXPECT_NE(r.out.find("leave_one_out_error_deg"), std::string::npos);
+  EXPECT_NE(r.out.find("largest |error| 0.532 deg"), std::string::npos) << r.out;
   // The written file is the shipped one, byte for byte: config/finger.yaml is reproducible.
-  std::ifstream written(out_file), shipped(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml");
-  std::stringstream a, b;
-  a << written.rdbuf();
-  b << shipped.rdbuf();
-  EXPECT_EQ(a.str(), b.str());
+  EXPECT_EQ(readFile(out_file), readFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml"));
 }
 
 TEST(CalibrateCli, MalformedDataExitsTwoNamingTheLine) {
   const std::string bad = testing::TempDir() + "/bad.csv";
   std::ofstream(bad) << "gauge_pa,joint_1_rad,joint_2_rad\n1e5,0.1,oops\n";
-  const CliRun r = [&] {
-    const std::string cmd = std::string(FINGER_CALIBRATE_EXE) + " --data " + bad + " 2>&1 >/dev/null";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    CliRun run{0, "", ""};
-    char buf[4096];
-    std::size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) run.err.append(buf, n);
-    const int raw = pclose(pipe);
-    run.status = WEXITSTATUS(raw);
-    return run;
-  }();
+  const CliRun r = runShell(std::string(FINGER_CALIBRATE_EXE) + " --data " + bad);
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("bad.csv:2: 'oops' in column joint_2_rad"), std::string::npos) << r.err;
 }
 
 TEST(Cli, ReadmeParameterTableIsTheGeneratedOne) {
   const CliRun r = run("--parameters");
-  std::ifstream readme(std::string(PACKAGE_SOURCE_DIR) + "/README.md");
-  std::stringstream text;
-  text << readme.rdbuf();
-  EXPECT_NE(text.str().find(r.out), std::string::npos)
-      << "README.md's parameter table differs from `finger_model --parameters`; paste the new output";
+  EXPECT_NE(readFile(std::string(PACKAGE_SOURCE_DIR) + "/README.md").find(r.out), std::string::npos)
+      << "README.md's parameter table differs from `finger_model --parameters`: run scripts/update_readme_tables.py";
 }
 
 TEST(UrdfCli, GeneratedUrdfPassesCheckUrdfWithPrefixedNames) {
   const std::string file = testing::TempDir() + "/finger.urdf";
   const std::string gen = std::string(FINGER_URDF_EXE) + " --prefix finger_b_ --parent flange --xyz 0,0.02,0.01 --rpy 0,0,2.0944 -o " + file;
   ASSERT_EQ(std::system(gen.c_str()), 0);
-  FILE* pipe = popen(("check_urdf " + file + " 2>&1").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-  ASSERT_EQ(pclose(pipe), 0) << out;
+  const CliRun check = runShell("check_urdf " + file);
+  ASSERT_EQ(check.status, 0) << check.out << check.err;
+  const std::string& out = check.out;
   EXPECT_NE(out.find("Successfully Parsed XML"), std::string::npos) << out;
   EXPECT_NE(out.find("root Link: flange"), std::string::npos) << out;
   for (const char* link : {"finger_b_segment_0", "finger_b_segment_7", "finger_b_tip"}) {
     EXPECT_NE(out.find(link), std::string::npos) << link;
   }
   // The joints: revolute about +z, named like joint_states, with limits from the model.
-  std::ifstream in(file);
-  std::stringstream xml;
-  xml << in.rdbuf();
-  EXPECT_NE(xml.str().find("<joint name=\"finger_b_joint_7\" type=\"revolute\">"), std::string::npos);
-  EXPECT_NE(xml.str().find("<axis xyz=\"0 0 1\""), std::string::npos);
-  EXPECT_EQ(xml.str().find("<mesh"), std::string::npos);  // simple shapes only
+  const std::string xml = readFile(file);
+  EXPECT_NE(xml.find("<joint name=\"finger_b_joint_7\" type=\"revolute\">"), std::string::npos);
+  EXPECT_NE(xml.find("<axis xyz=\"0 0 1\""), std::string::npos);
+  EXPECT_EQ(xml.find("<mesh"), std::string::npos);  // simple shapes only
 }
 
 TEST(UrdfCli, InvalidPrefixIsRefused) {
@@ -223,34 +206,24 @@ TEST(UrdfCli, InvalidPrefixIsRefused) {
 }
 
 TEST(Cli, ReadmeNodeParameterTableIsTheGeneratedOne) {
-  FILE* pipe = popen((std::string(FINGER_NODE_EXE) + " --parameters").c_str(), "r");
-  std::string out;
-  char buf[4096];
-  std::size_t n;
-  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-  ASSERT_EQ(pclose(pipe), 0);
-  std::ifstream readme(std::string(PACKAGE_SOURCE_DIR) + "/README.md");
-  std::stringstream text;
-  text << readme.rdbuf();
-  EXPECT_NE(text.str().find(out), std::string::npos)
-      << "README.md's node parameter table differs from `finger_node --parameters`; paste the new output";
+  const CliRun r = runShell(std::string(FINGER_NODE_EXE) + " --parameters");
+  ASSERT_EQ(r.status, 0);
+  EXPECT_NE(readFile(std::string(PACKAGE_SOURCE_DIR) + "/README.md").find(r.out), std::string::npos)
+      << "README.md's node parameter table differs from `finger_node --parameters`: run scripts/update_readme_tables.py";
 }
 
 TEST(Cli, EveryKeyOutOfRangeIsRefusedByBothToolsNamingIt) {
-  for (const std::string& key : {"chamber_count", "chamber_height_m", "wall_critical_height_m", "chamber_gap_m",
+  for (const char* key_text : {"chamber_count", "chamber_height_m", "wall_critical_height_m", "chamber_gap_m",
                                  "chamber_thickness_m", "chamber_width_m", "segment_length_m", "base_segment_length_m",
                                  "shear_modulus_pa", "atmospheric_pressure_pa"}) {
+    const std::string key = key_text;
     const CliRun model = run("--set " + key + "=-7 --gauge-pa 1e5");
     EXPECT_EQ(model.status, 2) << key;
     EXPECT_EQ(model.out, "") << key;
     EXPECT_NE(model.err.find(key), std::string::npos) << model.err;
-    const std::string cmd = std::string(FINGER_CALIBRATE_EXE) + " --set " + key + "=-7 2>&1 >/dev/null";
-    FILE* pipe = popen(cmd.c_str(), "r");
-    std::string err;
-    char buf[4096];
-    std::size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) err.append(buf, n);
-    EXPECT_EQ(WEXITSTATUS(pclose(pipe)), 2) << key;
-    EXPECT_NE(err.find(key), std::string::npos) << err;
+    const CliRun calibrate = runShell(std::string(FINGER_CALIBRATE_EXE) + " --set " + key + "=-7");
+    EXPECT_EQ(calibrate.status, 2) << key;
+    EXPECT_EQ(calibrate.out, "") << key;
+    EXPECT_NE(calibrate.err.find(key), std::string::npos) << calibrate.err;
   }
 }
