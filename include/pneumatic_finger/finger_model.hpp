@@ -18,7 +18,7 @@ namespace pneumatic_finger {
 
 /// Which solver turns pressure into half angles.
 enum class SolverKind {
-  kRobust,  ///< default: cancellation-free stages, safeguarded Newton; within 1e-12 rad of the reference
+  kRobust,  ///< default: cancellation-free stages, safeguarded Halley steps; within 1e-12 rad of the reference
   kPaper,   ///< the paper's closed forms (eq 10-12 Cardano, eq 16-35 Ferrari) with Wang's root check
   kTable,   ///< piecewise polynomial of theta(sqrt(P)) built at construction; robust solver outside its range
 };
