@@ -17,12 +17,12 @@ constexpr int kTableStride = kTableNodes * kTableFunctions;
 constexpr int kTableMaxSegments = 4096;
 constexpr double kPi = 3.14159265358979323846;
 
-// Chebyshev interpolation of f on [-1, 1] at the kTableNodes first-kind nodes, converted to monomial
-// coefficients (index = power). Degree 7 keeps the conversion well conditioned (|coefficients| grow by < 2^7).
-template <typename F>
-std::array<double, kTableNodes> monomialInterpolant(F&& f) {
-  std::array<double, kTableNodes> values{};
-  for (int j = 0; j < kTableNodes; ++j) values[j] = f(std::cos(kPi * (j + 0.5) / kTableNodes));
+// The kTableNodes first-kind Chebyshev nodes on [-1, 1].
+double chebyshevNode(int j) { return std::cos(kPi * (j + 0.5) / kTableNodes); }
+
+// The interpolant through @p values (taken at the Chebyshev nodes) as monomial coefficients (index = power).
+// Degree 7 keeps the conversion well conditioned (|coefficients| grow by < 2^7).
+std::array<double, kTableNodes> monomialInterpolant(const std::array<double, kTableNodes>& values) {
   std::array<double, kTableNodes> cheb{};
   for (int k = 0; k < kTableNodes; ++k) {
     double sum = 0.0;
@@ -133,10 +133,17 @@ void FingerModel::buildTable(ChamberGroup& group) {
     group.table.assign(static_cast<std::size_t>(segments) * kTableStride, 0.0);
     for (int s = 0; s < segments; ++s) {
       const double u0 = u_begin + s * width;
-      const auto at = [&](double x) { return exact(u0 + 0.5 * (x + 1.0) * width); };
-      const auto theta = monomialInterpolant([&](double x) { return at(x).rad; });
-      const auto cosine = monomialInterpolant([&](double x) { return at(x).cos; });
-      const auto sine = monomialInterpolant([&](double x) { return at(x).sin; });
+      // One solve per node gives theta, cos and sin together.
+      std::array<double, kTableNodes> theta_at{}, cos_at{}, sin_at{};
+      for (int j = 0; j < kTableNodes; ++j) {
+        const HalfAngle h = exact(u0 + 0.5 * (chebyshevNode(j) + 1.0) * width);
+        theta_at[static_cast<std::size_t>(j)] = h.rad;
+        cos_at[static_cast<std::size_t>(j)] = h.cos;
+        sin_at[static_cast<std::size_t>(j)] = h.sin;
+      }
+      const auto theta = monomialInterpolant(theta_at);
+      const auto cosine = monomialInterpolant(cos_at);
+      const auto sine = monomialInterpolant(sin_at);
       double* row = &group.table[static_cast<std::size_t>(s) * kTableStride];
       for (int i = 0; i < kTableNodes; ++i) {
         row[i * kTableFunctions + 0] = theta[static_cast<std::size_t>(i)];

@@ -4,35 +4,66 @@
 
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 namespace pneumatic_finger {
 
 namespace {
 
-const std::vector<NodeParameterSpec> kNodeSpecs = {
-    {"frame_prefix", "string", "finger_", "-", "empty, or a letter then letters, digits, '_'",
-     "prepended to every link, joint and frame of this finger, so several fingers coexist"},
-    {"parent_frame", "string", "tool0", "-", "tf frame id without leading '/'", "frame the finger mounts on"},
-    {"mount_xyz_m", "double[3]", "[0, 0, 0]", "m", "finite, |x| <= 10", "mount position in parent_frame"},
-    {"mount_rpy_rad", "double[3]", "[0, 0, 0]", "rad", "finite, |x| <= 2 pi",
-     "mount orientation in parent_frame (roll, pitch, yaw about fixed x, y, z)"},
-    {"solver", "string", "robust", "-", "robust, paper, table", "the model's solver (see Solvers)"},
-    {"max_rate_hz", "double", "0", "Hz", "[0, 100000]",
-     "model cycles per second at most; 0 runs the model on every pressure message"},
-    {"stale_timeout_s", "double", "1.0", "s", "(0, 3600]", "no pressure for longer than this is reported stale"},
-    {"stamp_tolerance_s", "double", "1.0", "s", "(0, 3600]",
-     "a pressure stamp that is zero or further than this from the receive time is replaced by the receive time"},
-    {"max_gauge_pa", "double", "294199.5", "Pa", "(0, 1e7]",
-     "top of the model's range (3 kg/cm^2): higher pressures are clamped to it; URDF joint upper limits, the "
-     "inverse service's limit, the table"},
-    {"validated_max_gauge_pa", "double", "196133", "Pa", "(0, max_gauge_pa]",
-     "top of the validated range (the paper: 2 kg/cm^2); above it finger_state says so and diagnostics warn"},
-    {"description_param", "string", "robot_description", "-", "a ROS name",
-     "parameter (resolved in the node's namespace) that receives the generated URDF"},
-    {"pressure_topic", "string", "pressure", "-", "a ROS name", "subscribed sensor_msgs/FluidPressure"},
-    {"joint_states_topic", "string", "joint_states", "-", "a ROS name", "published sensor_msgs/JointState"},
-    {"finger_state_topic", "string", "finger_state", "-", "a ROS name", "published pneumatic_finger/FingerModelState"},
-};
+// Numbers: (key, default, min, min excluded, max). The URDF-related defaults are FingerUrdfOptions', shared with
+// the finger_urdf tool.
+NodeParameterSpec number(const char* key, double def, double lo, bool lo_open, double hi, const char* unit,
+                         const char* description, const char* allowed = nullptr) {
+  std::ostringstream range;
+  range << (lo_open ? "(" : "[") << lo << ", " << hi << "]";
+  return {key, "double", formatShortest(def), def, lo, lo_open, hi, unit, allowed ? allowed : range.str(), description};
+}
+
+NodeParameterSpec text(const char* key, const std::string& def, const char* allowed, const char* description) {
+  return {key, "string", def, 0, 0, false, 0, "-", allowed, description};
+}
+
+NodeParameterSpec triple(const char* key, double limit, const char* unit, const char* limit_text,
+                         const char* description) {
+  return {key, "double[3]", "[0, 0, 0]", 0, 0, false, limit, unit, std::string("finite, |x| <= ") + limit_text,
+          description};
+}
+
+const std::vector<NodeParameterSpec>& specs() {
+  static const FingerUrdfOptions urdf;
+  static const std::vector<NodeParameterSpec> table = {
+      text("frame_prefix", urdf.prefix, "empty, or a letter then letters, digits, '_'",
+           "prepended to every link, joint and frame of this finger, so several fingers coexist"),
+      text("parent_frame", urdf.parent_frame, "tf frame id without leading '/'", "frame the finger mounts on"),
+      triple("mount_xyz_m", 10.0, "m", "10", "mount position in parent_frame"),
+      triple("mount_rpy_rad", 2 * M_PI, "rad", "2 pi",
+             "mount orientation in parent_frame (roll, pitch, yaw about fixed x, y, z)"),
+      text("solver", "robust", "robust, paper, table", "the model's solver (see Solvers)"),
+      number("max_rate_hz", 0, 0, false, 1e5, "Hz", "model cycles per second at most; 0 runs the model on every pressure message"),
+      number("stale_timeout_s", 1.0, 0, true, 3600, "s", "no pressure for longer than this is reported stale"),
+      number("stamp_tolerance_s", 1.0, 0, true, 3600, "s",
+             "a pressure stamp that is zero or further than this from the receive time is replaced by the receive time"),
+      number("max_gauge_pa", urdf.max_gauge_pa, 0, true, 1e7, "Pa",
+             "top of the model's range (3 kg/cm^2): higher pressures are clamped to it; URDF joint upper limits, the "
+             "inverse service's limit, the table"),
+      number("validated_max_gauge_pa", 196133, 0, true, 1e7, "Pa",
+             "top of the validated range (the paper: 2 kg/cm^2); above it finger_state says so and diagnostics warn",
+             "(0, max_gauge_pa]"),
+      text("description_param", "robot_description", "a ROS name",
+           "parameter (resolved in the node's namespace) that receives the generated URDF"),
+      text("pressure_topic", "pressure", "a ROS name", "subscribed sensor_msgs/FluidPressure"),
+      text("joint_states_topic", "joint_states", "a ROS name", "published sensor_msgs/JointState"),
+      text("finger_state_topic", "finger_state", "a ROS name", "published pneumatic_finger/FingerModelState"),
+  };
+  return table;
+}
+
+const NodeParameterSpec& spec(const std::string& key) {
+  for (const auto& s : specs()) {
+    if (s.key == key) return s;
+  }
+  throw std::logic_error("no node parameter '" + key + "'");
+}
 
 std::string describe(const XmlRpc::XmlRpcValue& v) {
   std::string text = const_cast<XmlRpc::XmlRpcValue&>(v).toXml();
@@ -55,31 +86,32 @@ bool asNumber(const XmlRpc::XmlRpcValue& v, double& out) {
   return true;
 }
 
-double readDouble(const ros::NodeHandle& nh, const std::string& key, double fallback, double lo, bool lo_open,
-                  double hi) {
+double readDouble(const ros::NodeHandle& nh, const std::string& key, double max_override = NAN) {
+  const NodeParameterSpec& sp = spec(key);
+  const double hi = std::isnan(max_override) ? sp.max_value : max_override;
   XmlRpc::XmlRpcValue v;
-  if (!nh.getParam(key, v)) return fallback;
+  if (!nh.getParam(key, v)) return sp.default_value;
   double x;
   if (!asNumber(v, x)) throw ParameterError("parameter '" + key + "' = " + describe(v) + " is not a number");
-  if (!std::isfinite(x) || (lo_open ? !(x > lo) : !(x >= lo)) || !(x <= hi)) {
+  if (!std::isfinite(x) || (sp.min_open ? !(x > sp.min_value) : !(x >= sp.min_value)) || !(x <= hi)) {
     std::ostringstream s;
-    s << "parameter '" << key << "' = " << formatExact(x) << " is outside its allowed range " << (lo_open ? "(" : "[")
-      << lo << ", " << hi << "]";
+    s << "parameter '" << key << "' = " << formatExact(x) << " is outside its allowed range " << sp.allowed;
     throw ParameterError(s.str());
   }
   return x;
 }
 
-std::string readString(const ros::NodeHandle& nh, const std::string& key, const std::string& fallback) {
+std::string readString(const ros::NodeHandle& nh, const std::string& key) {
   XmlRpc::XmlRpcValue v;
-  if (!nh.getParam(key, v)) return fallback;
+  if (!nh.getParam(key, v)) return spec(key).default_text;
   if (v.getType() != XmlRpc::XmlRpcValue::TypeString) {
     throw ParameterError("parameter '" + key + "' = " + describe(v) + " is not a string");
   }
   return static_cast<std::string>(v);
 }
 
-std::array<double, 3> readTriple(const ros::NodeHandle& nh, const std::string& key, double limit) {
+std::array<double, 3> readTriple(const ros::NodeHandle& nh, const std::string& key) {
+  const double limit = spec(key).max_value;
   XmlRpc::XmlRpcValue v;
   std::array<double, 3> out{{0, 0, 0}};
   if (!nh.getParam(key, v)) return out;
@@ -87,10 +119,10 @@ std::array<double, 3> readTriple(const ros::NodeHandle& nh, const std::string& k
     throw ParameterError("parameter '" + key + "' = " + describe(v) + " must be a list of 3 numbers");
   }
   for (int i = 0; i < 3; ++i) {
-    if (!asNumber(v[i], out[static_cast<std::size_t>(i)]) || !std::isfinite(out[static_cast<std::size_t>(i)]) ||
-        std::fabs(out[static_cast<std::size_t>(i)]) > limit) {
+    const auto k = static_cast<std::size_t>(i);
+    if (!asNumber(v[i], out[k]) || !std::isfinite(out[k]) || std::fabs(out[k]) > limit) {
       throw ParameterError("parameter '" + key + "' = " + describe(v) + ": entry " + std::to_string(i + 1) +
-                           " is not a finite number with |x| <= " + formatExact(limit));
+                           " is not a number in the allowed range: " + spec(key).allowed);
     }
   }
   return out;
@@ -105,7 +137,7 @@ void checkName(const std::string& key, const std::string& name) {
 
 }  // namespace
 
-const std::vector<NodeParameterSpec>& nodeParameterSpecs() { return kNodeSpecs; }
+const std::vector<NodeParameterSpec>& nodeParameterSpecs() { return specs(); }
 
 NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   NodeSettings s;
@@ -136,8 +168,8 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   }
   s.finger = FingerParameters::fromRaw(raw);
 
-  s.urdf.prefix = readString(nh, "frame_prefix", "finger_");
-  s.urdf.parent_frame = readString(nh, "parent_frame", "tool0");
+  s.urdf.prefix = readString(nh, "frame_prefix");
+  s.urdf.parent_frame = readString(nh, "parent_frame");
   std::string why;
   if (!isValidNamePrefix(s.urdf.prefix, why)) {
     throw ParameterError("parameter 'frame_prefix' = '" + s.urdf.prefix + "' " + why);
@@ -145,23 +177,22 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   if (!isValidFrameId(s.urdf.parent_frame, why)) {
     throw ParameterError("parameter 'parent_frame' = '" + s.urdf.parent_frame + "' " + why);
   }
-  s.urdf.mount_xyz_m = readTriple(nh, "mount_xyz_m", 10.0);
-  s.urdf.mount_rpy_rad = readTriple(nh, "mount_rpy_rad", 2 * M_PI);
-  const std::string solver = readString(nh, "solver", "robust");
+  s.urdf.mount_xyz_m = readTriple(nh, "mount_xyz_m");
+  s.urdf.mount_rpy_rad = readTriple(nh, "mount_rpy_rad");
   try {
-    s.solver = parseSolverName(solver);
+    s.solver = parseSolverName(readString(nh, "solver"));
   } catch (const ParameterError& e) {
     throw ParameterError(std::string("parameter 'solver': ") + e.what());
   }
-  s.max_rate_hz = readDouble(nh, "max_rate_hz", 0.0, 0.0, false, 1e5);
-  s.stale_timeout_s = readDouble(nh, "stale_timeout_s", 1.0, 0.0, true, 3600.0);
-  s.stamp_tolerance_s = readDouble(nh, "stamp_tolerance_s", 1.0, 0.0, true, 3600.0);
-  s.urdf.max_gauge_pa = readDouble(nh, "max_gauge_pa", 294199.5, 0.0, true, 1e7);
-  s.validated_max_gauge_pa = readDouble(nh, "validated_max_gauge_pa", 196133.0, 0.0, true, s.urdf.max_gauge_pa);
-  s.description_param = readString(nh, "description_param", "robot_description");
-  s.pressure_topic = readString(nh, "pressure_topic", "pressure");
-  s.joint_states_topic = readString(nh, "joint_states_topic", "joint_states");
-  s.finger_state_topic = readString(nh, "finger_state_topic", "finger_state");
+  s.max_rate_hz = readDouble(nh, "max_rate_hz");
+  s.stale_timeout_s = readDouble(nh, "stale_timeout_s");
+  s.stamp_tolerance_s = readDouble(nh, "stamp_tolerance_s");
+  s.urdf.max_gauge_pa = readDouble(nh, "max_gauge_pa");
+  s.validated_max_gauge_pa = readDouble(nh, "validated_max_gauge_pa", s.urdf.max_gauge_pa);
+  s.description_param = readString(nh, "description_param");
+  s.pressure_topic = readString(nh, "pressure_topic");
+  s.joint_states_topic = readString(nh, "joint_states_topic");
+  s.finger_state_topic = readString(nh, "finger_state_topic");
   checkName("description_param", s.description_param);
   checkName("pressure_topic", s.pressure_topic);
   checkName("joint_states_topic", s.joint_states_topic);
@@ -175,7 +206,7 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
     const std::string key = full.substr(ns.size());
     if (key.find('/') != std::string::npos) continue;  // nested namespaces belong to others (e.g. diagnostics)
     bool known = findParameterSpec(key) != nullptr || key == "diagnostic_period";
-    for (const auto& spec : kNodeSpecs) known = known || key == spec.key;
+    for (const auto& sp : specs()) known = known || key == sp.key;
     if (!known) throw ParameterError("unknown parameter '" + key + "' (in " + ns + ")");
   }
   return s;

@@ -11,7 +11,7 @@ namespace {
 void printParameters() {
   std::cout << "| parameter | type | default | unit | allowed | meaning |\n|---|---|---|---|---|---|\n";
   for (const auto& s : pneumatic_finger::nodeParameterSpecs()) {
-    std::cout << "| `~" << s.key << "` | " << s.type << " | `" << s.default_value << "` | " << s.unit << " | "
+    std::cout << "| `~" << s.key << "` | " << s.type << " | `" << s.default_text << "` | " << s.unit << " | "
               << s.allowed << " | " << s.description << " |\n";
   }
 }

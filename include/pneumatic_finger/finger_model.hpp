@@ -75,7 +75,7 @@ FingerState restState(const FingerParameters& parameters);
 
 class FingerModel {
  public:
-  /// Builds the model; the table solver also builds its table here (a few milliseconds).
+  /// Builds the model; the table solver also builds, and measures, its table here.
   explicit FingerModel(const FingerParameters& parameters, const ModelOptions& options = ModelOptions());
 
   /// Evaluates the finger at @p gauge_pa. Returns the model's own state, which stays valid until the next call.

@@ -21,15 +21,19 @@
 
 namespace pneumatic_finger {
 
-/// The node's own parameters (besides the actuator keys of parameterSpecs()): one definition, read by the node
-/// and printed by `finger_node --parameters` for the README.
+/// The node's own parameters (besides the actuator keys of parameterSpecs()): one definition of each (type,
+/// default, unit, range, meaning), read by readNodeSettings() and printed by `finger_node --parameters` for the README.
 struct NodeParameterSpec {
-  const char* key;
-  const char* type;           ///< "string", "double", "double[3]"
-  const char* default_value;  ///< as text
-  const char* unit;
-  const char* allowed;
-  const char* description;
+  std::string key;
+  std::string type;           ///< "string", "double", "double[3]"
+  std::string default_text;   ///< the default as text (strings, triples)
+  double default_value;       ///< the default of a "double"
+  double min_value;           ///< range of a "double" (of every entry of a "double[3]": |x| <= max_value)
+  bool min_open;              ///< whether min_value itself is excluded
+  double max_value;
+  std::string unit;
+  std::string allowed;        ///< the range as text (generated for numbers)
+  std::string description;
 };
 const std::vector<NodeParameterSpec>& nodeParameterSpecs();
 
@@ -37,15 +41,9 @@ const std::vector<NodeParameterSpec>& nodeParameterSpecs();
 struct NodeSettings {
   FingerParameters finger;
   FingerUrdfOptions urdf;
-  SolverKind solver = SolverKind::kRobust;
-  double max_rate_hz = 0.0;
-  double stale_timeout_s = 1.0;
-  double stamp_tolerance_s = 1.0;
-  double validated_max_gauge_pa = 196133.0;
-  std::string description_param = "robot_description";
-  std::string pressure_topic = "pressure";
-  std::string joint_states_topic = "joint_states";
-  std::string finger_state_topic = "finger_state";
+  SolverKind solver;
+  double max_rate_hz, stale_timeout_s, stamp_tolerance_s, validated_max_gauge_pa;
+  std::string description_param, pressure_topic, joint_states_topic, finger_state_topic;
 };
 
 /// Reads and validates every parameter from the private handle.
