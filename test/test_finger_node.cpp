@@ -67,8 +67,13 @@ class FingerNodeTest : public testing::Test {
     subs_.push_back(nh_->subscribe("/tf", 1000, &Listener::onTf, listener_));
     subs_.push_back(nh_->subscribe("/tf_static", 100, &Listener::onTf, listener_));
     pressure_ = nh_->advertise<sensor_msgs::FluidPressure>("pressure", 100, true);
+    // Both ways: the node hears us, and we hear its joint_states and finger_state.
     const ros::Time deadline = ros::Time::now() + ros::Duration(30);
-    while (pressure_.getNumSubscribers() == 0 && ros::Time::now() < deadline) ros::Duration(0.05).sleep();
+    while ((pressure_.getNumSubscribers() == 0 || subs_[0].getNumPublishers() == 0 ||
+            subs_[1].getNumPublishers() == 0) &&
+           ros::Time::now() < deadline) {
+      ros::Duration(0.05).sleep();
+    }
   }
 
   // Publishes a gauge pressure and waits until the node's joint_states with the same stamp arrive.
