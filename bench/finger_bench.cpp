@@ -18,8 +18,8 @@
 #include <string>
 #include <vector>
 
-#include "pneumatic_finger/finger_model.hpp"
-#include "pneumatic_finger/stages.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/stages.hpp"
 #include "reference_quad.hpp"
 
 namespace pf = pneumatic_finger;

@@ -14,8 +14,9 @@
 #include <sstream>
 #include <vector>
 
-#include "pneumatic_finger/finger_model.hpp"
-#include "pneumatic_finger/yaml_parameters.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/units.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -130,7 +131,7 @@ int main(int argc, char** argv) {
     }
     if (measuring && (now - t0).toSec() >= seconds) break;
     // A new pressure every message (a slow sine over 0..2 kg/cm^2), so the model's cache never answers.
-    const double gauge = 98066.5 * (1.0 - std::cos(0.001 * static_cast<double>(k++)));
+    const double gauge = pf::kPaPerKgfPerCm2 * (1.0 - std::cos(0.001 * static_cast<double>(k++)));
     const pf::FingerState& s = model.evaluate(gauge);
     const ros::Time stamp = ros::Time::now();
     {

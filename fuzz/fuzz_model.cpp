@@ -12,8 +12,8 @@
 #include <string>
 #include <vector>
 
-#include "pneumatic_finger/finger_model.hpp"
-#include "pneumatic_finger/yaml_parameters.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pf = pneumatic_finger;
 

@@ -109,7 +109,7 @@ the variant returned NaN: its quartic root finder produced no root that satisfie
 {chr(10).join(rows)}
 
 - **robust**, the default: safeguarded Halley on the stretch polynomial and on Wang's relation, rewritten as a
-  polynomial in (1+tan²θ)^¼ − 1 (`src/stages.cpp`).
+  polynomial in (1+tan²θ)^¼ − 1 (`src/core/stages.cpp`).
 - **table**: piecewise degree-7 polynomials of θ, cos θ and sin θ in √P, built at start-up. The segments double until
   the measured error against the robust solver is ≤ 5e-13 rad. Above the table's range (3 kg/cm²), the robust
   solver answers, which is why the table's hard-case time is close to the robust one.
@@ -150,7 +150,7 @@ client's publish to its receipt of the message with the matching stamp: `joint_s
   {fmt_err(runs["robust/hard"]["max_theta_error_rad"])} rad on the hard cases). Speed missed: {robust_ns:.0f} ns,
   {robust_ns / 100:.1f}× the target. On this CPU one `atan` alone takes {lat["atan (glibc)"]:.0f} ns, a square root
   {lat["sqrt"]:.0f} ns and a division {lat["division"]:.0f} ns (the table above). An evaluation is a dependent chain
-  of them (`src/stages.cpp`): g needs a division; δ a square root, a division and two Halley divisions; h a square
+  of them (`src/core/stages.cpp`): g needs a division; δ a square root, a division and two Halley divisions; h a square
   root and a division; θ a square root, two divisions, a Halley division, the `atan` and cos θ's division.
   The speed-ups already in place:
   - Halley steps on polynomial forms that need no square root per step;

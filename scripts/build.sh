@@ -5,7 +5,7 @@ ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
 # catkin must see Debian's python3 (with catkin_pkg), not a pyenv/conda/venv one earlier on PATH.
 export PATH="/usr/bin:/bin:$PATH"
 cmake -S "$ROOT" -B "$ROOT/build" -DCATKIN_DEVEL_PREFIX="$ROOT/build/devel" \
-  -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 >"$ROOT/build.log" 2>&1 \
+  -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 -Dpneumatic_finger_BENCHMARKS=ON >"$ROOT/build.log" 2>&1 \
   || { cat "$ROOT/build.log"; exit 1; }
 touch "$ROOT/build/CATKIN_IGNORE"  # rospack must not look for packages in the build folder
 make -C "$ROOT/build" -j"$(nproc)" all tests >>"$ROOT/build.log" 2>&1 || { tail -50 "$ROOT/build.log"; exit 1; }

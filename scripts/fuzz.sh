@@ -13,8 +13,8 @@ cp "$ROOT/config/finger.yaml" "$OUT/corpus/seed_finger.yaml"
 printf 'chamber_count: 3\nchamber_gap_m: [0, 1e-5, 0.1]\nshear_modulus_pa: [1e-300, 1e12, 2e8]\n' >"$OUT/corpus/seed_lists.yaml"
 clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
   -fno-omit-frame-pointer -I"$ROOT/include" -isystem /usr/include/eigen3 \
-  "$ROOT/fuzz/fuzz_model.cpp" "$ROOT/src/parameters.cpp" "$ROOT/src/stages.cpp" "$ROOT/src/finger_model.cpp" \
-  "$ROOT/src/yaml_parameters.cpp" -lyaml-cpp -o "$OUT/fuzz_model"
+  "$ROOT/fuzz/fuzz_model.cpp" "$ROOT/src/core/parameters.cpp" "$ROOT/src/core/stages.cpp" "$ROOT/src/core/finger_model.cpp" \
+  "$ROOT/src/core/yaml_parameters.cpp" -lyaml-cpp -o "$OUT/fuzz_model"
 cd "$OUT"
 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
   ./fuzz_model -max_total_time="$SECS" -jobs="$JOBS" -workers="$JOBS" -max_len=4096 -timeout=10 \

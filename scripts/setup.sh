@@ -17,6 +17,8 @@ PACKAGES=("$@"
   liburdfdom-dev liburdfdom-tools librostest-dev python3-rostest python3-roslaunch python3-rosmaster
   python3-rostopic python3-rosnode python3-rosparam python3-rosservice rosbash ros-robot-state-publisher
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs rviz xvfb imagemagick
+  # the tools' argument parser (package.xml: cli11)
+  libcli11-dev
   # benchmarks (package.xml: benchmark, gsl)
   libbenchmark-dev libgsl-dev pkg-config
   # tests (package.xml: gtest; test_depend) and the docs' plots

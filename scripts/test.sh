@@ -13,6 +13,9 @@ lint_dir=$(mktemp -d)
 ln -s "$ROOT" "$lint_dir/pneumatic_finger"
 catkin_lint -W2 --strict "$lint_dir/pneumatic_finger"
 rm -rf "$lint_dir"
+echo "lint: layers (no ROS header in core, description, tools)"
+/usr/bin/python3 "$ROOT/scripts/check_layers.py" --self-test
+/usr/bin/python3 "$ROOT/scripts/check_layers.py" "$ROOT"
 
 # The benchmark in smoke mode: it must run and its numbers must be finite (timings are never tests).
 "$ROOT/build/devel/lib/pneumatic_finger/finger_bench" --benchmark_min_time=0.002 --benchmark_format=json \

@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "pneumatic_finger/calibration.hpp"
+#include "pneumatic_finger/core/calibration.hpp"
 
 namespace pf = pneumatic_finger;
 

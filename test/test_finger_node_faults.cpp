@@ -15,8 +15,8 @@
 #include <vector>
 
 #include "pneumatic_finger/FingerModelState.h"
-#include "pneumatic_finger/finger_model.hpp"
-#include "pneumatic_finger/yaml_parameters.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pf = pneumatic_finger;
 

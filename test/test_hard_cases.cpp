@@ -6,8 +6,8 @@
 #include <cfloat>
 #include <cmath>
 
-#include "pneumatic_finger/finger_model.hpp"
-#include "pneumatic_finger/stages.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/stages.hpp"
 #include "test_support.hpp"
 
 namespace pf = pneumatic_finger;

@@ -8,7 +8,7 @@
 #include <vector>
 #include <new>
 
-#include "pneumatic_finger/finger_model.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
 
 namespace {
 std::atomic<long> g_allocations{0};

@@ -3,8 +3,8 @@
 
 #include <cmath>
 
-#include "pneumatic_finger/parameters.hpp"
-#include "pneumatic_finger/yaml_parameters.hpp"
+#include "pneumatic_finger/core/parameters.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pf = pneumatic_finger;
 

@@ -7,7 +7,7 @@
 #include <cstring>
 #include <random>
 
-#include "pneumatic_finger/finger_model.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
 #include "test_support.hpp"
 
 namespace pf = pneumatic_finger;

@@ -1,8 +1,8 @@
 // The cell's pressure source: constant flow into ideal-spring chambers (the paper's eq 2-4).
 #include <gtest/gtest.h>
 
-#include "pneumatic_finger/regulator.hpp"
-#include "pneumatic_finger/stages.hpp"
+#include "pneumatic_finger/core/regulator.hpp"
+#include "pneumatic_finger/core/stages.hpp"
 
 namespace pf = pneumatic_finger;
 

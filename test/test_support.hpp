@@ -5,7 +5,7 @@
 #include <cmath>
 #include <vector>
 
-#include "pneumatic_finger/finger_model.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
 #include "reference_quad.hpp"
 
 namespace pf_test {

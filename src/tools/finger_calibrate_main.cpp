@@ -7,29 +7,21 @@
 #include <string>
 #include <vector>
 
-#include "pneumatic_finger/calibration.hpp"
-#include "pneumatic_finger/tool_support.hpp"
-#include "pneumatic_finger/yaml_parameters.hpp"
+#include "pneumatic_finger/core/calibration.hpp"
+#include "pneumatic_finger/tools/tool_support.hpp"
+#include "pneumatic_finger/core/units.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pf = pneumatic_finger;
 
 namespace {
 
-const char* const kUsage =
-    "usage: finger_calibrate [--config FILE.yaml] [--set KEY=VALUE]... [--data MEASURED.csv]\n"
-    "                        [--fit KEY[,KEY]] [--objective minimax|least_squares] [--output FILE.yaml]\n"
-    "                        [--average-column COLUMN]\n"
-    "Fits KEY (default shear_modulus_pa,chamber_gap_m) to the measured average of joints 2..N, prints the\n"
-    "paper's Table 2 layout in degrees with joint 1 and leave-one-out errors, and writes the calibrated\n"
-    "parameter file when --output is given. Default data: the package's data/sierra2022_table1.csv.\n"
-    "--average-column takes the joints 2..N average from COLUMN (e.g. paper_avg_rad) instead of the joints.\n";
+constexpr const char* kDescription =
+    "Fits the model's effective parameters (default shear_modulus_pa,chamber_gap_m) to the measured average of\n"
+    "joints 2..N, prints the paper's Table 2 layout in degrees with joint 1 and leave-one-out errors, and writes the\n"
+    "calibrated parameter file when --output is given.";
 
-constexpr double kDeg = 180.0 / 3.14159265358979323846;
-
-std::string defaultDataFile(const char* argv0) {
-  const std::string config = pf::defaultParameterFile(argv0);
-  return config.substr(0, config.rfind("/config/")) + "/data/sierra2022_table1.csv";
-}
+constexpr double kDeg = pf::kDegPerRad;
 
 std::string fmt(const char* format, double v) {
   char b[64];
@@ -40,37 +32,22 @@ std::string fmt(const char* format, double v) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  try {
-    std::string config, data_path, output, objective_name = "minimax", average_column;
-    std::vector<std::string> sets, keys = {"shear_modulus_pa", "chamber_gap_m"};
-    for (int i = 1; i < argc; ++i) {
-      const std::string opt = argv[i];
-      auto value = [&]() -> std::string {
-        if (i + 1 >= argc) throw pf::ParameterError(opt + " needs a value");
-        return argv[++i];
-      };
-      if (opt == "--config") config = value();
-      else if (opt == "--set") sets.push_back(value());
-      else if (opt == "--data") data_path = value();
-      else if (opt == "--output") output = value();
-      else if (opt == "--objective") objective_name = value();
-      else if (opt == "--average-column") average_column = value();
-      else if (opt == "--fit") {
-        keys.clear();
-        std::stringstream s(value());
-        std::string k;
-        while (std::getline(s, k, ',')) keys.push_back(k);
-      } else if (opt == "--help" || opt == "-h") {
-        std::cout << kUsage;
-        return 0;
-      } else {
-        throw pf::ParameterError("unknown option '" + opt + "'");
-      }
-    }
+  CLI::App app(kDescription, "finger_calibrate");
+  pf::ParameterOptions parameters;
+  parameters.addTo(app);
+  std::string data_path, output, objective_name = "minimax", average_column, fit_keys = "shear_modulus_pa,chamber_gap_m";
+  app.add_option("--data", data_path, "measured CSV (gauge_pa, joint_n_rad); default: the package's data/sierra2022_table1.csv");
+  app.add_option("--fit", fit_keys, "one or two parameter keys to fit, comma-separated")->capture_default_str();
+  app.add_option("--objective", objective_name, "minimax or least_squares")->capture_default_str();
+  app.add_option("--output", output, "write the calibrated parameter file (YAML) here");
+  app.add_option("--average-column", average_column,
+                 "take the joints 2..N average from this column (e.g. paper_avg_rad) instead of the joints");
+  return pf::runTool("finger_calibrate", app, argc, argv, [&] {
+    const std::vector<std::string> keys = pf::splitFields(fit_keys);
     const bool default_data = data_path.empty();
-    if (default_data) data_path = defaultDataFile(argv[0]);
+    if (default_data) data_path = pf::packageShareDirectory() + "/data/sierra2022_table1.csv";
     const pf::CalibrationObjective objective = pf::parseObjective(objective_name);
-    const pf::FingerParameters base = pf::loadToolParameters(config, sets, argv[0]);
+    const pf::FingerParameters base = parameters.load();
     // A fit of k parameters needs more than k rows; leave-one-out needs one more.
     const std::vector<pf::Measurement> data = pf::readMeasurementsCsv(data_path, keys.size() + 2, average_column);
     const pf::CalibrationResult fit = pf::calibrate(base, keys, data, objective);
@@ -93,7 +70,7 @@ int main(int argc, char** argv) {
       worst = std::max(worst, std::fabs(r.error_rad()));
       worst_loo = std::max(worst_loo, std::fabs(loo_error));
       sum_sq += r.error_rad() * r.error_rad();
-      table << "# " << fmt("%14.3f", r.gauge_pa / 98066.5) << fmt("%18.3f", r.measured_avg_rad * kDeg)
+      table << "# " << fmt("%14.3f", r.gauge_pa / pf::kPaPerKgfPerCm2) << fmt("%18.3f", r.measured_avg_rad * kDeg)
             << fmt("%15.3f", r.model_avg_rad * kDeg) << fmt("%11.3f", r.error_rad() * kDeg)
             << fmt("%21.3f", r.measured_joint1_rad * kDeg) << fmt("%18.3f", r.model_joint1_rad * kDeg)
             << fmt("%18.3f", r.joint1_error_rad() * kDeg) << fmt("%25.3f", loo_error * kDeg) << "\n";
@@ -111,8 +88,5 @@ int main(int argc, char** argv) {
           << pf::parametersToYaml(fit.parameters);
     }
     return 0;
-  } catch (const pf::ParameterError& e) {
-    std::cerr << "finger_calibrate: error: " << e.what() << "\n";
-    return 2;
-  }
+  });
 }

@@ -1,4 +1,4 @@
-#include "pneumatic_finger/finger_urdf.hpp"
+#include "pneumatic_finger/description/finger_urdf.hpp"
 
 #include <tinyxml.h>
 #include <urdf_parser/urdf_parser.h>

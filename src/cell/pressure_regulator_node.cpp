@@ -6,8 +6,8 @@
 
 #include <cmath>
 
-#include "pneumatic_finger/regulator.hpp"
-#include "pneumatic_finger/yaml_parameters.hpp"
+#include "pneumatic_finger/core/regulator.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pf = pneumatic_finger;
 

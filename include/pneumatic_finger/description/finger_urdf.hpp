@@ -12,7 +12,7 @@
 
 #include <urdf_model/model.h>
 
-#include "pneumatic_finger/finger_model.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
 
 namespace pneumatic_finger {
 

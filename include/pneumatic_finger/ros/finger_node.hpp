@@ -16,8 +16,8 @@
 
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/PressureForTipAngle.h"
-#include "pneumatic_finger/finger_model.hpp"
-#include "pneumatic_finger/finger_urdf.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/description/finger_urdf.hpp"
 
 namespace pneumatic_finger {
 

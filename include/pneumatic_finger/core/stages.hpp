@@ -59,6 +59,24 @@ struct HalfAngle {
 /// @param[in] wall_critical_height_m b (m), > 0
 HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m);
 
+/// One chamber's wall at one pressure: what stages 1-4 give.
+struct WallSolution {
+  double stretch_excess = 0.0;  ///< delta = lambda - 1 (-)
+  double bulge_m = 0.0;         ///< h (m)
+  HalfAngle half;               ///< theta, with its cosine and sine
+};
+
+/// Stages 1-4 chained with the robust forms above: gauge pressure -> g -> delta -> h -> theta. The one place the
+/// robust chain is written; the model's robust solver and its table builder call it.
+/// @param[in] gauge_pa P (Pa gauge); <= 0 gives the rest wall
+/// @param[in] atmospheric_pa P_o (Pa)
+/// @param[in] shear_modulus_pa mu (Pa)
+/// @param[in] chamber_height_m L (m)
+/// @param[in] gap_m c (m)
+/// @param[in] wall_critical_height_m b (m)
+WallSolution solveWall(double gauge_pa, double atmospheric_pa, double shear_modulus_pa, double chamber_height_m,
+                       double gap_m, double wall_critical_height_m);
+
 /// Wang's relation itself (eq 15), h(theta); used to accept quartic roots and by the calibration tool.
 double bulgeForHalfAngle(double half_angle_rad, double gap_m, double wall_critical_height_m);
 

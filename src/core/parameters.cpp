@@ -1,4 +1,4 @@
-#include "pneumatic_finger/parameters.hpp"
+#include "pneumatic_finger/core/parameters.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -6,6 +6,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
+
+#include "pneumatic_finger/core/units.hpp"
 
 namespace pneumatic_finger {
 
@@ -34,7 +36,7 @@ const std::vector<ParameterSpec> kSpecs = {
      "length of the passive base segment, mount to joint 1"},
     {"shear_modulus_pa", "mu", "Pa", 223531464.01998678, 0, false, 1e12, ParameterShape::kPerChamber,
      "effective Neo-Hookean shear modulus of the elastomer (calibrated)"},
-    {"atmospheric_pressure_pa", "P_o", "Pa", 101325, 1e3, true, 1e6, ParameterShape::kScalar,
+    {"atmospheric_pressure_pa", "P_o", "Pa", kStandardAtmospherePa, 1e3, true, 1e6, ParameterShape::kScalar,
      "ambient pressure; gauge = absolute - P_o"},
 };
 

@@ -1,4 +1,4 @@
-#include "pneumatic_finger/yaml_parameters.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 
 #include <yaml-cpp/yaml.h>
 

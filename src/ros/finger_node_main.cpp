@@ -3,7 +3,7 @@
 
 #include <iostream>
 
-#include "pneumatic_finger/finger_node.hpp"
+#include "pneumatic_finger/ros/finger_node.hpp"
 
 namespace {
 

@@ -3,7 +3,7 @@
 // linearly at P_o Q / V_o, and the stored energy is eq 4, W = P_o/(2 V_o) ((V_o + Q t)^2 - V_o^2). ROS-free.
 #pragma once
 
-#include "pneumatic_finger/parameters.hpp"
+#include "pneumatic_finger/core/parameters.hpp"
 
 namespace pneumatic_finger {
 

@@ -11,8 +11,8 @@
 #include <string>
 #include <vector>
 
-#include "pneumatic_finger/parameters.hpp"
-#include "pneumatic_finger/stages.hpp"
+#include "pneumatic_finger/core/parameters.hpp"
+#include "pneumatic_finger/core/stages.hpp"
 
 namespace pneumatic_finger {
 
@@ -130,6 +130,8 @@ class FingerModel {
     HalfAngle half;
   };
 
+  /// The robust chain (stages 1-4) for one group of identical chambers.
+  static WallSolution solveRobust(const ChamberGroup& group, double gauge_pa, double atmospheric_pa);
   GroupResult solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const;
   void buildTable(ChamberGroup& group);
   void writeState(double gauge_pa, FingerState& out) const;

@@ -1,10 +1,12 @@
-#include "pneumatic_finger/finger_model.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
 
 #include <algorithm>
 #include <array>
 #include <limits>
 #include <cmath>
 #include <sstream>
+
+#include "pneumatic_finger/core/units.hpp"
 
 namespace pneumatic_finger {
 
@@ -15,7 +17,6 @@ constexpr int kTableNodes = kTableDegree + 1;     // Chebyshev nodes per segment
 constexpr int kTableFunctions = 3;                // theta, cos(theta), sin(theta)
 constexpr int kTableStride = kTableNodes * kTableFunctions;
 constexpr int kTableMaxSegments = 4096;
-constexpr double kPi = 3.14159265358979323846;
 
 // The kTableNodes first-kind Chebyshev nodes on [-1, 1].
 double chebyshevNode(int j) { return std::cos(kPi * (j + 0.5) / kTableNodes); }
@@ -122,11 +123,7 @@ void FingerModel::buildTable(ChamberGroup& group) {
   const double u_begin = std::sqrt(group.contact_gauge_pa);
   const double u_end = std::sqrt(options_.table_max_gauge_pa);
   if (!(u_end > u_begin)) return;  // never in contact within the table's range: theta = 0 or robust above
-  const double b = group.wall_critical_height_m, c = group.chamber_gap_m;
-  auto exact = [&](double u) {
-    const double g = energyGroup(u * u, parameters_.atmospheric_pressure_pa, group.shear_modulus_pa);
-    return halfAngle(bulge(stretchExcess(g), group.chamber_height_m), c, b);
-  };
+  auto exact = [&](double u) { return solveRobust(group, u * u, parameters_.atmospheric_pressure_pa).half; };
   double achieved = 0.0;
   for (int segments = 8; segments <= kTableMaxSegments; segments *= 2) {
     const double width = (u_end - u_begin) / segments;
@@ -173,16 +170,18 @@ void FingerModel::buildTable(ChamberGroup& group) {
   table_error_rad_ = std::max(table_error_rad_, achieved);
 }
 
+WallSolution FingerModel::solveRobust(const ChamberGroup& group, double gauge_pa, double atmospheric_pa) {
+  return solveWall(gauge_pa, atmospheric_pa, group.shear_modulus_pa, group.chamber_height_m, group.chamber_gap_m,
+                   group.wall_critical_height_m);
+}
+
 FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const {
   GroupResult r{1.0, 0.0, HalfAngle{}};
   const double p_o = parameters_.atmospheric_pressure_pa;
   switch (options_.solver) {
     case SolverKind::kRobust: {
-      const double delta = stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa));
-      r.stretch = 1.0 + delta;
-      r.bulge_m = bulge(delta, group.chamber_height_m);
-      r.half = halfAngle(r.bulge_m, group.chamber_gap_m, group.wall_critical_height_m);
-      return r;
+      const WallSolution w = solveRobust(group, gauge_pa, p_o);
+      return {1.0 + w.stretch_excess, w.bulge_m, w.half};
     }
     case SolverKind::kPaper: {
       r.stretch = paper::stretch(energyGroup(gauge_pa, p_o, group.shear_modulus_pa));
@@ -194,18 +193,18 @@ FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, doub
       return r;
     }
     case SolverKind::kTable: {
+      const double u = std::sqrt(gauge_pa);
+      // Outside the table the robust chain answers, and it also gives the detail.
+      if (gauge_pa > group.contact_gauge_pa && (!(u <= group.table_u_end) || group.table_segments == 0)) {
+        const WallSolution w = solveRobust(group, gauge_pa, p_o);
+        return {1.0 + w.stretch_excess, w.bulge_m, w.half};
+      }
       if (detail) {
         const double delta = stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa));
         r.stretch = 1.0 + delta;
         r.bulge_m = bulge(delta, group.chamber_height_m);
       }
       if (gauge_pa <= group.contact_gauge_pa) return r;  // walls apart: theta = 0 exactly
-      const double u = std::sqrt(gauge_pa);
-      if (!(u <= group.table_u_end) || group.table_segments == 0) {
-        const double delta = stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa));
-        r.half = halfAngle(bulge(delta, group.chamber_height_m), group.chamber_gap_m, group.wall_critical_height_m);
-        return r;
-      }
       const double pos = (u - group.table_u_begin) * group.table_inv_width;
       int s = static_cast<int>(pos);
       s = std::min(std::max(s, 0), group.table_segments - 1);

@@ -5,7 +5,7 @@
 
 #include <string>
 
-#include "pneumatic_finger/parameters.hpp"
+#include "pneumatic_finger/core/parameters.hpp"
 
 namespace pneumatic_finger {
 

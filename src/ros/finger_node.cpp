@@ -1,10 +1,12 @@
-#include "pneumatic_finger/finger_node.hpp"
+#include "pneumatic_finger/ros/finger_node.hpp"
 
 #include <tf2/LinearMath/Quaternion.h>
 
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+
+#include "pneumatic_finger/core/units.hpp"
 
 namespace pneumatic_finger {
 
@@ -36,7 +38,7 @@ const std::vector<NodeParameterSpec>& specs() {
            "prepended to every link, joint and frame of this finger, so several fingers coexist"),
       text("parent_frame", urdf.parent_frame, "tf frame id without leading '/'", "frame the finger mounts on"),
       triple("mount_xyz_m", 10.0, "m", "10", "mount position in parent_frame"),
-      triple("mount_rpy_rad", 2 * M_PI, "rad", "2 pi",
+      triple("mount_rpy_rad", 2 * kPi, "rad", "2 pi",
              "mount orientation in parent_frame (roll, pitch, yaw about fixed x, y, z)"),
       text("solver", "robust", "robust, paper, table", "the model's solver (see Solvers)"),
       number("max_rate_hz", 0, 0, false, 1e5, "Hz", "model cycles per second at most; 0 runs the model on every pressure message"),

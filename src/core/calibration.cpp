@@ -1,4 +1,4 @@
-#include "pneumatic_finger/calibration.hpp"
+#include "pneumatic_finger/core/calibration.hpp"
 
 #include <algorithm>
 #include <cmath>

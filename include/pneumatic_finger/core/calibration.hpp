@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "pneumatic_finger/finger_model.hpp"
-#include "pneumatic_finger/parameters.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/parameters.hpp"
 
 namespace pneumatic_finger {
 

@@ -1,4 +1,4 @@
-#include "pneumatic_finger/regulator.hpp"
+#include "pneumatic_finger/core/regulator.hpp"
 
 #include <algorithm>
 

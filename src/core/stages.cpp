@@ -1,13 +1,15 @@
-#include "pneumatic_finger/stages.hpp"
+#include "pneumatic_finger/core/stages.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
+
+#include "pneumatic_finger/core/units.hpp"
 
 namespace pneumatic_finger {
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
 constexpr double kHalfPi = kPi / 2;
 // Above this tan(theta), 1 + t^2 == t^2 in double, and t^2 would overflow near 1e154: switch to the
 // asymptotic forms (1 + t^2)^(1/4) = sqrt(t), cos = 1/t, which are then exact to rounding.
@@ -87,12 +89,95 @@ double bulge(double stretch_excess, double chamber_height_m) {
   return chamber_height_m * d * (2.0 + d) / (std::sqrt(1.0 + d * (4.0 + 2.0 * d)) + 1.0);
 }
 
-HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m) {
+namespace {
+
+// tan(theta) for a very large bulge (D > 1e6), where the polynomial below would overflow (v^4 ~ t^2): safeguarded
+// Newton on f(t) = t + m (w(t) - 1) - D in t itself. f is increasing, with its root in [D - m (w(D) - 1), D]; w uses
+// its overflow-free asymptotic form.
+double tanHalfAngleLargeBulge(double d, double m, int& iterations) {
+  double lo = 0.0, hi = d;
+  double t = d - m * quarterPower(d).w_m1;
+  if (t > lo) lo = t; else t = 0.5 * hi;
+  for (; iterations < 64; ++iterations) {
+    const QuarterPower q = quarterPower(t);
+    const double f = t + m * q.w_m1 - d;
+    if (f == 0.0) break;
+    (f > 0.0 ? hi : lo) = t;
+    double next = t - f / (1.0 + 0.5 * m * t / (q.w * q.w * q.w));
+    const bool newton = next >= lo && next <= hi;
+    if (!newton) next = 0.5 * (lo + hi);
+    const double step = next - t;
+    t = next;
+    if (newton && std::fabs(step) <= 1e-10 * t) break;  // quadratic: the next step is below one ulp
+    if (hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * hi) break;
+  }
+  ++iterations;
+  return t;
+}
+
+// v = w - 1 = (1 + t^2)^(1/4) - 1 for the usual bulges. With t = D - m v, w^4 = 1 + t^2 becomes the polynomial
+//   Q(v) = v (4 + 6v + 4v^2 + v^3) - (D - m v)^2 = 0,
+// written so that nothing cancels near v = 0; Q is increasing on [0, D/m] (Q' = 4 w^3 + 2 m t > 0), negative at 0 and
+// positive at D/m, so it has one root there. Start at v(D), an upper bound (t <= D), and take safeguarded Halley
+// steps: no square root per step.
+double quarterPowerExcessOfTan(double d, double m, int& iterations) {
+  double lo = 0.0, hi = d / m;
+  // Start near v(D) = (1 + D^2)^(1/4) - 1: for D < 1 its [1/1] Pade form (x/4)/(1 + 3x/8), x = D^2, is within 1e-6
+  // relative at D = 0.1 and costs one division instead of two square roots.
+  const double x = d * d;
+  double v = d < 1.0 ? 0.25 * x / (1.0 + 0.375 * x) : quarterPower(d).w_m1;
+  if (!(v < hi)) v = 0.5 * hi;
+  for (; iterations < 64; ++iterations) {
+    const double w = 1.0 + v;
+    const double tv = d - m * v;
+    const double q = v * (4.0 + v * (6.0 + v * (4.0 + v))) - tv * tv;
+    if (q == 0.0) break;
+    (q > 0.0 ? hi : lo) = v;
+    const double qp = 4.0 * w * w * w + 2.0 * m * tv;
+    const double qpp = 12.0 * w * w - 2.0 * m * m;
+    const double step = 2.0 * q * qp / (2.0 * qp * qp - q * qpp);
+    double next = v - step;
+    const bool halley = next >= lo && next <= hi;
+    if (!halley) next = 0.5 * (lo + hi);
+    const double moved = std::fabs(next - v);
+    v = next;
+    // A Halley step of size s leaves an error of order s^3; t = D - m v needs m * error < ulp(t).
+    if (halley && moved * moved * moved * (1.0 + m) <= 1e-17 * std::min(d - m * v, 1.0) * std::min(v + 1e-300, 1.0)) {
+      break;
+    }
+    if (hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * hi) break;
+  }
+  ++iterations;
+  return v;
+}
+
+// theta, cos and sin from t = tan(theta), and w = (1 + t^2)^(1/4) when the solve produced it (else 0).
+HalfAngle halfAngleFromTan(double t, double w, int iterations) {
   HalfAngle out;
-  if (!(bulge_m > gap_m)) return out;  // walls not in contact (MODEL.md stage 4)
+  out.iterations = iterations;
+  out.rad = std::atan(t);
+  if (w > 0.0) {
+    // cos(theta) = 1/sqrt(1 + t^2) = 1/w^2, and w is solved to well below an ulp of v: no square root needed.
+    out.cos = 1.0 / (w * w);
+    out.sin = t * out.cos;
+  } else if (t > kLargeTan) {
+    out.cos = 1.0 / t;
+    out.sin = 1.0;
+  } else {
+    out.cos = 1.0 / std::sqrt(1.0 + t * t);
+    out.sin = t * out.cos;
+  }
+  return out;
+}
+
+}  // namespace
+
+HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m) {
+  if (!(bulge_m > gap_m)) return HalfAngle{};  // walls not in contact (docs/MODEL.md, stage 4)
   const double two_over_b = 2.0 / wall_critical_height_m;
   const double big_h = bulge_m * two_over_b;
   if (!(big_h < 1e200)) {  // tan(theta) ~ H > 1e200: theta = pi/2 to the last bit
+    HalfAngle out;
     out.rad = kHalfPi;
     out.cos = 0.0;
     out.sin = 1.0;
@@ -103,79 +188,20 @@ HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m)
   // (h c underflows to 0 only for c < 1e-154 m, where m < 1e-75 and dropping it changes nothing.)
   const double m = std::sqrt(bulge_m * gap_m) * two_over_b;
   const double d = big_h * ((bulge_m - gap_m) * two_over_b) / (big_h + m);
-  double w_solved = 0.0;  // (1 + t^2)^(1/4) from the polynomial solve, when it ran
-  double t = d;  // c = 0: eq 15 is h = (b/2) tan(theta), nothing to solve
   int iterations = 0;
-  if (m > 0.0 && d > 1e6) {
-    // Very large bulge: v^4 ~ t^2 would overflow below. Safeguarded Newton on f(t) = t + m (w(t) - 1) - D in t
-    // itself, increasing, with its root in [D - m (w(D) - 1), D]; w uses its overflow-free asymptotic form.
-    double lo = 0.0, hi = d;
-    t = d - m * quarterPower(d).w_m1;
-    if (t > lo) lo = t; else t = 0.5 * hi;
-    for (; iterations < 64; ++iterations) {
-      const QuarterPower q = quarterPower(t);
-      const double f = t + m * q.w_m1 - d;
-      if (f == 0.0) break;
-      (f > 0.0 ? hi : lo) = t;
-      double next = t - f / (1.0 + 0.5 * m * t / (q.w * q.w * q.w));
-      const bool newton = next >= lo && next <= hi;
-      if (!newton) next = 0.5 * (lo + hi);
-      const double step = next - t;
-      t = next;
-      if (newton && std::fabs(step) <= 1e-10 * t) break;  // quadratic: the next step is below one ulp
-      if (hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * hi) break;
-    }
-    ++iterations;
-  } else if (m > 0.0) {
-    // Unknown v = w - 1 >= 0. With t = D - m v, w^4 = 1 + t^2 becomes the polynomial
-    //   Q(v) = v (4 + 6v + 4v^2 + v^3) - (D - m v)^2 = 0,
-    // written so that nothing cancels near v = 0; Q is increasing on [0, D/m] (Q' = 4 w^3 + 2 m t > 0), negative at
-    // 0 and positive at D/m, so it has one root there. Start at v(D), an upper bound (t <= D), and take safeguarded
-    // Halley steps: no square root per step.
-    double lo = 0.0, hi = d / m;
-    // Start near v(D) = (1 + D^2)^(1/4) - 1, an upper bound: for D < 1 its [1/1] Pade form (x/4)/(1 + 3x/8),
-    // x = D^2, is within 1e-6 relative at D = 0.1 and costs one division instead of two square roots.
-    const double x = d * d;
-    double v = d < 1.0 ? 0.25 * x / (1.0 + 0.375 * x) : quarterPower(d).w_m1;
-    if (!(v < hi)) v = 0.5 * hi;
-    for (; iterations < 64; ++iterations) {
-      const double w = 1.0 + v;
-      const double tv = d - m * v;
-      const double q = v * (4.0 + v * (6.0 + v * (4.0 + v))) - tv * tv;
-      if (q == 0.0) break;
-      (q > 0.0 ? hi : lo) = v;
-      const double qp = 4.0 * w * w * w + 2.0 * m * tv;
-      const double qpp = 12.0 * w * w - 2.0 * m * m;
-      const double step = 2.0 * q * qp / (2.0 * qp * qp - q * qpp);
-      double next = v - step;
-      const bool halley = next >= lo && next <= hi;
-      if (!halley) next = 0.5 * (lo + hi);
-      const double moved = std::fabs(next - v);
-      v = next;
-      // A Halley step of size s leaves an error of order s^3; t = D - m v needs m * error < ulp(t).
-      if (halley && moved * moved * moved * (1.0 + m) <= 1e-17 * std::min(d - m * v, 1.0) * std::min(v + 1e-300, 1.0)) {
-        break;
-      }
-      if (hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * hi) break;
-    }
-    t = d - m * v;
-    w_solved = 1.0 + v;
-    ++iterations;
-  }
-  out.iterations = iterations;
-  out.rad = std::atan(t);
-  if (w_solved > 0.0) {
-    // cos(theta) = 1/sqrt(1 + t^2) = 1/w^2, and w is solved to well below an ulp of v: no square root needed.
-    out.cos = 1.0 / (w_solved * w_solved);
-    out.sin = t * out.cos;
-  } else if (t > kLargeTan) {
-    out.cos = 1.0 / t;
-    out.sin = 1.0;
-  } else {
-    out.cos = 1.0 / std::sqrt(1.0 + t * t);
-    out.sin = t * out.cos;
-  }
-  return out;
+  if (!(m > 0.0)) return halfAngleFromTan(d, 0.0, iterations);  // c = 0: eq 15 is h = (b/2) tan(theta)
+  if (d > 1e6) return halfAngleFromTan(tanHalfAngleLargeBulge(d, m, iterations), 0.0, iterations);
+  const double v = quarterPowerExcessOfTan(d, m, iterations);
+  return halfAngleFromTan(d - m * v, 1.0 + v, iterations);
+}
+
+WallSolution solveWall(double gauge_pa, double atmospheric_pa, double shear_modulus_pa, double chamber_height_m,
+                       double gap_m, double wall_critical_height_m) {
+  WallSolution w;
+  w.stretch_excess = stretchExcess(energyGroup(gauge_pa, atmospheric_pa, shear_modulus_pa));
+  w.bulge_m = bulge(w.stretch_excess, chamber_height_m);
+  w.half = halfAngle(w.bulge_m, gap_m, wall_critical_height_m);
+  return w;
 }
 
 double bulgeForHalfAngle(double half_angle_rad, double gap_m, double wall_critical_height_m) {

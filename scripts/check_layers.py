@@ -1,0 +1,65 @@
+"""Checks that each layer includes only what its folder allows: the core, the description and the tools never see a
+ROS header. On Debian the ROS headers live in /usr/include beside every other library's, so the compiler cannot
+enforce this; this script does, from the #include lines.
+
+usage: python3 scripts/check_layers.py [ROOT]      exit 1 and one line per violation
+       python3 scripts/check_layers.py --self-test  shows that a ROS include in the core is caught
+"""
+import pathlib
+import re
+import sys
+import tempfile
+
+# What a ROS-free layer may include besides the C++ standard library: its own layer and the ones below it, Eigen,
+# yaml-cpp, urdfdom (description only), CLI11 (tools only), POSIX.
+ALLOWED = {
+    "core": [r"pneumatic_finger/core/", r"Eigen/", r"yaml-cpp/"],
+    "description": [r"pneumatic_finger/(core|description)/", r"Eigen/", r"urdf_model/", r"urdf_parser/",
+                    r"urdf_world/", r"tinyxml\.h"],
+    "tools": [r"pneumatic_finger/(core|description|tools)/", r"Eigen/", r"CLI/", r"unistd\.h"],
+}
+INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]')
+
+
+def is_standard(header):
+    # The C++ standard headers have no extension and no folder; the C ones are <cxxx>.
+    return "/" not in header and "." not in header
+
+
+def violations(root):
+    found = []
+    for layer, allowed in ALLOWED.items():
+        for folder in (root / "include" / "pneumatic_finger" / layer, root / "src" / layer):
+            for path in sorted(folder.rglob("*")):
+                if path.suffix not in (".hpp", ".h", ".cpp"):
+                    continue
+                for number, line in enumerate(path.read_text().splitlines(), 1):
+                    m = INCLUDE.match(line)
+                    if not m or is_standard(m.group(1)):
+                        continue
+                    if not any(re.match(a, m.group(1)) for a in allowed):
+                        found.append(f"{path.relative_to(root)}:{number}: layer '{layer}' may not include "
+                                     f"<{m.group(1)}>")
+    return found
+
+
+def self_test():
+    with tempfile.TemporaryDirectory() as tmp:
+        root = pathlib.Path(tmp)
+        (root / "src" / "core").mkdir(parents=True)
+        (root / "src" / "core" / "bad.cpp").write_text('#include <cmath>\n#include <ros/ros.h>\n')
+        got = violations(root)
+        ok = got == ["src/core/bad.cpp:2: layer 'core' may not include <ros/ros.h>"]
+        print("check_layers self-test:", "ok" if ok else f"FAILED, got {got}")
+        return 0 if ok else 1
+
+
+if __name__ == "__main__":
+    if sys.argv[1:] == ["--self-test"]:
+        sys.exit(self_test())
+    root = pathlib.Path(sys.argv[1] if len(sys.argv) > 1 else pathlib.Path(__file__).resolve().parent.parent)
+    bad = violations(root)
+    for b in bad:
+        print(b)
+    print(f"check_layers: {len(bad)} violation(s) in core, description and tools")
+    sys.exit(1 if bad else 0)
