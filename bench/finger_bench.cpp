@@ -2,7 +2,7 @@
 //
 // Each variant evaluates the whole finger (N = 7: stages 1-6, joint angles and backbone) at pressures that change
 // on every call (so the unchanged-pressure cache never answers). Counters carry, from the same run, the largest
-// error against the quad-precision reference: over the validated range (0..2 kg/cm^2) and over MODEL.md's hard
+// error against the quad-precision reference: over the validated range (0..2 kg/cm^2) and over docs/MODEL.md's hard
 // cases separately, where `hard_failures` counts pressures at which the variant returned no finite answer.
 #include <benchmark/benchmark.h>
 #include <gsl/gsl_errno.h>
@@ -131,7 +131,7 @@ const std::vector<double>& validatedPressures() {
   return p;
 }
 
-// MODEL.md's hard cases, as pressures on the default actuator.
+// docs/MODEL.md's hard cases, as pressures on the default actuator.
 const std::vector<double>& hardPressures() {
   static const std::vector<double> p = [] {
     std::vector<double> v;

@@ -52,7 +52,7 @@ for i, (key, label) in enumerate(SOLVERS):
         ax.annotate(hard_label, (h["real_time"], max(h["max_theta_error_rad"], floor)), fontsize=7,
                     textcoords="offset points", xytext=(-8, -14), ha="right")
 ax.scatter([], [], marker="o", color="grey", label="validated range 0..2 kg/cm² (1024 pressures)")
-ax.scatter([], [], marker="X", color="grey", label="MODEL.md's hard cases (62 pressures)")
+ax.scatter([], [], marker="X", color="grey", label="docs/MODEL.md's hard cases (62 pressures)")
 ax.axhline(1e-12, color="k", lw=0.8, ls="--")
 ax.text(0.01, 1.4e-12, "1e-12 rad requirement", fontsize=8, transform=ax.get_yaxis_transform())
 ax.set_xscale("log")
@@ -100,7 +100,7 @@ CI runs `finger_bench` only in a smoke mode (`scripts/test.sh`: it must run and 
 `finger_bench` (Google Benchmark) times one evaluation of the whole finger, N = 7: stages 1–6, joint angles and
 backbone. The pressure changes on every call, so the unchanged-pressure cache never answers. In the same run, it
 measures each variant's largest error against the `__float128` reference (`test/reference_quad.cpp`), over the
-validated range and over MODEL.md's hard cases separately. The hard cases are: near rest (1e-9..1 Pa), ±1e-1..1e-15
+validated range and over docs/MODEL.md's hard cases separately. The hard cases are: near rest (1e-9..1 Pa), ±1e-1..1e-15
 around contact, the resolvent-branch band 3e7..1e9 Pa, and θ → π/2 up to 1e300 Pa. "No answer" counts pressures where
 the variant returned NaN: its quartic root finder produced no root that satisfies Wang's relation.
 

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Every test: install what is missing, build, lint, run gtest/rostest, and exit non-zero on any failure.
+# Every test: install what is missing, build (a catkin workspace), lint, run gtest/rostest, the sanitized unit tests
+# and the install space, and exit non-zero on any failure.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 bash "$ROOT/scripts/setup.sh"
@@ -32,6 +33,9 @@ grep -E "^\[  (FAILED|PASSED) |tests? from .* ran|FAILURE|ERROR" "$ROOT/build/ru
 # the others in build/test_results.
 sanitized_status=0
 bash "$ROOT/scripts/test_sanitized.sh" || sanitized_status=1
+# The install space: make install into build/install, then the tools and the node run from there alone.
+install_status=0
+bash "$ROOT/scripts/test_install.sh" || install_status=1
 
 set +e
 catkin_test_results "$ROOT/build/test_results" >/dev/null 2>&1
@@ -39,4 +43,4 @@ catkin_status=$?
 /usr/bin/python3 "$ROOT/scripts/count_results.py" "$ROOT/build/test_results"
 count_status=$?
 set -e
-[ $catkin_status -eq 0 ] && [ $count_status -eq 0 ] && [ $sanitized_status -eq 0 ]
+[ $catkin_status -eq 0 ] && [ $count_status -eq 0 ] && [ $sanitized_status -eq 0 ] && [ $install_status -eq 0 ]

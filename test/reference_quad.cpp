@@ -23,10 +23,10 @@ quad bisect(F f, quad lo, quad hi) {
 
 quad energyGroupQ(quad p, quad p_o, quad mu) {
   if (!(p > 0)) return 0;
-  return p * (2 * p_o + p) / (p_o * mu);  // MODEL.md stage 1
+  return p * (2 * p_o + p) / (p_o * mu);  // docs/MODEL.md stage 1
 }
 
-// Stage 2: the largest root lambda of lambda^3 - (g + 3) lambda + 2, found as delta = lambda - 1 from MODEL.md's
+// Stage 2: the largest root lambda of lambda^3 - (g + 3) lambda + 2, found as delta = lambda - 1 from docs/MODEL.md's
 // equivalent delta^2 (3 + delta) - g (1 + delta) = 0. (Bisecting the cubic in lambda itself would lose half the
 // digits near rest, where lambda = 1 is a double root: the derivative there is only ~6 delta.) The polynomial is
 // -g at 0 and convex for delta >= 0, so it is negative up to the root and positive after: bisection on [0, hi].

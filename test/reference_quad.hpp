@@ -1,6 +1,6 @@
 // The high-precision reference every solver is measured against.
 //
-// Independent of the library on purpose: it uses MODEL.md's relations literally (the stretch polynomial, the
+// Independent of the library on purpose: it uses docs/MODEL.md's relations literally (the stretch polynomial, the
 // square-root bulge, Wang's eq 15 itself, the backbone sums with explicit cos/sin), evaluated in __float128
 // (113-bit mantissa, GCC's libquadmath), and solves each monotone relation by bisection to the last quad bit.
 // None of the library's reformulations (delta fixed point with Newton, factored bulge, tan-form of eq 15, rotation recurrence) appear here.

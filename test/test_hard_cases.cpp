@@ -1,4 +1,4 @@
-// MODEL.md, "Where the arithmetic is hard": one named test per case. The default (robust) solver must stay within
+// docs/MODEL.md, "Where the arithmetic is hard": one named test per case. The default (robust) solver must stay within
 // 1e-12 rad / 1e-12 m of the quad reference; the paper solver's behaviour on the same inputs is recorded (where
 // it fails, the assertion says how) so that a change in either shows up here.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Each stage of MODEL.md, and the whole finger, against the quad-precision reference over a dense sweep.
+// Each stage of docs/MODEL.md, and the whole finger, against the quad-precision reference over a dense sweep.
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -144,7 +144,7 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& raw) {
   p.base_segment_length_m = scalar(spec("base_segment_length_m"), raw);
   p.shear_modulus_pa = perChamber(spec("shear_modulus_pa"), raw, n);
   p.atmospheric_pressure_pa = scalar(spec("atmospheric_pressure_pa"), raw);
-  // MODEL.md stage 3-4: b is a height on the wall, so it cannot exceed the wall (chamber) height L.
+  // docs/MODEL.md stage 3-4: b is a height on the wall, so it cannot exceed the wall (chamber) height L.
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     if (p.wall_critical_height_m[k] > p.chamber_height_m[k]) {

@@ -214,7 +214,7 @@ double bulgeForHalfAngle(double half_angle_rad, double gap_m, double wall_critic
 namespace paper {
 
 double stretch(double g) {
-  // Eq 10-12, as printed (the 180 of eq 11 is pi: the paper's MATLAB took it as 180 radians, MODEL.md).
+  // Eq 10-12, as printed (the 180 of eq 11 is pi: the paper's MATLAB took it as 180 radians, docs/MODEL.md).
   const double t = std::sqrt(-1.0 - std::pow(-(g + 3.0), 3) / 27.0);
   const double phi = kPi + std::atan(t / -1.0);
   return 2.0 * std::cbrt(std::sqrt(1.0 + t * t)) * std::cos(phi / 3.0);

@@ -1,6 +1,6 @@
 // Calibration: fit the model's effective parameters (by default mu and c) to measured joint angles.
 //
-// The paper compares the average of joints 2..N with its model and calls the model "tuned"; MODEL.md shows its
+// The paper compares the average of joints 2..N with its model and calls the model "tuned"; docs/MODEL.md shows its
 // published numbers do not come from its own equations. This is the honest version: a documented objective over
 // the measured averages of joints 2..N, a global search (no start point to get wrong), and residuals reported.
 #pragma once

@@ -1,4 +1,4 @@
-// The whole finger: pressure in, joint angles and backbone out (MODEL.md stages 1-6).
+// The whole finger: pressure in, joint angles and backbone out (docs/MODEL.md stages 1-6).
 //
 // Only what a scene needs is computed:
 //  - chambers with identical (L, b, c, mu) share one solve per pressure;

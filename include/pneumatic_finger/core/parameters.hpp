@@ -1,7 +1,7 @@
 // The actuator's parameters: the one definition of every key (name, symbol, unit, default, allowed range),
 // read by the model library, the command-line tools, the ROS node and the generated docs alike.
 //
-// Keys and symbols follow ../shared/MODEL.md ("Geometry and parameters"). The defaults are the calibrated
+// Keys and symbols follow docs/MODEL.md ("Parameters"). The defaults are the calibrated
 // actuator of Sierra & Ordonez-Avila 2022 (see docs/ACCURACY.md and config/finger.yaml, which
 // finger_calibrate writes and a test keeps equal to this table).
 #pragma once
@@ -31,7 +31,7 @@ enum class ParameterShape {
 /// The definition of one key: everything the library, the tools, the node and the docs know about it.
 struct ParameterSpec {
   const char* key;          ///< YAML / rosparam key
-  const char* symbol;       ///< symbol in MODEL.md and the paper
+  const char* symbol;       ///< symbol in docs/MODEL.md and the paper
   const char* unit;         ///< SI unit, "-" when dimensionless
   double default_value;     ///< value used when the key is absent
   double min_value;         ///< lower bound of the allowed range
@@ -41,7 +41,7 @@ struct ParameterSpec {
   const char* description;  ///< one line for docs and --help
 };
 
-/// All keys, in the order of MODEL.md's table.
+/// All keys, in the order of docs/MODEL.md's table.
 const std::vector<ParameterSpec>& parameterSpecs();
 
 /// The spec of @p key, or nullptr when no such key exists.

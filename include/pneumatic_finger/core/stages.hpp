@@ -1,10 +1,10 @@
-// The six stages of ../shared/MODEL.md ("The chain, stage by stage") as separate, testable functions.
+// The six stages of docs/MODEL.md ("The chain") as separate, testable functions.
 //
 // Two families:
 //  - the robust forms (namespace-level functions): cancellation-free, finite for every finite input, no
 //    allocation; accurate to a few ulp (test/test_stages.cpp and test/test_hard_cases.cpp against a quad reference).
 //  - the paper's closed forms (namespace `paper`): eq 10-12 (trigonometric Cardano) and eq 16-35 (Ferrari),
-//    written as printed, with the one correction MODEL.md allows: a quartic root counts only if it satisfies
+//    written as printed, with the one correction docs/MODEL.md allows: a quartic root counts only if it satisfies
 //    Wang's relation.
 #pragma once
 
@@ -16,7 +16,7 @@ namespace pneumatic_finger {
 /// (tan(theta) > 1e90), so clamping there changes no output digit and keeps every later stage finite.
 constexpr double kMaxEnergyGroup = 1e200;
 
-/// Stage 1 (eq 2-3, MODEL.md): the dimensionless energy group g = 2 Psi / mu = P (2 P_o + P) / (P_o mu).
+/// Stage 1 (eq 2-3, docs/MODEL.md): the dimensionless energy group g = 2 Psi / mu = P (2 P_o + P) / (P_o mu).
 /// @param[in] gauge_pa gauge pressure P >= 0 (Pa); negative values are treated as 0 (vacuum is outside the model)
 /// @param[in] atmospheric_pa P_o (Pa), > 0
 /// @param[in] shear_modulus_pa mu (Pa), > 0
@@ -32,7 +32,7 @@ double energyGroup(double gauge_pa, double atmospheric_pa, double shear_modulus_
 /// @return delta >= 0 (0 exactly at g = 0)
 double stretchExcess(double g);
 
-/// Stage 3 (eq 13-14, MODEL.md form): wall bulge h = (L/2)(sqrt(2 lambda^2 - 1) - 1), evaluated from delta in the
+/// Stage 3 (eq 13-14, docs/MODEL.md form): wall bulge h = (L/2)(sqrt(2 lambda^2 - 1) - 1), evaluated from delta in the
 /// factored form L delta (2 + delta) / (sqrt(1 + 4 delta + 2 delta^2) + 1), which is exact near rest.
 /// @param[in] stretch_excess delta = lambda - 1 >= 0
 /// @param[in] chamber_height_m L (m)
@@ -86,7 +86,7 @@ namespace paper {
 /// lambda = 2 cbrt(sqrt(1 + T^2)) cos(phi/3). Returns lambda (not lambda - 1).
 double stretch(double g);
 
-/// MODEL.md's bulge written directly, (L/2)(sqrt(2 lambda^2 - 1) - 1): the form a reader of eq 14 would write.
+/// docs/MODEL.md's bulge written directly, (L/2)(sqrt(2 lambda^2 - 1) - 1): the form a reader of eq 14 would write.
 double bulge(double stretch, double chamber_height_m);
 
 /// Coefficients A..E of eq 16-22 (quartic in y = sin theta).

@@ -3,7 +3,7 @@
 // Links: <prefix>segment_0 (the passive base segment, from the mount to joint 1), <prefix>segment_1..N (segment n
 // carries chamber n, from joint n to joint n+1) and <prefix>tip (at O_(N+1)). Joints: <prefix>mount (fixed, the
 // parent frame to segment_0 at the mount pose), <prefix>joint_1..N (revolute about +z at the backbone's joint axes,
-// positive = flexion toward the strain-limited side, MODEL.md stage 6) and <prefix>tip_joint (fixed).
+// positive = flexion toward the strain-limited side, docs/MODEL.md stage 6) and <prefix>tip_joint (fixed).
 // Every segment frame has its origin on the backbone at its proximal joint and x along the segment.
 #pragma once
 
