@@ -19,6 +19,8 @@ PACKAGES=("$@"
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs rviz xvfb imagemagick
   # the tools' argument parser (package.xml: cli11)
   libcli11-dev
+  # the cell sequencer's forward kinematics (package.xml: kdl_parser)
+  libkdl-parser-dev liborocos-kdl-dev
   # benchmarks (package.xml: benchmark, gsl)
   libbenchmark-dev libgsl-dev pkg-config
   # tests (package.xml: gtest; test_depend) and the docs' plots

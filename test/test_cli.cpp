@@ -4,7 +4,9 @@
 #include <sys/wait.h>
 
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -225,5 +227,29 @@ TEST(Cli, EveryKeyOutOfRangeIsRefusedByBothToolsNamingIt) {
     EXPECT_EQ(calibrate.status, 2) << key;
     EXPECT_EQ(calibrate.out, "") << key;
     EXPECT_NE(calibrate.err.find(key), std::string::npos) << calibrate.err;
+  }
+}
+
+// A figure in a document is produced by a command, never left as a template's placeholder such as "{cpu}".
+namespace {
+std::vector<std::string> placeholders(const std::string& text) {
+  std::vector<std::string> found;
+  const std::regex placeholder(R"(\{[a-z_]+\})");
+  for (std::sregex_iterator it(text.begin(), text.end(), placeholder), end; it != end; ++it) found.push_back(it->str());
+  return found;
+}
+}  // namespace
+
+TEST(Docs, NoPlaceholderIsLeftInTheReadmeOrDocs) {
+  // The check itself catches one (else it could not fail).
+  ASSERT_EQ(placeholders("CPU: {cpu} of one core, {x: 1}"), std::vector<std::string>{"{cpu}"});
+  std::vector<std::string> pages = {"README.md"};
+  for (const auto& entry : std::filesystem::directory_iterator(std::string(PACKAGE_SOURCE_DIR) + "/docs")) {
+    if (entry.path().extension() == ".md") pages.push_back("docs/" + entry.path().filename().string());
+  }
+  ASSERT_GE(pages.size(), 4u);
+  for (const auto& page : pages) {
+    EXPECT_EQ(placeholders(readFile(std::string(PACKAGE_SOURCE_DIR) + "/" + page)), std::vector<std::string>{})
+        << page << " has a placeholder where a measured figure belongs";
   }
 }

@@ -123,7 +123,8 @@ TEST_F(FingerNodeTest, JointStatesEqualTheCoreModel) {
     ASSERT_EQ(js.position.size(), 7u);
     for (int i = 0; i < 7; ++i) {
       EXPECT_EQ(js.name[static_cast<std::size_t>(i)], kPrefix + "joint_" + std::to_string(i + 1));
-      EXPECT_NEAR(js.position[static_cast<std::size_t>(i)], want.joint_angle_rad[i], 1e-9) << "P = " << p;
+      // The node runs the same core on the same pressure: the same bits.
+      EXPECT_EQ(js.position[static_cast<std::size_t>(i)], want.joint_angle_rad[i]) << "P = " << p;
     }
   }
 }
@@ -141,9 +142,10 @@ TEST_F(FingerNodeTest, TipFrameResolvesFromTheParentAndEqualsTheModel) {
     tf2::Quaternion yaw;
     yaw.setRPY(0, 0, want.tip_angle_rad);
     const tf2::Transform expected = mount * tf2::Transform(yaw, tf2::Vector3(want.tip().x(), want.tip().y(), 0));
-    EXPECT_NEAR(got.transform.translation.x, expected.getOrigin().x(), 1e-9) << "P = " << p;
-    EXPECT_NEAR(got.transform.translation.y, expected.getOrigin().y(), 1e-9);
-    EXPECT_NEAR(got.transform.translation.z, expected.getOrigin().z(), 1e-9);
+    // tf composes nine transforms (rounding of order 1e-17 m each), so this one is a tolerance, not an equality.
+    EXPECT_NEAR(got.transform.translation.x, expected.getOrigin().x(), 1e-12) << "P = " << p;
+    EXPECT_NEAR(got.transform.translation.y, expected.getOrigin().y(), 1e-12);
+    EXPECT_NEAR(got.transform.translation.z, expected.getOrigin().z(), 1e-12);
     const tf2::Quaternion r(got.transform.rotation.x, got.transform.rotation.y, got.transform.rotation.z,
                             got.transform.rotation.w);
     EXPECT_NEAR(std::fabs(r.dot(expected.getRotation())), 1.0, 1e-12);
@@ -151,8 +153,8 @@ TEST_F(FingerNodeTest, TipFrameResolvesFromTheParentAndEqualsTheModel) {
     for (int n = 1; n <= 7; ++n) {
       const auto seg = buffer_->lookupTransform("tool0", kPrefix + "segment_" + std::to_string(n), stamp);
       const tf2::Vector3 o = mount * tf2::Vector3(want.backbone_m(0, n), want.backbone_m(1, n), 0);
-      EXPECT_NEAR(seg.transform.translation.x, o.x(), 1e-9) << "segment " << n;
-      EXPECT_NEAR(seg.transform.translation.y, o.y(), 1e-9) << "segment " << n;
+      EXPECT_NEAR(seg.transform.translation.x, o.x(), 1e-12) << "segment " << n;
+      EXPECT_NEAR(seg.transform.translation.y, o.y(), 1e-12) << "segment " << n;
     }
   }
 }
@@ -166,13 +168,21 @@ TEST_F(FingerNodeTest, FingerStateCarriesTheModel) {
     const auto& s = listener_->finger_states[stamp];
     const pf::FingerState& want = model.evaluate(p);
     EXPECT_EQ(s.header.frame_id, kPrefix + "segment_0");
-    EXPECT_NEAR(s.gauge_pa, p, 1e-9);
+    // The same core on the same pressure: every number is the same bits.
+    EXPECT_EQ(s.gauge_pa, p);
     ASSERT_EQ(s.backbone.size(), 9u);
-    EXPECT_NEAR(s.backbone[8].x, want.tip().x(), 1e-12);
-    EXPECT_NEAR(s.backbone[8].y, want.tip().y(), 1e-12);
-    EXPECT_NEAR(s.tip_angle_rad, want.tip_angle_rad, 1e-12);
-    EXPECT_NEAR(s.stretch[3], want.stretch[3], 1e-12);
-    EXPECT_NEAR(s.half_angle_rad[6], want.half_angle_rad[6], 1e-12);
+    for (int n = 0; n < 9; ++n) {
+      EXPECT_EQ(s.backbone[static_cast<std::size_t>(n)].x, want.backbone_m(0, n)) << n;
+      EXPECT_EQ(s.backbone[static_cast<std::size_t>(n)].y, want.backbone_m(1, n)) << n;
+    }
+    EXPECT_EQ(s.tip_angle_rad, want.tip_angle_rad);
+    for (int i = 0; i < 7; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      EXPECT_EQ(s.stretch[k], want.stretch[i]) << i;
+      EXPECT_EQ(s.bulge_m[k], want.bulge_m[i]) << i;
+      EXPECT_EQ(s.half_angle_rad[k], want.half_angle_rad[i]) << i;
+      EXPECT_EQ(s.joint_angle_rad[k], want.joint_angle_rad[i]) << i;
+    }
     EXPECT_TRUE(s.in_contact);
     EXPECT_EQ(s.in_validated_range, p <= 196133.0);
     EXPECT_EQ(s.status, pf::FingerModelState::STATUS_OK);
@@ -187,12 +197,17 @@ TEST_F(FingerNodeTest, UrdfParameterParsesAndNamesTheJointStatesJoints) {
   EXPECT_EQ(model->getRoot()->name, "tool0");
   const ros::Time stamp = publishAndWait(1e5);
   std::lock_guard<std::mutex> lock(listener_->mutex);
-  for (const std::string& name : listener_->joint_states[stamp].name) {
-    const auto joint = model->getJoint(name);
-    ASSERT_TRUE(joint) << name;
+  const auto& js = listener_->joint_states[stamp];
+  ASSERT_EQ(js.name.size(), js.position.size());
+  for (std::size_t i = 0; i < js.name.size(); ++i) {
+    const auto joint = model->getJoint(js.name[i]);
+    ASSERT_TRUE(joint) << js.name[i];
     EXPECT_EQ(joint->type, urdf::Joint::REVOLUTE);
     EXPECT_EQ(joint->axis.z, 1.0);
-    EXPECT_GT(joint->limits->upper, listener_->joint_states[stamp].position[0]);
+    // Each joint's own angle lies within its own limits.
+    ASSERT_TRUE(joint->limits) << js.name[i];
+    EXPECT_LE(joint->limits->lower, js.position[i]) << js.name[i];
+    EXPECT_GT(joint->limits->upper, js.position[i]) << js.name[i];
   }
   EXPECT_TRUE(model->getLink(kPrefix + "tip"));
 }

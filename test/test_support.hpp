@@ -68,7 +68,7 @@ inline std::vector<double> pressureSweep(double max_pa, int linear, int per_deca
   return out;
 }
 
-/// The requirement of issue 2 for the default solver.
+/// The accuracy the default solver promises (the README: "exact to 1e-12").
 constexpr double kAngleTolerance = 1e-12;  // rad
 constexpr double kPointTolerance = 1e-12;  // m
 

@@ -1,55 +1,163 @@
-// cell_sequencer: drives the pick-and-place cell. It moves the arm through approach -> grasp (inflate) -> lift ->
-// move -> place (deflate) -> return, commands the regulator, and shows the object, carried while held.
+// cell_sequencer: drives the pick-and-place cell. It forwards the CellSchedule's answers: the arm's joint states,
+// the regulator's setpoint, the phase, and the object and tables as markers. Forward kinematics: KDL on the URDF.
 #include <Eigen/Geometry>
+#include <kdl/chainfksolverpos_recursive.hpp>
+#include <kdl/tree.hpp>
+#include <kdl_parser/kdl_parser.hpp>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 #include <std_msgs/Float64.h>
 #include <std_msgs/String.h>
 #include <std_msgs/UInt32.h>
-#include <urdf_parser/urdf_parser.h>
 #include <visualization_msgs/MarkerArray.h>
 
-#include <cmath>
+#include <algorithm>
+#include <memory>
+#include <stdexcept>
+#include <string>
 #include <vector>
+
+#include "pneumatic_finger/cell/cell_schedule.hpp"
+
+namespace pf = pneumatic_finger;
 
 namespace {
 
-using Joints = std::vector<double>;
+struct Settings {
+  std::vector<std::string> joint_names;
+  pf::CellWaypoints waypoints;
+  double cycle_time_s = 12.0, grasp_gauge_pa = 147099.75, object_offset_m = 0.075, object_radius_m = 0.016,
+         object_height_m = 0.035, publish_rate_hz = 50.0;
+  int loop_count = 0;
+  std::string base_link = "world", tool_link = "tool0";
+};
 
-// Forward kinematics of the serial chain root -> tip of a urdfdom model, for the given joint values by name.
-Eigen::Isometry3d chainPose(const urdf::ModelInterface& model, const std::string& tip,
-                            const std::vector<std::string>& names, const Joints& q) {
-  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-  for (auto link = model.getLink(tip); link && link->parent_joint; link = model.getLink(link->parent_joint->parent_link_name)) {
-    const auto& j = *link->parent_joint;
-    const auto& o = j.parent_to_joint_origin_transform;
-    Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
-    t.translate(Eigen::Vector3d(o.position.x, o.position.y, o.position.z));
-    t.rotate(Eigen::Quaterniond(o.rotation.w, o.rotation.x, o.rotation.y, o.rotation.z));
-    if (j.type == urdf::Joint::REVOLUTE || j.type == urdf::Joint::CONTINUOUS) {
-      for (std::size_t i = 0; i < names.size(); ++i) {
-        if (names[i] == j.name) t.rotate(Eigen::AngleAxisd(q[i], Eigen::Vector3d(j.axis.x, j.axis.y, j.axis.z)));
-      }
-    }
-    pose = t * pose;
-  }
-  return pose;
-}
-
-Joints readJoints(ros::NodeHandle& pnh, const std::string& key, std::size_t n) {
-  Joints v;
+pf::ArmJoints readJoints(const ros::NodeHandle& pnh, const std::string& key, std::size_t n) {
+  pf::ArmJoints v;
   if (!pnh.getParam(key, v) || v.size() != n) {
     throw std::runtime_error("parameter '" + key + "' must be a list of " + std::to_string(n) + " joint values (rad)");
   }
   return v;
 }
 
-struct Phase {
-  const char* name;
-  double fraction;      // of the cycle time
-  const Joints* from;   // arm motion (same pointer: hold)
-  const Joints* to;
-  double setpoint_pa;   // regulator setpoint during the phase
+Settings readSettings(const ros::NodeHandle& pnh) {
+  Settings s;
+  if (!pnh.getParam("arm_joint_names", s.joint_names) || s.joint_names.empty()) {
+    throw std::runtime_error("parameter 'arm_joint_names' is missing");
+  }
+  const std::size_t n = s.joint_names.size();
+  s.waypoints = {readJoints(pnh, "home", n), readJoints(pnh, "above_pick", n), readJoints(pnh, "pick", n),
+                 readJoints(pnh, "above_place", n), readJoints(pnh, "place", n)};
+  pnh.param("cycle_time_s", s.cycle_time_s, s.cycle_time_s);
+  pnh.param("loop_count", s.loop_count, s.loop_count);
+  pnh.param("grasp_gauge_pa", s.grasp_gauge_pa, s.grasp_gauge_pa);
+  pnh.param("object_offset_m", s.object_offset_m, s.object_offset_m);
+  pnh.param("object_radius_m", s.object_radius_m, s.object_radius_m);
+  pnh.param("object_height_m", s.object_height_m, s.object_height_m);
+  pnh.param("publish_rate_hz", s.publish_rate_hz, s.publish_rate_hz);
+  if (s.loop_count < 0) throw std::runtime_error("parameter 'loop_count' must be >= 0 (0: forever)");
+  if (!(s.grasp_gauge_pa > 0 && s.grasp_gauge_pa <= 1e6)) {
+    throw std::runtime_error("parameter 'grasp_gauge_pa' must be in (0, 1e6]");
+  }
+  if (!(s.publish_rate_hz > 0 && s.publish_rate_hz <= 1000)) {
+    throw std::runtime_error("parameter 'publish_rate_hz' must be in (0, 1000]");
+  }
+  return s;
+}
+
+// The arm's forward kinematics base -> tool, from the URDF, with KDL.
+class ArmKinematics {
+ public:
+  ArmKinematics(const std::string& urdf_xml, const std::string& base, const std::string& tool,
+                const std::vector<std::string>& joint_names) {
+    KDL::Tree tree;
+    if (!kdl_parser::treeFromString(urdf_xml, tree)) throw std::runtime_error("'robot_description' does not parse");
+    if (!tree.getChain(base, tool, chain_)) {
+      throw std::runtime_error("'robot_description' has no chain from '" + base + "' to '" + tool + "'");
+    }
+    for (const auto& segment : chain_.segments) {
+      if (segment.getJoint().getType() == KDL::Joint::None) continue;
+      const auto it = std::find(joint_names.begin(), joint_names.end(), segment.getJoint().getName());
+      if (it == joint_names.end()) {
+        throw std::runtime_error("joint '" + segment.getJoint().getName() + "' of the arm is not in 'arm_joint_names'");
+      }
+      index_.push_back(static_cast<std::size_t>(it - joint_names.begin()));
+    }
+  }
+
+  Eigen::Isometry3d toolPose(const pf::ArmJoints& q) const {
+    KDL::JntArray joints(static_cast<unsigned>(index_.size()));
+    for (std::size_t i = 0; i < index_.size(); ++i) joints(static_cast<unsigned>(i)) = q[index_[i]];
+    KDL::Frame frame;
+    KDL::ChainFkSolverPos_recursive(chain_).JntToCart(joints, frame);
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    double x, y, z, w;
+    frame.M.GetQuaternion(x, y, z, w);
+    pose.linear() = Eigen::Quaterniond(w, x, y, z).toRotationMatrix();
+    pose.translation() = Eigen::Vector3d(frame.p.x(), frame.p.y(), frame.p.z());
+    return pose;
+  }
+
+ private:
+  KDL::Chain chain_;
+  std::vector<std::size_t> index_;  // chain joint -> position in arm_joint_names
+};
+
+void setPose(visualization_msgs::Marker& m, const Eigen::Isometry3d& p) {
+  m.pose.position.x = p.translation().x();
+  m.pose.position.y = p.translation().y();
+  m.pose.position.z = p.translation().z();
+  const Eigen::Quaterniond q(p.rotation());
+  m.pose.orientation.x = q.x(), m.pose.orientation.y = q.y(), m.pose.orientation.z = q.z(), m.pose.orientation.w = q.w();
+}
+
+// The object (a cylinder, in tool0 while held, else on its table) and the two tables, as markers.
+class SceneMarkers {
+ public:
+  SceneMarkers(const Settings& s, const Eigen::Isometry3d& at_pick, const Eigen::Isometry3d& at_place)
+      : held_(Eigen::Translation3d(0, 0, s.object_offset_m)), at_pick_(at_pick), at_place_(at_place),
+        tool_link_(s.tool_link), base_link_(s.base_link), height_m_(s.object_height_m) {
+    object_.ns = "object";
+    object_.type = visualization_msgs::Marker::CYLINDER;
+    object_.scale.x = object_.scale.y = 2 * s.object_radius_m;
+    object_.scale.z = s.object_height_m;
+    object_.color.r = 0.2f, object_.color.g = 0.5f, object_.color.b = 0.95f, object_.color.a = 1.0f;
+    table_ = object_;
+    table_.ns = "tables";
+    table_.type = visualization_msgs::Marker::CUBE;
+    table_.scale.x = table_.scale.y = 0.12;
+    table_.scale.z = 0.01;
+    table_.color.r = table_.color.g = table_.color.b = 0.55f;
+  }
+
+  visualization_msgs::MarkerArray at(pf::ObjectPlace place, const ros::Time& stamp) {
+    visualization_msgs::MarkerArray markers;
+    object_.header.stamp = stamp;
+    if (place == pf::ObjectPlace::kHeld) {
+      object_.header.frame_id = tool_link_;
+      setPose(object_, held_);
+    } else {
+      object_.header.frame_id = base_link_;
+      setPose(object_, place == pf::ObjectPlace::kOnPlaceTable ? at_place_ : at_pick_);
+    }
+    markers.markers.push_back(object_);
+    table_.header.stamp = stamp;
+    table_.header.frame_id = base_link_;
+    for (int i = 0; i < 2; ++i) {
+      table_.id = i;
+      Eigen::Isometry3d top = i == 0 ? at_pick_ : at_place_;
+      top.translate(Eigen::Vector3d(0, 0, height_m_ / 2 + 0.005));  // tool z points down: +z is below the object
+      setPose(table_, Eigen::Isometry3d(Eigen::Translation3d(top.translation())));
+      markers.markers.push_back(table_);
+    }
+    return markers;
+  }
+
+ private:
+  visualization_msgs::Marker object_, table_;
+  Eigen::Isometry3d held_, at_pick_, at_place_;
+  std::string tool_link_, base_link_;
+  double height_m_;
 };
 
 }  // namespace
@@ -57,51 +165,24 @@ struct Phase {
 int main(int argc, char** argv) {
   ros::init(argc, argv, "cell_sequencer");
   ros::NodeHandle nh, pnh("~");
-  std::vector<std::string> names;
-  Joints home, above_pick, pick, above_place, place;
-  double cycle_time = 12.0, grasp_pa = 147099.75, offset = 0.075, radius = 0.016, height = 0.035, rate_hz = 50.0;
-  int loop_count = 0;
-  urdf::ModelInterfaceSharedPtr arm;
+  Settings settings;
+  std::unique_ptr<pf::CellSchedule> schedule;
+  std::unique_ptr<ArmKinematics> arm;
   try {
-    if (!pnh.getParam("arm_joint_names", names) || names.empty()) {
-      throw std::runtime_error("parameter 'arm_joint_names' is missing");
-    }
-    home = readJoints(pnh, "home", names.size());
-    above_pick = readJoints(pnh, "above_pick", names.size());
-    pick = readJoints(pnh, "pick", names.size());
-    above_place = readJoints(pnh, "above_place", names.size());
-    place = readJoints(pnh, "place", names.size());
-    pnh.param("cycle_time_s", cycle_time, cycle_time);
-    pnh.param("loop_count", loop_count, loop_count);
-    pnh.param("grasp_gauge_pa", grasp_pa, grasp_pa);
-    pnh.param("object_offset_m", offset, offset);
-    pnh.param("object_radius_m", radius, radius);
-    pnh.param("object_height_m", height, height);
-    pnh.param("publish_rate_hz", rate_hz, rate_hz);
-    if (!(cycle_time >= 2.0 && cycle_time <= 600)) throw std::runtime_error("parameter 'cycle_time_s' must be in [2, 600]");
-    if (loop_count < 0) throw std::runtime_error("parameter 'loop_count' must be >= 0 (0: forever)");
-    if (!(grasp_pa > 0 && grasp_pa <= 1e6)) throw std::runtime_error("parameter 'grasp_gauge_pa' must be in (0, 1e6]");
+    settings = readSettings(pnh);
+    schedule = std::make_unique<pf::CellSchedule>(settings.waypoints, settings.cycle_time_s, settings.grasp_gauge_pa);
     std::string xml;
     if (!nh.getParam("robot_description", xml)) throw std::runtime_error("no arm URDF in 'robot_description'");
-    arm = urdf::parseURDF(xml);
-    if (!arm || !arm->getLink("tool0")) throw std::runtime_error("'robot_description' has no link 'tool0'");
+    arm = std::make_unique<ArmKinematics>(xml, settings.base_link, settings.tool_link, settings.joint_names);
   } catch (const std::exception& e) {
     ROS_FATAL("cell_sequencer: %s", e.what());
     return 2;
   }
   // The object stands where the gripper will hold it at the pick pose, and is left where the place pose puts it.
-  const Eigen::Isometry3d held = Eigen::Isometry3d(Eigen::Translation3d(0, 0, offset));
-  const Eigen::Isometry3d at_pick = chainPose(*arm, "tool0", names, pick) * held;
-  const Eigen::Isometry3d at_place = chainPose(*arm, "tool0", names, place) * held;
-
-  // Fractions of the cycle: the grasp and release phases last 1.8 s of a 12 s cycle, long enough for the
-  // regulator's fill (about 1 s to 1.5 kg/cm^2) to finish before the arm moves.
-  const std::vector<Phase> phases = {
-      {"approach", 0.14, &home, &above_pick, 0.0},        {"descend to pick", 0.10, &above_pick, &pick, 0.0},
-      {"grasp (inflate)", 0.15, &pick, &pick, grasp_pa},  {"lift", 0.10, &pick, &above_pick, grasp_pa},
-      {"move", 0.14, &above_pick, &above_place, grasp_pa}, {"descend to place", 0.10, &above_place, &place, grasp_pa},
-      {"place (deflate)", 0.15, &place, &place, 0.0},     {"return", 0.12, &place, &home, 0.0},
-  };
+  const Eigen::Isometry3d held(Eigen::Translation3d(0, 0, settings.object_offset_m));
+  const Eigen::Isometry3d at_pick = arm->toolPose(settings.waypoints.pick) * held;
+  const Eigen::Isometry3d at_place = arm->toolPose(settings.waypoints.place) * held;
+  SceneMarkers scene(settings, at_pick, at_place);
 
   ros::Publisher joints_pub = nh.advertise<sensor_msgs::JointState>("joint_states", 10);
   ros::Publisher setpoint_pub = nh.advertise<std_msgs::Float64>("gripper/setpoint", 10);
@@ -109,100 +190,46 @@ int main(int argc, char** argv) {
   ros::Publisher phase_pub = nh.advertise<std_msgs::String>("cell/phase", 10, true);
   ros::Publisher cycles_pub = nh.advertise<std_msgs::UInt32>("cell/cycles", 10, true);
 
-  visualization_msgs::Marker object;
-  object.ns = "object";
-  object.type = visualization_msgs::Marker::CYLINDER;
-  object.scale.x = object.scale.y = 2 * radius;
-  object.scale.z = height;
-  object.color.r = 0.2f, object.color.g = 0.5f, object.color.b = 0.95f, object.color.a = 1.0f;
-  visualization_msgs::Marker table = object;
-  table.ns = "tables";
-  table.type = visualization_msgs::Marker::CUBE;
-  table.scale.x = table.scale.y = 0.12;
-  table.scale.z = 0.01;
-  table.color.r = table.color.g = table.color.b = 0.55f;
-  auto setPose = [](visualization_msgs::Marker& m, const Eigen::Isometry3d& p) {
-    m.pose.position.x = p.translation().x();
-    m.pose.position.y = p.translation().y();
-    m.pose.position.z = p.translation().z();
-    const Eigen::Quaterniond q(p.rotation());
-    m.pose.orientation.x = q.x(), m.pose.orientation.y = q.y(), m.pose.orientation.z = q.z(), m.pose.orientation.w = q.w();
-  };
-
   sensor_msgs::JointState js;
-  js.name = names;
-  js.position.resize(names.size());
+  js.name = settings.joint_names;
   std_msgs::Float64 setpoint;
-  std_msgs::UInt32 cycles;
-  ros::Rate rate(rate_hz);
+  ros::Rate rate(settings.publish_rate_hz);
   const ros::Time start = ros::Time::now();
-  std::size_t last_phase = phases.size();
+  bool first = true;
+  pf::CellPhase last_phase = pf::CellPhase::kApproach;
   long last_cycle = 0;
   int tick = 0;
-  ROS_INFO("cell_sequencer: %.1f s cycles, %s; object at (%.3f, %.3f, %.3f) m", cycle_time,
-           loop_count ? (std::to_string(loop_count) + " loops").c_str() : "looping", at_pick.translation().x(),
-           at_pick.translation().y(), at_pick.translation().z());
+  ROS_INFO("cell_sequencer: %.1f s cycles, %s; object at (%.3f, %.3f, %.3f) m", settings.cycle_time_s,
+           settings.loop_count ? (std::to_string(settings.loop_count) + " loops").c_str() : "looping",
+           at_pick.translation().x(), at_pick.translation().y(), at_pick.translation().z());
   while (ros::ok()) {
-    const double t = (ros::Time::now() - start).toSec();
-    const long cycle = static_cast<long>(t / cycle_time);
-    if (cycle != last_cycle) {
-      cycles.data = static_cast<unsigned>(cycle);
+    const pf::CellStep step = schedule->at((ros::Time::now() - start).toSec());
+    if (step.cycle != last_cycle) {
+      std_msgs::UInt32 cycles;
+      cycles.data = static_cast<unsigned>(step.cycle);
       cycles_pub.publish(cycles);
-      ROS_INFO("cell_sequencer: cycle %ld complete", cycle);
-      last_cycle = cycle;
-      if (loop_count > 0 && cycle >= loop_count) {
-        ROS_INFO("cell_sequencer: %d cycles done", loop_count);
+      ROS_INFO("cell_sequencer: cycle %ld complete", step.cycle);
+      last_cycle = step.cycle;
+      if (settings.loop_count > 0 && step.cycle >= settings.loop_count) {
+        ROS_INFO("cell_sequencer: %d cycles done", settings.loop_count);
         break;
       }
     }
-    double s = std::fmod(t, cycle_time) / cycle_time;
-    std::size_t k = 0;
-    while (k + 1 < phases.size() && s >= phases[k].fraction) s -= phases[k++].fraction;
-    const Phase& ph = phases[k];
-    const double u = std::min(1.0, s / ph.fraction);
-    const double smooth = u * u * (3 - 2 * u);  // zero velocity at both ends of every motion
-    for (std::size_t i = 0; i < names.size(); ++i) {
-      js.position[i] = (*ph.from)[i] + smooth * ((*ph.to)[i] - (*ph.from)[i]);
-    }
     js.header.stamp = ros::Time::now();
+    js.position = step.arm;
     joints_pub.publish(js);
-    setpoint.data = ph.setpoint_pa;
+    setpoint.data = step.setpoint_gauge_pa;
     setpoint_pub.publish(setpoint);
-    if (k != last_phase) {
+    if (first || step.phase != last_phase) {
       std_msgs::String msg;
-      msg.data = ph.name;
+      msg.data = pf::cellPhaseName(step.phase);
       phase_pub.publish(msg);
-      ROS_INFO("cell_sequencer: cycle %ld: %s (gripper setpoint %.0f Pa gauge)", cycle + 1, ph.name, ph.setpoint_pa);
-      last_phase = k;
+      ROS_INFO("cell_sequencer: cycle %ld: %s (gripper setpoint %.0f Pa gauge)", step.cycle + 1, msg.data.c_str(),
+               step.setpoint_gauge_pa);
+      last_phase = step.phase;
+      first = false;
     }
-    if (tick++ % 5 == 0) {
-      // Held from the end of the grasp until the release starts; otherwise on its table.
-      const bool holding = (k == 2 && u >= 1.0) || (k >= 3 && k <= 5);
-      visualization_msgs::MarkerArray markers;
-      object.header.stamp = js.header.stamp;
-      if (holding) {
-        object.header.frame_id = "tool0";
-        setPose(object, held);
-      } else {
-        object.header.frame_id = "world";
-        setPose(object, k >= 6 ? at_place : at_pick);
-      }
-      markers.markers.push_back(object);
-      table.header = object.header;
-      table.header.frame_id = "world";
-      for (int i = 0; i < 2; ++i) {
-        table.id = i;
-        Eigen::Isometry3d top = i == 0 ? at_pick : at_place;
-        top.translate(Eigen::Vector3d(0, 0, height / 2 + 0.005));  // tool z points down: +z is below the object
-        table.pose.position.x = top.translation().x();
-        table.pose.position.y = top.translation().y();
-        table.pose.position.z = top.translation().z();
-        table.pose.orientation = geometry_msgs::Quaternion();
-        table.pose.orientation.w = 1.0;
-        markers.markers.push_back(table);
-      }
-      marker_pub.publish(markers);
-    }
+    if (tick++ % 5 == 0) marker_pub.publish(scene.at(step.object, js.header.stamp));
     rate.sleep();
   }
   return 0;
