@@ -58,16 +58,24 @@ TEST(PickAndPlaceCell, RunsACycleWithFingertipsClosingAndOpeningAndOneAuthorityP
   double max_gauge = 0;
   bool was_inflated = false;
   const ros::Time deadline = ros::Time::now() + ros::Duration(60);
-  while (ros::Time::now() < deadline && rec.cycles < 1) {
+  // Until a cycle has completed and each tip was seen open, closed and open again (the test may start mid-cycle, so
+  // the first open sample can come from the second cycle).
+  auto seen_all = [&] {
+    for (const auto& tip : kTips) {
+      if (!open_before.count(tip) || !closed.count(tip) || !open_after.count(tip)) return false;
+    }
+    return true;
+  };
+  while (ros::Time::now() < deadline && (rec.cycles < 1 || !seen_all())) {
     const double p = rec.gauge_pa;
     for (const auto& tip : kTips) {
       const double r = radial(tip);
       if (p < 1.0 && !was_inflated && !open_before.count(tip)) open_before[tip] = r;
       if (p > max_gauge - 1.0) closed[tip] = r;  // at the highest pressure seen so far
-      if (p < 1.0 && was_inflated) open_after[tip] = r;
+      if (p < 1.0 && was_inflated && open_before.count(tip)) open_after[tip] = r;
     }
     max_gauge = std::max(max_gauge, p);
-    was_inflated = was_inflated || p > 100000.0;
+    was_inflated = was_inflated || (p > 100000.0 && !open_before.empty());
     ros::Duration(0.02).sleep();
   }
   EXPECT_GE(rec.cycles.load(), 1u) << "the cell did not complete a cycle in 60 s";
