@@ -1,0 +1,109 @@
+// The rules for the regulator's pressure messages, decided once, without ROS: which messages are taken, with which
+// stamp and which gauge pressure, which are refused and why, when the clock has jumped back, and what the
+// diagnostics say. Times are seconds on the node's clock (ROS time: wall or simulated); a unit test drives this class
+// with synthetic times, and the node only forwards messages to it and publishes its verdicts.
+#pragma once
+
+#include <deque>
+#include <string>
+
+namespace pneumatic_finger {
+
+/// The node's input settings (their defaults and ranges are defined once, with the node's other parameters).
+struct PressureInputSettings {
+  double atmospheric_pa = 101325.0;      ///< P_o: gauge = absolute - P_o (Pa)
+  double max_gauge_pa = 294199.5;        ///< gauge pressures above this are clamped to it (Pa)
+  double validated_max_gauge_pa = 196133.0;  ///< top of the calibrated range (Pa); above it the twin extrapolates
+  double max_rate_hz = 0.0;              ///< model cycles per second at most; 0: every message
+  double stamp_tolerance_s = 10.0;       ///< a stamp further than this from the receive time is replaced by it (s)
+  double time_jump_s = 1.0;              ///< a stamp older than the last by more than this starts a new timeline (s)
+  double stale_timeout_s = 1.0;          ///< no message for longer than this: the input is stale (s)
+};
+
+/// What happens to one message.
+enum class InputVerdict {
+  kAccept,                   ///< evaluate gauge_pa and publish with stamp_s
+  kThrottled,                ///< dropped: within 1/max_rate_hz of the last accepted one (not a problem)
+  kRefusedNotFinite,         ///< NaN or infinite pressure: refused, the last state stays
+  kRefusedNegativeAbsolute,  ///< absolute pressure < 0: refused
+  kRefusedOutOfOrder,        ///< stamp not newer than the last accepted one, within the same timeline: refused
+};
+
+/// The decision on one message.
+struct InputDecision {
+  InputVerdict verdict = InputVerdict::kAccept;
+  double gauge_pa = 0.0;     ///< the pressure to evaluate (clamped to max_gauge_pa); negative: a vacuum
+  double stamp_s = 0.0;      ///< the stamp to publish with
+  bool clamped = false;      ///< gauge was above max_gauge_pa
+  bool out_of_range = false; ///< gauge is above validated_max_gauge_pa
+  bool time_jumped = false;  ///< this message starts a new timeline (the clock or the stamps went back)
+  std::string problem;       ///< what was wrong or corrected, for the log; empty when nothing was
+};
+
+/// Running counts, for diagnostics.
+struct InputCounters {
+  long received = 0, accepted = 0, throttled = 0;
+  long refused_not_finite = 0, refused_negative_absolute = 0, refused_out_of_order = 0;
+  long zero_stamps = 0;       ///< zero stamps replaced by the receive time (what `rostopic pub` sends: normal)
+  long far_stamps = 0;        ///< stamps far from the receive time, replaced by it (a regulator with a wrong clock)
+  long time_jumps = 0;        ///< new timelines (a looping bag, a simulation reset)
+  long vacuum = 0, clamped = 0, out_of_range = 0;
+};
+
+/// Diagnostics levels, as diagnostic_msgs defines them.
+enum class InputHealth { kOk = 0, kWarn = 1, kError = 2 };
+
+struct InputReport {
+  InputHealth level = InputHealth::kOk;
+  std::string message;
+  double rate_hz = 0.0;       ///< messages received in the last second
+  double age_s = -1.0;        ///< seconds since the last message (-1: none yet)
+};
+
+class PressureInputPolicy {
+ public:
+  explicit PressureInputPolicy(const PressureInputSettings& settings);
+
+  /// Decides on one message.
+  /// @param[in] absolute_pa the message's fluid_pressure (Pa, absolute)
+  /// @param[in] stamp_s its header stamp (s; 0: none)
+  /// @param[in] receive_s the node's clock when it arrived (s)
+  InputDecision onMessage(double absolute_pa, double stamp_s, double receive_s);
+
+  /// The model's answer to an accepted message was a vacuum (gauge < 0): counted and reported.
+  void noteVacuum(double gauge_pa, double now_s);
+
+  /// A solver failure on an accepted message (non-finite result): counted as a problem, nothing published.
+  void noteSolverFailure(const std::string& what, double now_s);
+
+  /// The diagnostics report at @p now_s: ERROR when stale, WARN while a refusal or correction is recent (5 s) or
+  /// before the first message, OK otherwise. A zero stamp is not a problem.
+  InputReport report(double now_s);
+
+  const InputCounters& counters() const { return counters_; }
+  const PressureInputSettings& settings() const { return settings_; }
+  double lastGaugePa() const { return last_gauge_pa_; }
+
+  /// How long a refusal or correction stays on the report: longer than any diagnostics period, so that a single
+  /// bad message is seen by whoever watches.
+  static constexpr double kProblemHoldS = 5.0;
+
+ private:
+  void problem(const std::string& what, double now_s);
+  void startTimeline(double receive_s);
+
+  PressureInputSettings settings_;
+  InputCounters counters_;
+  std::deque<double> recent_;      // receive times within the last second
+  bool have_accepted_ = false, have_received_ = false;
+  double last_stamp_s_ = 0.0;      // stamp of the last accepted message
+  double last_accepted_s_ = 0.0;   // receive time of the last accepted message (throttling)
+  double last_received_s_ = 0.0;
+  double last_problem_s_ = 0.0;
+  bool have_problem_ = false;
+  std::string last_problem_;
+  double last_gauge_pa_ = 0.0;
+  long problems_in_timeline_ = 0;
+};
+
+}  // namespace pneumatic_finger
