@@ -33,7 +33,10 @@ grep -E "^\[  (FAILED|PASSED) |tests? from .* ran|FAILURE|ERROR" "$ROOT/build/ru
 # the others in build/test_results.
 sanitized_status=0
 bash "$ROOT/scripts/test_sanitized.sh" || sanitized_status=1
-# The install space: make install into build/install, then the tools and the node run from there alone.
+# The package built as users build it, in a fresh catkin workspace (catkin_make), and its unit tests there.
+workspace_status=0
+bash "$ROOT/scripts/test_workspace.sh" || workspace_status=1
+# The install space: make install into build/.install, then the tools and the node run from there alone.
 install_status=0
 bash "$ROOT/scripts/test_install.sh" || install_status=1
 
@@ -43,4 +46,4 @@ catkin_status=$?
 /usr/bin/python3 "$ROOT/scripts/count_results.py" "$ROOT/build/test_results"
 count_status=$?
 set -e
-[ $catkin_status -eq 0 ] && [ $count_status -eq 0 ] && [ $sanitized_status -eq 0 ] && [ $install_status -eq 0 ]
+[ $catkin_status -eq 0 ] && [ $count_status -eq 0 ] && [ $sanitized_status -eq 0 ] && [ $install_status -eq 0 ] && [ $workspace_status -eq 0 ]

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The install space, as a user who installs the package gets it: `make install` into a fresh prefix (build/install),
+# The install space, as a user who installs the package gets it: `make install` into a fresh prefix (build/.install),
 # then, in an environment that knows only that prefix (no devel space, no source tree on any path):
 #  1. finger_model runs and reads the *installed* config/finger.yaml: edited there, its output follows the edit;
 #  2. finger_calibrate finds the installed data/;
@@ -7,7 +7,7 @@
 # Writes a JUnit report to build/test_results/install/ so the verdict joins the others. Called by scripts/test.sh.
 set -uo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
-PREFIX="$ROOT/build/install"
+PREFIX="$ROOT/build/.install"
 REPORT="$ROOT/build/test_results/install/install_space.xml"
 mkdir -p "$(dirname "$REPORT")"
 failures=()

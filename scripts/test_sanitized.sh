@@ -1,9 +1,9 @@
 #!/usr/bin/env bash
 # The unit tests again, built with AddressSanitizer and UndefinedBehaviorSanitizer (a second build in
-# build_sanitized/); any sanitizer report fails the test binary. Called by scripts/test.sh after scripts/setup.sh.
+# build/sanitized/); any sanitizer report fails the test binary. Called by scripts/test.sh after scripts/setup.sh.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
-B="$ROOT/build_sanitized"
+B="$ROOT/build/sanitized"  # inside build/, which rosrun and rospack skip
 export PATH="/usr/bin:/bin:$PATH"
 flags="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
 mkdir -p "$B"
@@ -11,9 +11,9 @@ touch "$B/CATKIN_IGNORE"
 cmake -S "$ROOT" -B "$B" -DCATKIN_DEVEL_PREFIX="$B/devel" -DCMAKE_BUILD_TYPE=RelWithDebInfo \
   -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 \
   -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_EXE_LINKER_FLAGS="$flags" -DCMAKE_SHARED_LINKER_FLAGS="$flags" \
-  >"$ROOT/build_sanitized.log" 2>&1 || { cat "$ROOT/build_sanitized.log"; exit 1; }
-make -C "$B" -j"$(nproc)" test_core >>"$ROOT/build_sanitized.log" 2>&1 \
-  || { tail -50 "$ROOT/build_sanitized.log"; exit 1; }
+  >"$ROOT/build/sanitized.log" 2>&1 || { cat "$ROOT/build/sanitized.log"; exit 1; }
+make -C "$B" -j"$(nproc)" test_core >>"$ROOT/build/sanitized.log" 2>&1 \
+  || { tail -50 "$ROOT/build/sanitized.log"; exit 1; }
 mkdir -p "$ROOT/build/test_results/sanitized"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1
 # The sanitized libraries, not the main build's (a sourced devel space puts those on LD_LIBRARY_PATH first).
