@@ -166,7 +166,7 @@ Errors measureErrors(Variant& v, const std::vector<double>& pressures) {
     const Eigen::Vector2d tip = s.tip();
     const double dt = std::fabs(s.half_angle_rad[0] - ref.half_angle_rad[0]);
     const double dx = std::hypot(tip.x() - ref.x_m.back(), tip.y() - ref.y_m.back());
-    if (!std::isfinite(dt) || !std::isfinite(dx)) {
+    if (s.status == pf::EvaluationStatus::kSolverFailure || !std::isfinite(dt) || !std::isfinite(dx)) {
       ++e.failures;
       continue;
     }

@@ -16,6 +16,7 @@ PACKAGES=("$@"
   libdiagnostic-updater-dev libtf2-dev libtf2-msgs-dev ros-tf2-msgs python3-tf2-msgs libtf2-ros-dev python3-tf2-ros
   liburdfdom-dev liburdfdom-tools librostest-dev python3-rostest python3-roslaunch python3-rosmaster
   python3-rostopic python3-rosnode python3-rosparam python3-rosservice rosbash ros-robot-state-publisher
+  python3-rosbag
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs rviz xvfb imagemagick
   # the tools' argument parser (package.xml: cli11)
   libcli11-dev

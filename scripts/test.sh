@@ -46,4 +46,7 @@ catkin_status=$?
 /usr/bin/python3 "$ROOT/scripts/count_results.py" "$ROOT/build/test_results"
 count_status=$?
 set -e
+for stage in catkin_status count_status sanitized_status install_status workspace_status; do
+  [ "${!stage}" -eq 0 ] || echo "test: FAILED: ${stage%_status}"
+done
 [ $catkin_status -eq 0 ] && [ $count_status -eq 0 ] && [ $sanitized_status -eq 0 ] && [ $install_status -eq 0 ] && [ $workspace_status -eq 0 ]

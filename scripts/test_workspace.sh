@@ -8,8 +8,8 @@ export PATH="/usr/bin:/bin:$PATH"
 WS=$(mktemp -d)
 trap 'rm -rf "$WS"' EXIT
 mkdir -p "$WS/src/pneumatic_finger"
-# The tracked files only (as a clone has them), never build/.
-(cd "$ROOT" && git ls-files -z | xargs -0 cp --parents -t "$WS/src/pneumatic_finger")
+# The repository's files as a clone has them plus any new file not ignored (never build/).
+(cd "$ROOT" && git ls-files -z --cached --others --exclude-standard | xargs -0 cp --parents -t "$WS/src/pneumatic_finger")
 catkin_make -C "$WS" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 -j"$(nproc)" \
   all tests >"$ROOT/build/workspace.log" 2>&1 || { tail -40 "$ROOT/build/workspace.log"; exit 1; }
 mkdir -p "$ROOT/build/test_results/workspace"

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <cstring>
 #include <random>
+#include <thread>
+#include <vector>
 
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "test_support.hpp"
@@ -168,4 +170,62 @@ TEST(Property, InverseModelBisectsForUnequalChambers) {
   std::string why;
   ASSERT_TRUE(model.gaugeForTipAngle(tip, 1e6, back, why)) << why;
   EXPECT_NEAR(back, 1.2e5, 1e-6);
+}
+
+// Nothing non-finite leaves the model: where a solver has no answer, evaluate() says so in its status and keeps the
+// previous state. The paper's closed forms have no root for P >= 1e9 Pa (test/test_hard_cases.cpp), so this runs
+// into that on purpose, for every solver.
+TEST(Property, SolverFailureIsAStatusAndNeverANonFiniteNumber) {
+  int failures = 0;
+  for (auto solver : {pf::SolverKind::kRobust, pf::SolverKind::kPaper, pf::SolverKind::kTable}) {
+    pf::ModelOptions options;
+    options.solver = solver;
+    for (double gap : {0.0, 4.96e-5}) {
+      pf::RawParameterMap raw;
+      raw["chamber_gap_m"] = {{gap}, false};
+      pf::FingerModel model(pf::FingerParameters::fromRaw(raw), options);
+      for (double p : {1e5, 1e9, 2e5, 3e9, 1e300, 1.5e5}) {
+        const Eigen::VectorXd before = model.state().joint_angle_rad;
+        const pf::FingerState& s = model.evaluate(p);
+        const bool all_finite = s.stretch.allFinite() && s.bulge_m.allFinite() && s.half_angle_rad.allFinite() &&
+                                s.joint_angle_rad.allFinite() && s.backbone_m.allFinite() && std::isfinite(s.tip_angle_rad);
+        EXPECT_TRUE(all_finite) << pf::solverName(solver) << " c = " << gap << " P = " << p;
+        if (s.status == pf::EvaluationStatus::kSolverFailure) {
+          ++failures;
+          EXPECT_EQ(s.joint_angle_rad, before) << "a failure keeps the previous state";
+          EXPECT_NE(solver, pf::SolverKind::kRobust) << "the robust solver answers every finite pressure";
+        } else {
+          EXPECT_EQ(s.status, pf::EvaluationStatus::kOk);
+        }
+      }
+    }
+  }
+  EXPECT_GT(failures, 0) << "the paper solver's known failures were not reached: the test would prove nothing";
+}
+
+// tipAngleAt and gaugeForTipAngle may run in other threads while one thread evaluates (the node's inverse service
+// under a multi-threaded spinner): each thread gets exactly what it gets alone.
+TEST(Property, ConstMethodsAreSafeBesideEvaluate) {
+  pf::RawParameterMap unequal;
+  unequal["chamber_gap_m"] = {{1e-5, 2e-5, 3e-5, 4e-5, 5e-5, 6e-5, 7e-5}, true};
+  pf::FingerModel model(pf::FingerParameters::fromRaw(unequal));
+  pf::FingerModel alone(pf::FingerParameters::fromRaw(unequal));
+  std::vector<double> pressures;
+  for (int i = 0; i < 200; ++i) pressures.push_back(1e3 * i);
+  std::vector<double> want;
+  for (double p : pressures) want.push_back(alone.tipAngleAt(p));
+  std::vector<std::vector<double>> got(3, std::vector<double>(pressures.size()));
+  std::vector<std::thread> threads;
+  for (std::size_t k = 0; k < got.size(); ++k) {
+    threads.emplace_back([&, k] {
+      for (int round = 0; round < 20; ++round) {
+        for (std::size_t i = 0; i < pressures.size(); ++i) got[k][i] = model.tipAngleAt(pressures[i]);
+      }
+    });
+  }
+  for (int round = 0; round < 200; ++round) {
+    for (double p : pressures) model.evaluate(p + round);
+  }
+  for (auto& t : threads) t.join();
+  for (std::size_t k = 0; k < got.size(); ++k) EXPECT_EQ(got[k], want) << "thread " << k;
 }

@@ -45,6 +45,11 @@ inline double absError(double got, double want) {
 
 inline FingerError fingerError(const pneumatic_finger::FingerState& s, const reference::Finger& r) {
   FingerError e;
+  if (s.status == pneumatic_finger::EvaluationStatus::kSolverFailure) {  // no answer: an infinite error
+    e.half_angle_rad = e.joint_angle_rad = e.point_m = e.tip_angle_rad = INFINITY;
+    e.finite = false;
+    return e;
+  }
   for (int i = 0; i < s.half_angle_rad.size(); ++i) {
     const auto k = static_cast<std::size_t>(i);
     e.half_angle_rad = std::max(e.half_angle_rad, absError(s.half_angle_rad[i], r.half_angle_rad[k]));

@@ -317,17 +317,26 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, const HalfAngl
 
 }  // namespace
 
-void FingerModel::writeState(double gauge_pa, FingerState& out) const {
+bool FingerModel::writeState(double gauge_pa, FingerState& out) {
   const bool detail = options_.chamber_detail;
+  auto finite = [](const GroupResult& r) {
+    return std::isfinite(r.stretch) && std::isfinite(r.bulge_m) && std::isfinite(r.half.rad) &&
+           std::isfinite(r.half.cos) && std::isfinite(r.half.sin);
+  };
+  // Every group is solved and checked before anything is written, so a failure leaves the previous state whole.
   if (groups_.size() == 1) {
     const GroupResult r = solveGroup(groups_[0], gauge_pa, detail);
+    if (!finite(r)) return false;
     out.stretch.setConstant(r.stretch);
     out.bulge_m.setConstant(r.bulge_m);
     jointsAndBackboneUniform(parameters_, r.half, out);
     out.gauge_pa = gauge_pa;
-    return;
+    return true;
   }
-  for (std::size_t g = 0; g < groups_.size(); ++g) scratch_[g] = solveGroup(groups_[g], gauge_pa, detail);
+  for (std::size_t g = 0; g < groups_.size(); ++g) {
+    scratch_[g] = solveGroup(groups_[g], gauge_pa, detail);
+    if (!finite(scratch_[g])) return false;
+  }
   for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
     const GroupResult& r = scratch_[static_cast<std::size_t>(group_of_chamber_[k])];
     const auto i = static_cast<Eigen::Index>(k);
@@ -337,6 +346,7 @@ void FingerModel::writeState(double gauge_pa, FingerState& out) const {
   }
   jointsAndBackbone(parameters_, chamber_half_.data(), out);
   out.gauge_pa = gauge_pa;
+  return true;
 }
 
 const FingerState& FingerModel::evaluate(double gauge_pa) {
@@ -347,8 +357,12 @@ const FingerState& FingerModel::evaluate(double gauge_pa) {
   }
   if (has_last_ && gauge_pa == last_gauge_pa_) return state_;  // unchanged pressure: nothing to do
   const bool vacuum = gauge_pa < 0.0;
-  writeState(vacuum ? 0.0 : gauge_pa, state_);
   ++computations_;
+  if (!writeState(vacuum ? 0.0 : gauge_pa, state_)) {
+    state_.status = EvaluationStatus::kSolverFailure;
+    has_last_ = false;
+    return state_;
+  }
   state_.gauge_pa = gauge_pa;
   state_.status = vacuum ? EvaluationStatus::kVacuum : EvaluationStatus::kOk;
   has_last_ = true;
@@ -357,11 +371,13 @@ const FingerState& FingerModel::evaluate(double gauge_pa) {
 }
 
 double FingerModel::tipAngleAt(double gauge_pa) const {
-  // Theta_N = sum_n q_n = 2 sum_n theta_n - theta_N.
+  // Theta_N = sum_n q_n = 2 sum_n theta_n - theta_N. The half angles live on the stack (at most the largest
+  // chamber_count), not in the model's scratch, so that const methods are safe to call from several threads.
+  std::array<double, kMaxChamberCount> theta;
+  for (std::size_t g = 0; g < groups_.size(); ++g) theta[g] = solveGroup(groups_[g], gauge_pa, false).half.rad;
   double sum = 0.0, last = 0.0;
-  for (std::size_t g = 0; g < groups_.size(); ++g) scratch_[g] = solveGroup(groups_[g], gauge_pa, false);
   for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
-    last = scratch_[static_cast<std::size_t>(group_of_chamber_[k])].half.rad;
+    last = theta[static_cast<std::size_t>(group_of_chamber_[k])];
     sum += last;
   }
   return 2.0 * sum - last;

@@ -18,7 +18,7 @@ namespace {
 // shear_modulus_pa and chamber_gap_m are effective values: the calibrated minimax fit to the paper's Table 1
 // (docs/ACCURACY.md, reproduced by `finger_calibrate`).
 const std::vector<ParameterSpec> kSpecs = {
-    {"chamber_count", "N", "-", 7, 1, true, 64, ParameterShape::kScalarInteger,
+    {"chamber_count", "N", "-", 7, 1, true, kMaxChamberCount, ParameterShape::kScalarInteger,
      "number of pneumatic chambers after the passive base segment"},
     {"chamber_height_m", "L", "m", 0.0115, 0, false, 0.5, ParameterShape::kPerChamber,
      "chamber height (wall length at rest); the wall bulges into an ellipse with one radius L/2"},

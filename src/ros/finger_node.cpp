@@ -25,6 +25,10 @@ NodeParameterSpec text(const char* key, const std::string& def, const char* allo
   return {key, "string", def, 0, 0, false, 0, "-", allowed, description};
 }
 
+NodeParameterSpec flag(const char* key, bool def, const char* description) {
+  return {key, "bool", def ? "true" : "false", def ? 1.0 : 0.0, 0, false, 1, "-", "true, false", description};
+}
+
 NodeParameterSpec triple(const char* key, double limit, const char* unit, const char* limit_text,
                          const char* description) {
   return {key, "double[3]", "[0, 0, 0]", 0, 0, false, limit, unit, std::string("finite, |x| <= ") + limit_text,
@@ -33,6 +37,7 @@ NodeParameterSpec triple(const char* key, double limit, const char* unit, const 
 
 const std::vector<NodeParameterSpec>& specs() {
   static const FingerUrdfOptions urdf;
+  static const PressureInputSettings input;
   static const std::vector<NodeParameterSpec> table = {
       text("frame_prefix", urdf.prefix, "empty, or a letter then letters, digits, '_'",
            "prepended to every link, joint and frame of this finger, so several fingers coexist"),
@@ -41,14 +46,23 @@ const std::vector<NodeParameterSpec>& specs() {
       triple("mount_rpy_rad", 2 * kPi, "rad", "2 pi",
              "mount orientation in parent_frame (roll, pitch, yaw about fixed x, y, z)"),
       text("solver", "robust", "robust, paper, table", "the model's solver (see Solvers)"),
-      number("max_rate_hz", 0, 0, false, 1e5, "Hz", "model cycles per second at most; 0 runs the model on every pressure message"),
-      number("stale_timeout_s", 1.0, 0, true, 3600, "s", "no pressure for longer than this is reported stale"),
-      number("stamp_tolerance_s", 1.0, 0, true, 3600, "s",
-             "a pressure stamp that is zero or further than this from the receive time is replaced by the receive time"),
+      flag("publish_tf", true,
+           "true: this node broadcasts its finger's frames (lowest latency); false: it publishes joint_states only and a "
+           "robot_state_publisher on the (composed) description publishes the frames"),
+      number("max_rate_hz", input.max_rate_hz, 0, false, 1e5, "Hz",
+             "model cycles per second at most; 0 runs the model on every pressure message"),
+      number("stale_timeout_s", input.stale_timeout_s, 0, true, 3600, "s",
+             "no pressure for longer than this is reported stale"),
+      number("stamp_tolerance_s", input.stamp_tolerance_s, 0, true, 3600, "s",
+             "a pressure stamp further than this from the receive time is replaced by the receive time (a zero stamp "
+             "always is, silently)"),
+      number("time_jump_s", input.time_jump_s, 0, true, 3600, "s",
+             "a stamp older than the last by more than this starts a new timeline (a looping bag); smaller steps back "
+             "are refused as out of order"),
       number("max_gauge_pa", urdf.max_gauge_pa, 0, true, 1e7, "Pa",
              "top of the model's range (3 kg/cm^2): higher pressures are clamped to it; URDF joint upper limits, the "
              "inverse service's limit, the table"),
-      number("validated_max_gauge_pa", 196133, 0, true, 1e7, "Pa",
+      number("validated_max_gauge_pa", input.validated_max_gauge_pa, 0, true, 1e7, "Pa",
              "top of the validated range (the paper: 2 kg/cm^2); above it finger_state says so and diagnostics warn",
              "(0, max_gauge_pa]"),
       text("description_param", "robot_description", "a ROS name",
@@ -101,6 +115,15 @@ double readDouble(const ros::NodeHandle& nh, const std::string& key, double max_
     throw ParameterError(s.str());
   }
   return x;
+}
+
+bool readBool(const ros::NodeHandle& nh, const std::string& key) {
+  XmlRpc::XmlRpcValue v;
+  if (!nh.getParam(key, v)) return spec(key).default_value != 0.0;
+  if (v.getType() != XmlRpc::XmlRpcValue::TypeBoolean) {
+    throw ParameterError("parameter '" + key + "' = " + describe(v) + " is not true or false");
+  }
+  return static_cast<bool>(v);
 }
 
 std::string readString(const ros::NodeHandle& nh, const std::string& key) {
@@ -186,11 +209,15 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   } catch (const ParameterError& e) {
     throw ParameterError(std::string("parameter 'solver': ") + e.what());
   }
-  s.max_rate_hz = readDouble(nh, "max_rate_hz");
-  s.stale_timeout_s = readDouble(nh, "stale_timeout_s");
-  s.stamp_tolerance_s = readDouble(nh, "stamp_tolerance_s");
+  s.publish_tf = readBool(nh, "publish_tf");
+  s.input.max_rate_hz = readDouble(nh, "max_rate_hz");
+  s.input.stale_timeout_s = readDouble(nh, "stale_timeout_s");
+  s.input.stamp_tolerance_s = readDouble(nh, "stamp_tolerance_s");
+  s.input.time_jump_s = readDouble(nh, "time_jump_s");
   s.urdf.max_gauge_pa = readDouble(nh, "max_gauge_pa");
-  s.validated_max_gauge_pa = readDouble(nh, "validated_max_gauge_pa", s.urdf.max_gauge_pa);
+  s.input.max_gauge_pa = s.urdf.max_gauge_pa;
+  s.input.validated_max_gauge_pa = readDouble(nh, "validated_max_gauge_pa", s.urdf.max_gauge_pa);
+  s.input.atmospheric_pa = s.finger.atmospheric_pressure_pa;
   s.description_param = readString(nh, "description_param");
   s.pressure_topic = readString(nh, "pressure_topic");
   s.joint_states_topic = readString(nh, "joint_states_topic");
@@ -214,7 +241,8 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   return s;
 }
 
-FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh) : settings_(readNodeSettings(private_nh)) {
+FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
+    : settings_(readNodeSettings(private_nh)), input_(settings_.input) {
   ModelOptions options;
   options.solver = settings_.solver;
   options.table_max_gauge_pa = settings_.urdf.max_gauge_pa;
@@ -225,8 +253,9 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh) : setti
   // The URDF, for rviz and for anyone who reads the chain (planners): the same names as joint_states and tf.
   nh.setParam(settings_.description_param, fingerUrdf(settings_.finger, settings_.urdf));
 
-  // Frames: this node is their only publisher. The two fixed ones (mount, tip) go out once, latched on
-  // /tf_static; the N joints go on /tf with each pressure. robot_state_publisher must not be run on this URDF.
+  // Frames, with publish_tf (the default): this node is their only publisher. The two fixed ones (mount, tip) go out
+  // once, latched on /tf_static; the N joints go on /tf with each pressure. Without publish_tf, a
+  // robot_state_publisher on the (composed) description publishes all of them from joint_states.
   const ros::Time now = ros::Time::now();
   geometry_msgs::TransformStamped mount;
   mount.header.stamp = now;
@@ -247,7 +276,7 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh) : setti
   tip.child_frame_id = tipLinkName(prefix);
   tip.transform.translation.x = settings_.finger.segment_length_m.back();
   tip.transform.rotation.w = 1.0;
-  static_tf_.sendTransform(std::vector<geometry_msgs::TransformStamped>{mount, tip});
+  if (settings_.publish_tf) static_tf_.sendTransform(std::vector<geometry_msgs::TransformStamped>{mount, tip});
 
   // Messages sized once; the per-pressure cycle only writes numbers into them.
   joint_states_.name.resize(static_cast<std::size_t>(n));
@@ -273,87 +302,53 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh) : setti
   inverse_srv_ = nh.advertiseService("pressure_for_tip_angle", &FingerNode::onInverse, this);
   diagnostics_.setHardwareID(prefix + "pneumatic_finger");
   diagnostics_.add("pressure input", this, &FingerNode::diagnose);
-  diagnostics_timer_ = nh.createTimer(ros::Duration(1.0), [this](const ros::TimerEvent&) { diagnostics_.update(); });
+  // Wall time, and force_update: under simulated time that jumps back (a looping bag, a reset) a ROS-time timer,
+  // and the updater's own rate limit, would both wait until the clock caught up again, and diagnostics would stop.
+  diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0),
+                                          [this](const ros::WallTimerEvent&) { diagnostics_.force_update(); });
   // Queue of 1 when throttled (only the newest pressure matters); otherwise keep up with bursts.
-  pressure_sub_ = nh.subscribe(settings_.pressure_topic, settings_.max_rate_hz > 0 ? 1 : 100, &FingerNode::onPressure,
+  pressure_sub_ = nh.subscribe(settings_.pressure_topic, settings_.input.max_rate_hz > 0 ? 1 : 100, &FingerNode::onPressure,
                                this, ros::TransportHints().tcpNoDelay());
   ROS_INFO("finger_node: %d chambers (%d distinct), solver %s, frames %ssegment_0..%d and %stip on %s; URDF in '%s'",
            n, model_->distinctChamberCount(), solverName(settings_.solver), prefix.c_str(), n, prefix.c_str(),
            settings_.urdf.parent_frame.c_str(), nh.resolveName(settings_.description_param).c_str());
 }
 
-void FingerNode::refuse(long& counter, const std::string& why, const ros::Time& now) {
-  ++counter;
-  last_problem_ = now;
-  last_problem_text_ = why;
-  ROS_WARN_THROTTLE(5.0, "finger_node: refused a pressure message: %s; keeping the last state", why.c_str());
-}
-
 void FingerNode::onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg) {
+  // The rules are the core's (PressureInputPolicy); this only forwards the message and acts on the verdict.
   const ros::Time now = ros::Time::now();
-  ++received_;
-  last_received_ = now;
-  recent_.push_back(now);
-  while (!recent_.empty() && (now - recent_.front()).toSec() > 1.0) recent_.pop_front();
-  if (settings_.max_rate_hz > 0 && !last_processed_.isZero() &&
-      (now - last_processed_).toSec() < 1.0 / settings_.max_rate_hz) {
-    ++throttled_;
+  const InputDecision d = input_.onMessage(msg->fluid_pressure, msg->header.stamp.toSec(), now.toSec());
+  if (d.time_jumped) ROS_WARN("finger_node: %s", d.problem.c_str());  // once per jump
+  switch (d.verdict) {
+    case InputVerdict::kThrottled:
+      return;
+    case InputVerdict::kRefusedNotFinite:
+    case InputVerdict::kRefusedNegativeAbsolute:
+    case InputVerdict::kRefusedOutOfOrder:
+      ROS_WARN_THROTTLE(5.0, "finger_node: refused a pressure message: %s; keeping the last state", d.problem.c_str());
+      return;
+    case InputVerdict::kAccept:
+      break;
+  }
+  if (!d.time_jumped && !d.problem.empty()) ROS_WARN_THROTTLE(5.0, "finger_node: %s", d.problem.c_str());
+  const FingerState& state = model_->evaluate(d.gauge_pa);
+  if (state.status == EvaluationStatus::kSolverFailure) {
+    // Nothing non-finite is ever published: the last state stays, and diagnostics say why.
+    input_.noteSolverFailure(std::string("solver '") + solverName(settings_.solver) + "' found no finite answer at " +
+                                 formatExact(d.gauge_pa) + " Pa gauge; last state kept",
+                             now.toSec());
+    ROS_WARN_THROTTLE(5.0, "finger_node: %s", input_.lastProblem().c_str());
     return;
   }
-  // Bad values: refused, the last valid state stays (nothing is published).
-  const double absolute = msg->fluid_pressure;
-  if (!std::isfinite(absolute)) {
-    refuse(refused_not_finite_, "pressure " + formatExact(absolute) + " Pa is not finite", now);
-    return;
-  }
-  if (absolute < 0) {
-    refuse(refused_negative_absolute_, "absolute pressure " + formatExact(absolute) + " Pa is negative", now);
-    return;
-  }
-  // Stamps: a zero stamp, or one implausibly far from now (a regulator with no or a wrong clock), is replaced by
-  // the receive time; a stamp not newer than the last published one is refused, since tf and the planners
-  // downstream must never see time run backwards or the same instant twice.
-  ros::Time stamp = msg->header.stamp;
-  if (stamp.isZero() || std::fabs((stamp - now).toSec()) > settings_.stamp_tolerance_s) {
-    ++stamps_replaced_;
-    last_problem_ = now;
-    last_problem_text_ = "stamp " + std::to_string(stamp.toSec()) + " s replaced by the receive time";
-    ROS_WARN_THROTTLE(5.0, "finger_node: %s", last_problem_text_.c_str());
-    stamp = now;
-  }
-  if (!last_published_stamp_.isZero() && stamp <= last_published_stamp_) {
-    refuse(refused_out_of_order_,
-           "stamp " + std::to_string(stamp.toSec()) + " s is not newer than the last published " +
-               std::to_string(last_published_stamp_.toSec()) + " s",
-           now);
-    return;
-  }
-  last_processed_ = now;
-  double gauge = absolute - settings_.finger.atmospheric_pressure_pa;
-  last_gauge_pa_ = gauge;
-  // Above the model's range (a glitching regulator, or a finger driven past its rating): clamp to the top of the
-  // range, where the URDF's joint limits are, instead of curling the model toward pi/2 per wall.
-  const bool clamped = gauge > settings_.urdf.max_gauge_pa;
-  if (clamped) {
-    ++clamped_;
-    last_problem_ = now;
-    last_problem_text_ = "gauge pressure " + formatExact(gauge) + " Pa clamped to max_gauge_pa";
-    ROS_WARN_THROTTLE(5.0, "finger_node: %s", last_problem_text_.c_str());
-    gauge = settings_.urdf.max_gauge_pa;
-  }
-  const FingerState& state = model_->evaluate(gauge);
   if (state.status == EvaluationStatus::kVacuum) {
-    ++vacuum_;
-    last_problem_ = now;
-    last_problem_text_ = "gauge pressure " + formatExact(gauge) + " Pa is a vacuum: straight finger published";
-    ROS_WARN_THROTTLE(5.0, "finger_node: %s", last_problem_text_.c_str());
+    input_.noteVacuum(d.gauge_pa, now.toSec());
+    ROS_WARN_THROTTLE(5.0, "finger_node: %s", input_.lastProblem().c_str());
   }
-  if (gauge > settings_.validated_max_gauge_pa) ++out_of_range_;
-  publish(state, stamp, clamped);
+  // The message's own stamp to the nanosecond (the policy compares seconds as doubles), or the receive time.
+  publish(state, d.stamp_replaced ? now : msg->header.stamp, d.clamped);
 }
 
 void FingerNode::publish(const FingerState& state, const ros::Time& stamp, bool clamped) {
-  last_published_stamp_ = stamp;
   const int n = settings_.finger.chamber_count;
   joint_states_.header.stamp = stamp;
   for (int i = 0; i < n; ++i) {
@@ -381,11 +376,11 @@ void FingerNode::publish(const FingerState& state, const ros::Time& stamp, bool 
   finger_state_.tip.orientation.w = std::cos(0.5 * state.tip_angle_rad);
   finger_state_.tip_angle_rad = state.tip_angle_rad;
   finger_state_.in_contact = state.in_contact;
-  finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.validated_max_gauge_pa;
+  finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.input.validated_max_gauge_pa;
   finger_state_.status = state.status == EvaluationStatus::kVacuum ? FingerModelState::STATUS_VACUUM
                           : clamped                                  ? FingerModelState::STATUS_CLAMPED
                                                                      : FingerModelState::STATUS_OK;
-  tf_.sendTransform(transforms_);
+  if (settings_.publish_tf) tf_.sendTransform(transforms_);
   joint_states_pub_.publish(joint_states_);
   finger_state_pub_.publish(finger_state_);
 }
@@ -401,40 +396,27 @@ bool FingerNode::onInverse(PressureForTipAngle::Request& req, PressureForTipAngl
 }
 
 void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
-  const ros::Time now = ros::Time::now();
-  while (!recent_.empty() && (now - recent_.front()).toSec() > 1.0) recent_.pop_front();
-  const double age = last_received_.isZero() ? -1.0 : (now - last_received_).toSec();
-  // A refusal or correction stays on the report for kProblemHoldS, longer than any diagnostics period, so that a
-  // single bad message is seen by whoever watches /diagnostics.
-  constexpr double kProblemHoldS = 5.0;
-  const bool recent_problem = !last_problem_.isZero() && (now - last_problem_).toSec() <= kProblemHoldS;
-  if (last_received_.isZero()) {
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, "no pressure received yet");
-  } else if (age > settings_.stale_timeout_s) {
-    status.summaryf(diagnostic_msgs::DiagnosticStatus::ERROR, "stale: no pressure for %.1f s; last state kept", age);
-  } else if (recent_problem) {
-    status.summary(diagnostic_msgs::DiagnosticStatus::WARN, last_problem_text_);
-  } else if (last_gauge_pa_ > settings_.validated_max_gauge_pa) {
-    status.summaryf(diagnostic_msgs::DiagnosticStatus::WARN, "gauge pressure %.0f Pa above the validated range",
-                    last_gauge_pa_);
-  } else {
-    status.summary(diagnostic_msgs::DiagnosticStatus::OK, "ok");
-  }
-  status.add("input rate (Hz, last 1 s)", recent_.size());
-  status.add("seconds since last pressure", age);
-  status.add("last gauge pressure (Pa)", last_gauge_pa_);
-  status.add("validated range (Pa gauge)", "0.." + formatExact(settings_.validated_max_gauge_pa));
-  status.add("messages received", received_);
-  status.add("refused: not finite", refused_not_finite_);
-  status.add("refused: negative absolute pressure", refused_negative_absolute_);
-  status.add("refused: stamp not newer than the last", refused_out_of_order_);
-  status.add("stamps replaced by the receive time", stamps_replaced_);
-  status.add("vacuum (straight finger published)", vacuum_);
-  status.add("clamped to max_gauge_pa", clamped_);
-  status.add("above the validated range", out_of_range_);
-  status.add("skipped by max_rate_hz", throttled_);
+  const InputReport r = input_.report(ros::Time::now().toSec());
+  status.summary(static_cast<unsigned char>(r.level), r.message);
+  const InputCounters& c = input_.counters();
+  status.add("input rate (Hz, last 1 s)", r.rate_hz);
+  status.add("seconds since last pressure", r.age_s);
+  status.add("last gauge pressure (Pa)", input_.lastGaugePa());
+  status.add("validated range (Pa gauge)", "0.." + formatExact(settings_.input.validated_max_gauge_pa));
+  status.add("messages received", c.received);
+  status.add("refused: not finite", c.refused_not_finite);
+  status.add("refused: negative absolute pressure", c.refused_negative_absolute);
+  status.add("refused: stamp not newer than the last", c.refused_out_of_order);
+  status.add("zero stamps (receive time used)", c.zero_stamps);
+  status.add("stamps replaced by the receive time", c.far_stamps);
+  status.add("time jumps (new timeline)", c.time_jumps);
+  status.add("vacuum (straight finger published)", c.vacuum);
+  status.add("clamped to max_gauge_pa", c.clamped);
+  status.add("above the validated range", c.out_of_range);
+  status.add("solver failures (last state kept)", c.solver_failures);
+  status.add("skipped by max_rate_hz or same instant", c.throttled);
   status.add("model evaluations (unchanged pressures reuse the last)", model_->computationCount());
-  if (!last_problem_text_.empty()) status.add("last problem", last_problem_text_);
+  if (!input_.lastProblem().empty()) status.add("last problem", input_.lastProblem());
 }
 
 }  // namespace pneumatic_finger

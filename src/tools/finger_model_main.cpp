@@ -48,13 +48,25 @@ void printCsv(pf::FingerModel& model, const std::vector<double>& pressures) {
   out << "gauge_pa,stretch,bulge_m,half_angle_rad";
   for (int j = 1; j <= n; ++j) out << ",joint_" << j << "_rad";
   out << ",tip_x_m,tip_y_m\n";
-  bool warned = false;
+  bool warned = false, warned_failure = false;
   for (double p : pressures) {
     const pf::FingerState& s = model.evaluate(p);
     if (s.status == pf::EvaluationStatus::kVacuum && !warned) {
       std::cerr << "finger_model: warning: gauge pressure " << pf::formatExact(p)
                 << " Pa is negative (vacuum), outside the model; printing the straight finger\n";
       warned = true;
+    }
+    if (s.status == pf::EvaluationStatus::kSolverFailure) {
+      // The model kept its previous state; printing it would put a wrong shape on this row.
+      if (!warned_failure) {
+        std::cerr << "finger_model: warning: solver '" << pf::solverName(model.options().solver)
+                  << "' found no finite answer at " << pf::formatExact(p) << " Pa gauge; such rows are nan\n";
+        warned_failure = true;
+      }
+      out << pf::formatExact(p);
+      for (int j = 0; j < n + 5; ++j) out << ",nan";
+      out << '\n';
+      continue;
     }
     out << pf::formatExact(p) << ',' << pf::formatExact(s.stretch[0]) << ',' << pf::formatExact(s.bulge_m[0]) << ','
         << pf::formatExact(s.half_angle_rad[0]);

@@ -45,6 +45,7 @@ enum class EvaluationStatus {
   kOk,            ///< pressure in the model's domain
   kVacuum,        ///< gauge < 0: outside the model; the straight (rest) finger is returned
   kNotFinite,     ///< NaN or infinite pressure: refused, the previous state is kept
+  kSolverFailure, ///< the solver produced no finite answer (the paper's closed forms can): the previous state is kept
 };
 
 /// Everything the model says about the finger at one pressure. Sized once for N chambers.
@@ -73,6 +74,10 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
 /// A FingerState sized for @p parameters, at rest (the straight finger).
 FingerState restState(const FingerParameters& parameters);
 
+/// Threads: tipAngleAt(), gaugeForTipAngle() and the accessors of fixed data (parameters(), contactGaugePa(), ...)
+/// read only what the constructor built, so any number of threads may call them at once, also while another thread
+/// runs evaluate() (test: Property.ConstMethodsAreSafeBesideEvaluate). evaluate() and state() share the cached state:
+/// call them from one thread.
 class FingerModel {
  public:
   /// Builds the model; the table solver also builds, and measures, its table here.
@@ -134,7 +139,9 @@ class FingerModel {
   static WallSolution solveRobust(const ChamberGroup& group, double gauge_pa, double atmospheric_pa);
   GroupResult solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const;
   void buildTable(ChamberGroup& group);
-  void writeState(double gauge_pa, FingerState& out) const;
+  /// Writes the state at @p gauge_pa into @p out; returns false, leaving @p out untouched, when the solver gave a
+  /// non-finite stretch, bulge or half angle.
+  bool writeState(double gauge_pa, FingerState& out);
 
   FingerParameters parameters_;
   ModelOptions options_;
@@ -146,9 +153,10 @@ class FingerModel {
   bool has_last_ = false;
   long computations_ = 0;
   double last_gauge_pa_ = 0.0;
-  // Scratch for writeState: per-group results and per-chamber half angles, sized at construction.
-  mutable std::vector<GroupResult> scratch_;
-  mutable std::vector<HalfAngle> chamber_half_;
+  // Scratch for writeState (not for the const methods, which may run concurrently): per-group results and
+  // per-chamber half angles, sized at construction.
+  std::vector<GroupResult> scratch_;
+  std::vector<HalfAngle> chamber_half_;
 };
 
 /// Gauge pressure (Pa) at which a chamber's bulge reaches its gap (the contact pressure): the inverse chain

@@ -14,6 +14,9 @@
 
 namespace pneumatic_finger {
 
+/// The largest chamber_count a parameter file may give (the range of that key; fixed-size scratch uses it).
+constexpr int kMaxChamberCount = 64;
+
 /// Thrown when a parameter is missing its form, has a wrong type, or lies outside its allowed range.
 /// The message always names the key, the offending value and what is allowed.
 class ParameterError : public std::runtime_error {

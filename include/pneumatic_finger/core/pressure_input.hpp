@@ -15,7 +15,7 @@ struct PressureInputSettings {
   double max_gauge_pa = 294199.5;        ///< gauge pressures above this are clamped to it (Pa)
   double validated_max_gauge_pa = 196133.0;  ///< top of the calibrated range (Pa); above it the twin extrapolates
   double max_rate_hz = 0.0;              ///< model cycles per second at most; 0: every message
-  double stamp_tolerance_s = 10.0;       ///< a stamp further than this from the receive time is replaced by it (s)
+  double stamp_tolerance_s = 1.0;        ///< a stamp further than this from the receive time is replaced by it (s)
   double time_jump_s = 1.0;              ///< a stamp older than the last by more than this starts a new timeline (s)
   double stale_timeout_s = 1.0;          ///< no message for longer than this: the input is stale (s)
 };
@@ -34,6 +34,7 @@ struct InputDecision {
   InputVerdict verdict = InputVerdict::kAccept;
   double gauge_pa = 0.0;     ///< the pressure to evaluate (clamped to max_gauge_pa); negative: a vacuum
   double stamp_s = 0.0;      ///< the stamp to publish with
+  bool stamp_replaced = false;  ///< stamp_s is the receive time (else it is the message's own stamp, unchanged)
   bool clamped = false;      ///< gauge was above max_gauge_pa
   bool out_of_range = false; ///< gauge is above validated_max_gauge_pa
   bool time_jumped = false;  ///< this message starts a new timeline (the clock or the stamps went back)
@@ -48,6 +49,7 @@ struct InputCounters {
   long far_stamps = 0;        ///< stamps far from the receive time, replaced by it (a regulator with a wrong clock)
   long time_jumps = 0;        ///< new timelines (a looping bag, a simulation reset)
   long vacuum = 0, clamped = 0, out_of_range = 0;
+  long solver_failures = 0;   ///< accepted messages whose evaluation the solver could not finish (nothing published)
 };
 
 /// Diagnostics levels, as diagnostic_msgs defines them.
@@ -83,6 +85,8 @@ class PressureInputPolicy {
   const InputCounters& counters() const { return counters_; }
   const PressureInputSettings& settings() const { return settings_; }
   double lastGaugePa() const { return last_gauge_pa_; }
+  /// The most recent refusal or correction (empty before any).
+  const std::string& lastProblem() const { return last_problem_; }
 
   /// How long a refusal or correction stays on the report: longer than any diagnostics period, so that a single
   /// bad message is seen by whoever watches.
@@ -103,7 +107,6 @@ class PressureInputPolicy {
   bool have_problem_ = false;
   std::string last_problem_;
   double last_gauge_pa_ = 0.0;
-  long problems_in_timeline_ = 0;
 };
 
 }  // namespace pneumatic_finger

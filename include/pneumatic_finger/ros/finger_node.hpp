@@ -9,7 +9,6 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
-#include <deque>
 #include <memory>
 #include <string>
 #include <vector>
@@ -17,6 +16,7 @@
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/PressureForTipAngle.h"
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/pressure_input.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
 
 namespace pneumatic_finger {
@@ -25,7 +25,7 @@ namespace pneumatic_finger {
 /// default, unit, range, meaning), read by readNodeSettings() and printed by `finger_node --parameters` for the README.
 struct NodeParameterSpec {
   std::string key;
-  std::string type;           ///< "string", "double", "double[3]"
+  std::string type;           ///< "string", "double", "double[3]", "bool"
   std::string default_text;   ///< the default as text (strings, triples)
   double default_value;       ///< the default of a "double"
   double min_value;           ///< range of a "double" (of every entry of a "double[3]": |x| <= max_value)
@@ -41,8 +41,9 @@ const std::vector<NodeParameterSpec>& nodeParameterSpecs();
 struct NodeSettings {
   FingerParameters finger;
   FingerUrdfOptions urdf;
+  PressureInputSettings input;  ///< the input rules' settings (atmospheric_pa and max_gauge_pa follow finger, urdf)
   SolverKind solver;
-  double max_rate_hz, stale_timeout_s, stamp_tolerance_s, validated_max_gauge_pa;
+  bool publish_tf = true;
   std::string description_param, pressure_topic, joint_states_topic, finger_state_topic;
 };
 
@@ -60,7 +61,6 @@ class FingerNode {
   bool onInverse(PressureForTipAngle::Request& req, PressureForTipAngle::Response& res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
   void publish(const FingerState& state, const ros::Time& stamp, bool clamped);
-  void refuse(long& counter, const std::string& why, const ros::Time& now);
 
   NodeSettings settings_;
   std::unique_ptr<FingerModel> model_;
@@ -70,20 +70,15 @@ class FingerNode {
   tf2_ros::TransformBroadcaster tf_;
   tf2_ros::StaticTransformBroadcaster static_tf_;
   diagnostic_updater::Updater diagnostics_;
-  ros::Timer diagnostics_timer_;
+  ros::WallTimer diagnostics_timer_;
 
   // Preallocated outgoing messages: the per-message cycle fills them in place.
   sensor_msgs::JointState joint_states_;
   FingerModelState finger_state_;
   std::vector<geometry_msgs::TransformStamped> transforms_;
 
-  // Input bookkeeping for throttling and diagnostics.
-  ros::Time last_processed_, last_received_, last_published_stamp_, last_problem_;
-  std::deque<ros::Time> recent_;  // receive times within the last second, for the input rate
-  long received_ = 0, refused_not_finite_ = 0, refused_negative_absolute_ = 0, refused_out_of_order_ = 0,
-       stamps_replaced_ = 0, vacuum_ = 0, clamped_ = 0, out_of_range_ = 0, throttled_ = 0;
-  double last_gauge_pa_ = 0.0;
-  std::string last_problem_text_;  // the most recent refusal or correction, for diagnostics
+  // The input rules (stamps, time jumps, clamping, throttling, staleness) and their counters: ROS-free, in the core.
+  PressureInputPolicy input_;
 };
 
 }  // namespace pneumatic_finger

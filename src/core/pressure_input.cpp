@@ -1,0 +1,173 @@
+#include "pneumatic_finger/core/pressure_input.hpp"
+
+#include <cmath>
+#include <cstdio>
+
+#include "pneumatic_finger/core/parameters.hpp"
+
+namespace pneumatic_finger {
+
+namespace {
+
+std::string seconds(double t) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.6f", t);
+  return b;
+}
+
+}  // namespace
+
+PressureInputPolicy::PressureInputPolicy(const PressureInputSettings& settings) : settings_(settings) {}
+
+void PressureInputPolicy::problem(const std::string& what, double now_s) {
+  have_problem_ = true;
+  last_problem_s_ = now_s;
+  last_problem_ = what;
+}
+
+void PressureInputPolicy::startTimeline(double receive_s) {
+  // Everything that compares times forgets the old timeline; the counters stay.
+  ++counters_.time_jumps;
+  have_accepted_ = false;
+  recent_.clear();
+  if (have_problem_ && last_problem_s_ > receive_s) have_problem_ = false;
+}
+
+InputDecision PressureInputPolicy::onMessage(double absolute_pa, double stamp_s, double receive_s) {
+  InputDecision d;
+  ++counters_.received;
+  // The clock itself went back (a bag played with --clock --loop, a simulation reset): a new timeline, as
+  // robot_state_publisher treats it. Said once, by the caller, from time_jumped.
+  if (have_received_ && receive_s < last_received_s_) {
+    startTimeline(receive_s);
+    d.time_jumped = true;
+    d.problem = "the clock jumped back from " + seconds(last_received_s_) + " s to " + seconds(receive_s) +
+                " s: continuing on the new time";
+  }
+  have_received_ = true;
+  last_received_s_ = receive_s;
+  recent_.push_back(receive_s);
+  while (!recent_.empty() && receive_s - recent_.front() > 1.0) recent_.pop_front();
+
+  if (settings_.max_rate_hz > 0 && have_accepted_ && receive_s - last_accepted_s_ < 1.0 / settings_.max_rate_hz) {
+    ++counters_.throttled;
+    d.verdict = InputVerdict::kThrottled;
+    return d;
+  }
+  // Bad values are refused; the last valid state stays (nothing is published).
+  if (!std::isfinite(absolute_pa)) {
+    ++counters_.refused_not_finite;
+    d.verdict = InputVerdict::kRefusedNotFinite;
+    d.problem = "pressure " + formatExact(absolute_pa) + " Pa is not finite";
+    problem(d.problem, receive_s);
+    return d;
+  }
+  if (absolute_pa < 0) {
+    ++counters_.refused_negative_absolute;
+    d.verdict = InputVerdict::kRefusedNegativeAbsolute;
+    d.problem = "absolute pressure " + formatExact(absolute_pa) + " Pa is negative";
+    problem(d.problem, receive_s);
+    return d;
+  }
+  // Stamps. Zero (what `rostopic pub` and many drivers send): the receive time, counted, not a problem. Far from
+  // the receive time (a regulator whose clock is wrong): the receive time, and a problem worth reporting.
+  double stamp = stamp_s;
+  bool replaced = false;
+  if (stamp == 0.0) {
+    ++counters_.zero_stamps;
+    stamp = receive_s;
+    replaced = true;
+  } else if (std::fabs(stamp - receive_s) > settings_.stamp_tolerance_s) {
+    ++counters_.far_stamps;
+    d.problem = "stamp " + seconds(stamp) + " s replaced by the receive time";
+    problem(d.problem, receive_s);
+    stamp = receive_s;
+    replaced = true;
+  }
+  if (have_accepted_ && !(stamp > last_stamp_s_)) {
+    if (replaced) {
+      // Two messages within one tick of the clock (simulated time advances in steps): the same instant, which
+      // tf must not see twice. Not the sender's fault: dropped like a throttled one; the next tick takes the newest.
+      ++counters_.throttled;
+      d.verdict = InputVerdict::kThrottled;
+      return d;
+    }
+    if (last_stamp_s_ - stamp > settings_.time_jump_s) {
+      // The stamps went back by more than any reordering: a new timeline (a bag replayed without --clock).
+      startTimeline(receive_s);
+      d.time_jumped = true;
+      d.problem = "the stamps jumped back from " + seconds(last_stamp_s_) + " s to " + seconds(stamp) +
+                  " s: continuing on the new time";
+    } else {
+      // Within the same timeline: tf and the planners downstream must never see time run backwards.
+      ++counters_.refused_out_of_order;
+      d.verdict = InputVerdict::kRefusedOutOfOrder;
+      d.problem = "stamp " + seconds(stamp) + " s is not newer than the last published " + seconds(last_stamp_s_) + " s";
+      problem(d.problem, receive_s);
+      return d;
+    }
+  }
+  ++counters_.accepted;
+  have_accepted_ = true;
+  last_accepted_s_ = receive_s;
+  last_stamp_s_ = stamp;
+  d.verdict = InputVerdict::kAccept;
+  d.stamp_s = stamp;
+  d.stamp_replaced = replaced;
+  double gauge = absolute_pa - settings_.atmospheric_pa;
+  last_gauge_pa_ = gauge;
+  d.out_of_range = gauge > settings_.validated_max_gauge_pa;
+  if (d.out_of_range) ++counters_.out_of_range;
+  // Above the model's range (a glitching regulator, or a finger driven past its rating): clamp to the top of the
+  // range, where the URDF's joint limits are, instead of curling the model toward pi/2 per wall.
+  if (gauge > settings_.max_gauge_pa) {
+    ++counters_.clamped;
+    d.clamped = true;
+    d.problem = "gauge pressure " + formatExact(gauge) + " Pa clamped to max_gauge_pa";
+    problem(d.problem, receive_s);
+    gauge = settings_.max_gauge_pa;
+  }
+  d.gauge_pa = gauge;
+  return d;
+}
+
+void PressureInputPolicy::noteVacuum(double gauge_pa, double now_s) {
+  ++counters_.vacuum;
+  problem("gauge pressure " + formatExact(gauge_pa) + " Pa is a vacuum: straight finger published", now_s);
+}
+
+void PressureInputPolicy::noteSolverFailure(const std::string& what, double now_s) {
+  ++counters_.solver_failures;
+  problem(what, now_s);
+}
+
+InputReport PressureInputPolicy::report(double now_s) {
+  InputReport r;
+  while (!recent_.empty() && now_s - recent_.front() > 1.0) recent_.pop_front();
+  r.rate_hz = static_cast<double>(recent_.size());
+  r.age_s = have_received_ ? now_s - last_received_s_ : -1.0;
+  const bool recent_problem = have_problem_ && now_s - last_problem_s_ <= kProblemHoldS && now_s >= last_problem_s_;
+  if (!have_received_) {
+    r.level = InputHealth::kWarn;
+    r.message = "no pressure received yet";
+  } else if (r.age_s > settings_.stale_timeout_s) {
+    r.level = InputHealth::kError;
+    char b[96];
+    std::snprintf(b, sizeof b, "stale: no pressure for %.1f s; last state kept", r.age_s);
+    r.message = b;
+  } else if (recent_problem) {
+    r.level = InputHealth::kWarn;
+    r.message = last_problem_;
+  } else if (last_gauge_pa_ > settings_.validated_max_gauge_pa) {
+    r.level = InputHealth::kWarn;
+    char b[96];
+    std::snprintf(b, sizeof b, "gauge pressure %.0f Pa above the validated range", last_gauge_pa_);
+    r.message = b;
+  } else {
+    r.level = InputHealth::kOk;
+    r.message = "ok";
+  }
+  return r;
+}
+
+}  // namespace pneumatic_finger
