@@ -14,7 +14,7 @@ import tempfile
 # yaml-cpp, urdfdom (description only), CLI11 (tools only), POSIX.
 ALLOWED = {
     "core": [r"pneumatic_finger/core/", r"Eigen/", r"yaml-cpp/"],
-    "description": [r"pneumatic_finger/(core|description)/", r"Eigen/", r"urdf_model/", r"urdf_parser/",
+    "description": [r"pneumatic_finger/(core|description)/", r"Eigen/", r"yaml-cpp/", r"urdf_model/", r"urdf_parser/",
                     r"urdf_world/", r"tinyxml\.h"],
     "tools": [r"pneumatic_finger/(core|description|tools)/", r"Eigen/", r"CLI/", r"unistd\.h"],
 }

@@ -217,7 +217,7 @@ TEST(Cli, ReadmeNodeParameterTableIsTheGeneratedOne) {
 TEST(Cli, EveryKeyOutOfRangeIsRefusedByBothToolsNamingIt) {
   for (const char* key_text : {"chamber_count", "chamber_height_m", "wall_critical_height_m", "chamber_gap_m",
                                  "chamber_thickness_m", "chamber_width_m", "segment_length_m", "base_segment_length_m",
-                                 "shear_modulus_pa", "atmospheric_pressure_pa"}) {
+                                 "shear_modulus_pa", "atmospheric_pressure_pa", "elastomer_density_kg_m3"}) {
     const std::string key = key_text;
     const CliRun model = run("--set " + key + "=-7 --gauge-pa 1e5");
     EXPECT_EQ(model.status, 2) << key;

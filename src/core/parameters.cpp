@@ -38,6 +38,11 @@ const std::vector<ParameterSpec> kSpecs = {
      "effective Neo-Hookean shear modulus of the elastomer (calibrated)"},
     {"atmospheric_pressure_pa", "P_o", "Pa", kStandardAtmospherePa, 1e3, true, 1e6, ParameterShape::kScalar,
      "ambient pressure; gauge = absolute - P_o"},
+    // Not in the model: the URDF's masses and inertias. The paper does not name its elastomer; 1070 kg/m^3 is the
+    // specific gravity (1.07) that the maker's data sheets give for the silicones PneuNets are usually cast in
+    // (Smooth-On Ecoflex 00-30 and Dragon Skin 30: 1.07 and 1.08).
+    {"elastomer_density_kg_m3", "rho", "kg/m^3", 1070, 100, false, 3000, ParameterShape::kScalar,
+     "density of the elastomer, for the URDF's link masses and inertias (not used by the model)"},
 };
 
 std::string keyAndValue(const ParameterSpec& spec, double value) {
@@ -144,6 +149,7 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& raw) {
   p.base_segment_length_m = scalar(spec("base_segment_length_m"), raw);
   p.shear_modulus_pa = perChamber(spec("shear_modulus_pa"), raw, n);
   p.atmospheric_pressure_pa = scalar(spec("atmospheric_pressure_pa"), raw);
+  p.elastomer_density_kg_m3 = scalar(spec("elastomer_density_kg_m3"), raw);
   // docs/MODEL.md stage 3-4: b is a height on the wall, so it cannot exceed the wall (chamber) height L.
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
@@ -174,6 +180,7 @@ RawParameterMap FingerParameters::toRaw() const {
   raw["base_segment_length_m"] = {{base_segment_length_m}, false};
   put_list("shear_modulus_pa", shear_modulus_pa);
   raw["atmospheric_pressure_pa"] = {{atmospheric_pressure_pa}, false};
+  raw["elastomer_density_kg_m3"] = {{elastomer_density_kg_m3}, false};
   return raw;
 }
 

@@ -31,7 +31,23 @@ int main(int argc, char** argv) {
   app.add_option("--max-gauge-pa", options.max_gauge_pa, "pressure that sets the joint limits (Pa gauge)")
       ->capture_default_str();
   app.add_option("-o,--output", output, "write here instead of stdout");
+  std::string robot, gripper;
+  auto* robot_opt = app.add_option("--robot", robot, "compose: the robot's URDF, to which every finger of --gripper is attached");
+  auto* gripper_opt = app.add_option("--gripper", gripper, "compose: the gripper file (YAML: per finger prefix, parent, xyz, rpy, config)");
+  robot_opt->needs(gripper_opt);
+  gripper_opt->needs(robot_opt);
   return pf::runTool("finger_urdf", app, argc, argv, [&] {
+    if (!robot.empty()) {
+      // One description for the whole robot: what robot_state_publisher, rviz and a planner read.
+      const std::string urdf = pf::composeRobotUrdfFiles(robot, gripper);
+      if (output.empty()) {
+        std::cout << urdf;
+      } else {
+        std::ofstream out(output);
+        if (!(out << urdf)) throw pf::ParameterError("cannot write '" + output + "'");
+      }
+      return 0;
+    }
     if (!xyz.empty()) options.mount_xyz_m = parseTriple("--xyz", xyz);
     if (!rpy.empty()) options.mount_rpy_rad = parseTriple("--rpy", rpy);
     if (!(options.max_gauge_pa > 0) || !std::isfinite(options.max_gauge_pa)) {

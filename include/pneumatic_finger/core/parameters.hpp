@@ -72,6 +72,7 @@ struct FingerParameters {
   double base_segment_length_m = 0.0;            ///< Z0
   std::vector<double> shear_modulus_pa;          ///< mu_n
   double atmospheric_pressure_pa = 0.0;          ///< P_o
+  double elastomer_density_kg_m3 = 0.0;          ///< rho (URDF masses only; not in the model)
 
   /// The defaults of parameterSpecs() (the calibrated paper actuator).
   static FingerParameters defaults();

@@ -5,10 +5,13 @@
 // parent frame to segment_0 at the mount pose), <prefix>joint_1..N (revolute about +z at the backbone's joint axes,
 // positive = flexion toward the strain-limited side, docs/MODEL.md stage 6) and <prefix>tip_joint (fixed).
 // Every segment frame has its origin on the backbone at its proximal joint and x along the segment.
+// Each segment link has the same box as visual and collision, and an inertial: the elastomer block minus its
+// chamber (elastomer_density_kg_m3), with the box-minus-cavity inertia about the block's centre.
 #pragma once
 
 #include <array>
 #include <string>
+#include <vector>
 
 #include <urdf_model/model.h>
 
@@ -35,8 +38,28 @@ bool isValidNamePrefix(const std::string& prefix, std::string& why);
 /// Whether @p frame is a valid tf frame id for the parent: non-empty, no leading '/', letters, digits, '_' and '/'.
 bool isValidFrameId(const std::string& frame, std::string& why);
 
-/// The finger's URDF model. @throws ParameterError for an invalid prefix or parent frame.
+/// The finger's URDF model, wired like a parsed one (every link's parent joint and children, the root set), so it can
+/// be used with urdfdom and KDL directly. @throws ParameterError for an invalid prefix or parent frame.
 urdf::ModelInterface fingerUrdfModel(const FingerParameters& parameters, const FingerUrdfOptions& options);
+
+/// One finger of a gripper: where it mounts and which actuator it is.
+struct GripperFinger {
+  FingerUrdfOptions mount;      ///< prefix, parent link, mount pose, max_gauge_pa
+  FingerParameters parameters;  ///< the actuator
+  std::string config_path;      ///< the parameter file it was read from (for messages)
+};
+
+/// Reads a gripper file (YAML): `fingers:` a list of {prefix, parent, xyz, rpy, config}, config a parameter file
+/// path, relative to the gripper file's folder unless absolute. @throws ParameterError naming the file and entry.
+std::vector<GripperFinger> loadGripperFile(const std::string& path);
+
+/// The robot's URDF with every finger attached at its mount, as one model (exported as XML text).
+/// @throws ParameterError, naming it, for a robot that does not parse, a parent link the robot lacks, a prefix
+/// used twice, or a finger link or joint whose name the robot (or another finger) already has.
+std::string composeRobotUrdf(const std::string& robot_urdf_xml, const std::vector<GripperFinger>& fingers);
+
+/// The same from files: the robot's URDF and a gripper file.
+std::string composeRobotUrdfFiles(const std::string& robot_urdf_path, const std::string& gripper_path);
 
 /// The same, as URDF XML text (urdfdom's exporter).
 std::string fingerUrdf(const FingerParameters& parameters, const FingerUrdfOptions& options);
