@@ -9,7 +9,7 @@ SECS="${2:-10}"
 source "$ROOT/scripts/ros_env.sh"
 port=$ROS_PORT
 urdf="$ROOT/build/bench_rsp.urdf"
-"$ROOT/build/devel/lib/pneumatic_finger/finger_urdf" --prefix rsp_ --parent rsp_mount -o "$urdf"
+"$ROOT/devel/lib/pneumatic_finger/finger_urdf" --prefix rsp_ --parent rsp_mount -o "$urdf"
 roslaunch --port "$port" "$ROOT/bench/node_bench.launch" rsp_urdf:="$urdf" >"$ROOT/build/bench_node.log" 2>&1 &
 launch=$!
 trap 'kill $launch 2>/dev/null; wait 2>/dev/null' EXIT
@@ -20,6 +20,6 @@ for _ in $(seq 1 100); do
   sleep 0.1
 done
 sleep 2
-"$ROOT/build/devel/lib/pneumatic_finger/node_bench" _rate_hz:="$RATE" _seconds:="$SECS" \
+"$ROOT/devel/lib/pneumatic_finger/node_bench" _rate_hz:="$RATE" _seconds:="$SECS" \
   _finger_pid:="${finger_pid:-0}" _rsp_pid:="${rsp_pid:-0}" _config:="$ROOT/config/finger.yaml"
 echo "(machine: $(nproc) cores, $(lscpu | sed -n 's/^Model name: *//p'), $(grep -m1 MHz /proc/cpuinfo | sed 's/.*: //') MHz)"

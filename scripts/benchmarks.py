@@ -16,7 +16,7 @@ matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-BIN = ROOT / "build/devel/lib/pneumatic_finger"
+BIN = ROOT / "devel/lib/pneumatic_finger"
 SOLVERS = [("robust", "robust (default)"), ("table", "table"), ("paper", "paper (eq 10-35)"),
            ("eigen_companion", "Eigen PolynomialSolver"), ("gsl_complex", "GSL gsl_poly_complex_solve")]
 

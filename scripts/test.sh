@@ -19,7 +19,7 @@ echo "lint: layers (no ROS header in core, description, tools)"
 /usr/bin/python3 "$ROOT/scripts/check_layers.py" "$ROOT"
 
 # The benchmark in smoke mode: it must run and its numbers must be finite (timings are never tests).
-"$ROOT/build/devel/lib/pneumatic_finger/finger_bench" --benchmark_min_time=0.002 --benchmark_format=json \
+"$ROOT/devel/lib/pneumatic_finger/finger_bench" --benchmark_min_time=0.002 --benchmark_format=json \
   >"$ROOT/build/bench_smoke.json" 2>/dev/null
 /usr/bin/python3 "$ROOT/scripts/check_bench_smoke.py" "$ROOT/build/bench_smoke.json"
 

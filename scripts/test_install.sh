@@ -20,7 +20,7 @@ check() {  # check NAME COMMAND...: runs the command, records a test case
 rm -rf "$PREFIX"
 make -C "$ROOT/build" install >"$ROOT/build/install.log" 2>&1 || { tail -30 "$ROOT/build/install.log"; exit 1; }
 
-# A clean environment: Debian's ROS under /usr plus the install prefix, nothing of build/devel or the checkout.
+# A clean environment: Debian's ROS under /usr plus the install prefix, nothing of devel or the checkout.
 in_install() {
   env -i HOME="$HOME" PATH=/usr/bin:/bin ROS_HOSTNAME=localhost ROS_HOME="$ROOT/build/ros_home_install" \
     bash -c "set +u; source '$PREFIX/setup.bash'; set -u; cd /tmp; $1"

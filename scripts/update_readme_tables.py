@@ -7,7 +7,7 @@ import pathlib
 import subprocess
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
-BIN = ROOT / "build/devel/lib/pneumatic_finger"
+BIN = ROOT / "devel/lib/pneumatic_finger"
 readme = (ROOT / "README.md").read_text()
 lines = readme.split("\n")
 for tool, header in (("finger_model", "| key | symbol |"), ("finger_node", "| parameter | type |")):

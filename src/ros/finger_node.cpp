@@ -45,6 +45,9 @@ const std::vector<NodeParameterSpec>& specs() {
       triple("mount_xyz_m", 10.0, "m", "10", "mount position in parent_frame"),
       triple("mount_rpy_rad", 2 * kPi, "rad", "2 pi",
              "mount orientation in parent_frame (roll, pitch, yaw about fixed x, y, z)"),
+      text("gripper_file", "", "empty, or a gripper file (YAML)",
+           "take this finger's mount and actuator from the gripper file's entry with frame_prefix, the file the "
+           "composed URDF is made from (then parent_frame, the mounts and the actuator keys must not be set)"),
       text("solver", "robust", "robust, paper, table", "the model's solver (see Solvers)"),
       flag("publish_tf", true,
            "true: this node broadcasts its finger's frames (lowest latency); false: it publishes joint_states only and a "
@@ -204,6 +207,27 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   }
   s.urdf.mount_xyz_m = readTriple(nh, "mount_xyz_m");
   s.urdf.mount_rpy_rad = readTriple(nh, "mount_rpy_rad");
+  s.gripper_file = readString(nh, "gripper_file");
+  if (!s.gripper_file.empty()) {
+    // The finger as the gripper file defines it (one definition for the composed URDF and the node): its mount and
+    // its actuator. Giving either here as well would be a second definition, so it is refused.
+    for (const char* key : {"parent_frame", "mount_xyz_m", "mount_rpy_rad"}) {
+      if (nh.hasParam(key)) throw ParameterError(std::string("parameter '") + key + "' is set, but gripper_file defines it");
+    }
+    if (!raw.empty()) {
+      throw ParameterError("parameter '" + raw.begin()->first + "' is set, but gripper_file defines the actuator");
+    }
+    bool found = false;
+    for (const GripperFinger& f : loadGripperFile(s.gripper_file)) {
+      if (f.mount.prefix != s.urdf.prefix) continue;
+      s.urdf = f.mount;  // max_gauge_pa is read below, as for any finger
+      s.finger = f.parameters;
+      found = true;
+    }
+    if (!found) {
+      throw ParameterError("gripper file '" + s.gripper_file + "' has no finger with prefix '" + s.urdf.prefix + "'");
+    }
+  }
   try {
     s.solver = parseSolverName(readString(nh, "solver"));
   } catch (const ParameterError& e) {
@@ -216,8 +240,8 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   s.input.time_jump_s = readDouble(nh, "time_jump_s");
   s.urdf.max_gauge_pa = readDouble(nh, "max_gauge_pa");
   s.input.max_gauge_pa = s.urdf.max_gauge_pa;
-  s.input.validated_max_gauge_pa = readDouble(nh, "validated_max_gauge_pa", s.urdf.max_gauge_pa);
   s.input.atmospheric_pa = s.finger.atmospheric_pressure_pa;
+  s.input.validated_max_gauge_pa = readDouble(nh, "validated_max_gauge_pa", s.urdf.max_gauge_pa);
   s.description_param = readString(nh, "description_param");
   s.pressure_topic = readString(nh, "pressure_topic");
   s.joint_states_topic = readString(nh, "joint_states_topic");

@@ -44,6 +44,7 @@ struct NodeSettings {
   PressureInputSettings input;  ///< the input rules' settings (atmospheric_pa and max_gauge_pa follow finger, urdf)
   SolverKind solver;
   bool publish_tf = true;
+  std::string gripper_file;
   std::string description_param, pressure_topic, joint_states_topic, finger_state_topic;
 };
 
