@@ -11,6 +11,6 @@ cmake -S "$ROOT" -B "$ROOT/build" -DCATKIN_DEVEL_PREFIX="$ROOT/devel" \
   -DCMAKE_INSTALL_PREFIX="$ROOT/build/.install" -Dpneumatic_finger_BENCHMARKS=ON \
   -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/usr/bin/python3 >"$ROOT/build.log" 2>&1 \
   || { cat "$ROOT/build.log"; exit 1; }
-touch "$ROOT/build/CATKIN_IGNORE"  # rospack must not look for packages in the build folder
+touch "$ROOT/build/CATKIN_IGNORE" "$ROOT/devel/CATKIN_IGNORE"  # rospack and catkin_lint must not look in build/ or devel/
 make -C "$ROOT/build" -j"$(nproc)" all tests >>"$ROOT/build.log" 2>&1 || { tail -50 "$ROOT/build.log"; exit 1; }
 echo "build: ok (log in build.log)"
