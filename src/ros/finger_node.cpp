@@ -300,7 +300,11 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
   tip.child_frame_id = tipLinkName(prefix);
   tip.transform.translation.x = settings_.finger.segment_length_m.back();
   tip.transform.rotation.w = 1.0;
-  if (settings_.publish_tf) static_tf_.sendTransform(std::vector<geometry_msgs::TransformStamped>{mount, tip});
+  if (settings_.publish_tf) {
+    tf_ = std::make_unique<tf2_ros::TransformBroadcaster>();
+    static_tf_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+    static_tf_->sendTransform(std::vector<geometry_msgs::TransformStamped>{mount, tip});
+  }
 
   // Messages sized once; the per-pressure cycle only writes numbers into them.
   joint_states_.name.resize(static_cast<std::size_t>(n));
@@ -404,7 +408,7 @@ void FingerNode::publish(const FingerState& state, const ros::Time& stamp, bool 
   finger_state_.status = state.status == EvaluationStatus::kVacuum ? FingerModelState::STATUS_VACUUM
                           : clamped                                  ? FingerModelState::STATUS_CLAMPED
                                                                      : FingerModelState::STATUS_OK;
-  if (settings_.publish_tf) tf_.sendTransform(transforms_);
+  if (tf_) tf_->sendTransform(transforms_);
   joint_states_pub_.publish(joint_states_);
   finger_state_pub_.publish(finger_state_);
 }

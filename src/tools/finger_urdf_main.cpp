@@ -1,5 +1,6 @@
 // finger_urdf: the finger's URDF (generated with urdfdom) to stdout or a file. See the README, "Tools".
 #include <array>
+#include <cmath>
 #include <fstream>
 #include <iostream>
 
@@ -10,7 +11,12 @@ namespace pf = pneumatic_finger;
 
 namespace {
 
-std::array<double, 3> parseTriple(const std::string& option, const std::string& text) {
+// "X,Y,Z", or a launch file's "[x, y, z]".
+std::array<double, 3> parseTriple(const std::string& option, const std::string& given) {
+  std::string text;
+  for (char c : given) {
+    if (c != '[' && c != ']' && c != ' ') text += c;
+  }
   const std::vector<std::string> f = pf::splitFields(text);
   if (f.size() != 3) throw pf::ParameterError(option + " expects three numbers X,Y,Z, got '" + text + "'");
   return {pf::parseFiniteOption(option, f[0]), pf::parseFiniteOption(option, f[1]), pf::parseFiniteOption(option, f[2])};
@@ -33,27 +39,34 @@ int main(int argc, char** argv) {
   app.add_option("-o,--output", output, "write here instead of stdout");
   std::string robot, gripper;
   auto* robot_opt = app.add_option("--robot", robot, "compose: the robot's URDF, to which every finger of --gripper is attached");
-  auto* gripper_opt = app.add_option("--gripper", gripper, "compose: the gripper file (YAML: per finger prefix, parent, xyz, rpy, config)");
+  auto* gripper_opt = app.add_option("--gripper", gripper,
+                                     "the gripper file (YAML: per finger prefix, parent, xyz, rpy, config); with --robot "
+                                     "compose them all, without it write the finger with --prefix");
   robot_opt->needs(gripper_opt);
-  gripper_opt->needs(robot_opt);
   return pf::runTool("finger_urdf", app, argc, argv, [&] {
-    if (!robot.empty()) {
-      // One description for the whole robot: what robot_state_publisher, rviz and a planner read.
-      const std::string urdf = pf::composeRobotUrdfFiles(robot, gripper);
-      if (output.empty()) {
-        std::cout << urdf;
-      } else {
-        std::ofstream out(output);
-        if (!(out << urdf)) throw pf::ParameterError("cannot write '" + output + "'");
-      }
-      return 0;
-    }
     if (!xyz.empty()) options.mount_xyz_m = parseTriple("--xyz", xyz);
     if (!rpy.empty()) options.mount_rpy_rad = parseTriple("--rpy", rpy);
     if (!(options.max_gauge_pa > 0) || !std::isfinite(options.max_gauge_pa)) {
       throw pf::ParameterError("--max-gauge-pa must be a finite pressure > 0");
     }
-    const std::string urdf = pf::fingerUrdf(parameters.load(), options);
+    std::string urdf;
+    if (!robot.empty()) {
+      // One description for the whole robot: what robot_state_publisher, rviz and a planner read.
+      urdf = pf::composeRobotUrdfFiles(robot, gripper);
+    } else if (!gripper.empty()) {
+      // One finger of the gripper file (the one with --prefix), as its finger_node describes it.
+      for (const pf::GripperFinger& f : pf::loadGripperFile(gripper)) {
+        if (f.mount.prefix != options.prefix) continue;
+        pf::FingerUrdfOptions mount = f.mount;
+        mount.max_gauge_pa = options.max_gauge_pa;
+        urdf = pf::fingerUrdf(f.parameters, mount);
+      }
+      if (urdf.empty()) {
+        throw pf::ParameterError("gripper file '" + gripper + "' has no finger with prefix '" + options.prefix + "'");
+      }
+    } else {
+      urdf = pf::fingerUrdf(parameters.load(), options);
+    }
     if (output.empty()) {
       std::cout << urdf;
     } else {

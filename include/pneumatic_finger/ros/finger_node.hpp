@@ -68,8 +68,9 @@ class FingerNode {
   ros::Subscriber pressure_sub_;
   ros::Publisher joint_states_pub_, finger_state_pub_;
   ros::ServiceServer inverse_srv_;
-  tf2_ros::TransformBroadcaster tf_;
-  tf2_ros::StaticTransformBroadcaster static_tf_;
+  // Made only with publish_tf: without it the node does not even advertise /tf and /tf_static.
+  std::unique_ptr<tf2_ros::TransformBroadcaster> tf_;
+  std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_tf_;
   diagnostic_updater::Updater diagnostics_;
   ros::WallTimer diagnostics_timer_;
 
