@@ -1,4 +1,5 @@
 // rostest: the running finger_node against the core model (test/finger_node.test starts it).
+#include <dynamic_reconfigure/Reconfigure.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <sensor_msgs/FluidPressure.h>
@@ -230,6 +231,69 @@ TEST_F(FingerNodeTest, EveryFrameHasExactlyOnePublisher) {
     EXPECT_EQ(f.second.size(), 1u) << f.first << " has " << f.second.size() << " publishers";
   }
   EXPECT_EQ(frames, links);
+}
+
+namespace {
+
+// Sets doubles through dynamic_reconfigure's service, as `dynparam set` does; returns the node's answer.
+std::map<std::string, double> reconfigure(ros::NodeHandle& nh, const std::map<std::string, double>& values) {
+  ros::ServiceClient client = nh.serviceClient<dynamic_reconfigure::Reconfigure>("/finger_node/set_parameters");
+  EXPECT_TRUE(client.waitForExistence(ros::Duration(10)));
+  dynamic_reconfigure::Reconfigure srv;
+  for (const auto& kv : values) {
+    dynamic_reconfigure::DoubleParameter d;
+    d.name = kv.first;
+    d.value = kv.second;
+    srv.request.config.doubles.push_back(d);
+  }
+  EXPECT_TRUE(client.call(srv));
+  std::map<std::string, double> answer;
+  for (const auto& d : srv.response.config.doubles) answer[d.name] = d.value;
+  return answer;
+}
+
+}  // namespace
+
+TEST_F(FingerNodeTest, ReconfigureAppliesLiveValidatesAndRepublishesTheUrdf) {
+  const pf::FingerParameters package = packageParameters();
+  // At start-up the server shows the values the node runs with.
+  auto now = reconfigure(*nh_, {});
+  EXPECT_EQ(now["shear_modulus_pa"], package.shear_modulus_pa[0]);
+  EXPECT_EQ(now["chamber_gap_m"], package.chamber_gap_m[0]);
+  // A new shear modulus: the next pressure is modelled with it, bit for bit, and the URDF's limits follow.
+  now = reconfigure(*nh_, {{"shear_modulus_pa", 2.0e8}});
+  EXPECT_EQ(now["shear_modulus_pa"], 2.0e8);
+  pf::RawParameterMap raw = package.toRaw();
+  raw["shear_modulus_pa"] = {{2.0e8}, false};
+  const pf::FingerParameters softer = pf::FingerParameters::fromRaw(raw);
+  pf::FingerModel model(softer);
+  const ros::Time stamp = publishAndWait(150000.0);
+  {
+    std::lock_guard<std::mutex> lock(listener_->mutex);
+    ASSERT_TRUE(listener_->joint_states.count(stamp));
+    for (int i = 0; i < 7; ++i) {
+      EXPECT_EQ(listener_->joint_states[stamp].position[static_cast<std::size_t>(i)],
+                model.evaluate(150000.0).joint_angle_rad[i]);
+    }
+  }
+  std::string xml;
+  ASSERT_TRUE(nh_->getParam("robot_description", xml));
+  const urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(xml);
+  ASSERT_TRUE(urdf);
+  EXPECT_EQ(urdf->getJoint(kPrefix + "joint_1")->limits->upper, model.evaluate(294199.5).joint_angle_rad[0]);
+  // A value outside its range is refused, like a bad rosparam: the old value stays, and so does the model.
+  now = reconfigure(*nh_, {{"chamber_gap_m", -1.0}});
+  EXPECT_EQ(now["chamber_gap_m"], package.chamber_gap_m[0]);
+  now = reconfigure(*nh_, {{"max_rate_hz", -5.0}});
+  EXPECT_EQ(now["max_rate_hz"], 0.0);
+  const ros::Time after = publishAndWait(120000.0);
+  {
+    std::lock_guard<std::mutex> lock(listener_->mutex);
+    ASSERT_TRUE(listener_->joint_states.count(after));
+    EXPECT_EQ(listener_->joint_states[after].position[3], model.evaluate(120000.0).joint_angle_rad[3]);
+  }
+  // Back to the package's actuator for the other tests.
+  reconfigure(*nh_, {{"shear_modulus_pa", package.shear_modulus_pa[0]}});
 }
 
 TEST_F(FingerNodeTest, InverseServiceRoundTrips) {

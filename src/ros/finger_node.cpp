@@ -265,17 +265,21 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   return s;
 }
 
-FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
-    : settings_(readNodeSettings(private_nh)), input_(settings_.input) {
+void FingerNode::buildModel(ros::NodeHandle& nh) {
   ModelOptions options;
   options.solver = settings_.solver;
   options.table_max_gauge_pa = settings_.urdf.max_gauge_pa;
   model_ = std::make_unique<FingerModel>(settings_.finger, options);
+  // The URDF, for rviz and for anyone who reads the chain (planners): the same names as joint_states and tf. Its
+  // joint limits follow the actuator, so it is republished when the actuator changes.
+  nh.setParam(settings_.description_param, fingerUrdf(settings_.finger, settings_.urdf));
+}
+
+FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
+    : settings_(readNodeSettings(private_nh)), input_(settings_.input), nh_(nh) {
+  buildModel(nh);
   const int n = settings_.finger.chamber_count;
   const std::string& prefix = settings_.urdf.prefix;
-
-  // The URDF, for rviz and for anyone who reads the chain (planners): the same names as joint_states and tf.
-  nh.setParam(settings_.description_param, fingerUrdf(settings_.finger, settings_.urdf));
 
   // Frames, with publish_tf (the default): this node is their only publisher. The two fixed ones (mount, tip) go out
   // once, latched on /tf_static; the N joints go on /tf with each pressure. Without publish_tf, a
@@ -328,6 +332,8 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
   joint_states_pub_ = nh.advertise<sensor_msgs::JointState>(settings_.joint_states_topic, 10);
   finger_state_pub_ = nh.advertise<FingerModelState>(settings_.finger_state_topic, 10);
   inverse_srv_ = nh.advertiseService("pressure_for_tip_angle", &FingerNode::onInverse, this);
+  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<FingerNodeConfig>>(private_nh);
+  reconfigure_->setCallback([this](FingerNodeConfig& config, uint32_t level) { onReconfigure(config, level); });
   diagnostics_.setHardwareID(prefix + "pneumatic_finger");
   diagnostics_.add("pressure input", this, &FingerNode::diagnose);
   // Wall time, and force_update: under simulated time that jumps back (a looping bag, a reset) a ROS-time timer,
@@ -421,6 +427,58 @@ bool FingerNode::onInverse(PressureForTipAngle::Request& req, PressureForTipAngl
   res.absolute_pa = res.success ? gauge + settings_.finger.atmospheric_pressure_pa : 0.0;
   res.message = res.success ? "" : why + " (max_gauge_pa)";
   return true;  // a refused request is an answer, not a transport failure
+}
+
+FingerNodeConfig FingerNode::currentConfig() const {
+  FingerNodeConfig c;
+  c.shear_modulus_pa = settings_.finger.shear_modulus_pa[0];
+  c.chamber_gap_m = settings_.finger.chamber_gap_m[0];
+  c.max_rate_hz = settings_.input.max_rate_hz;
+  c.stale_timeout_s = settings_.input.stale_timeout_s;
+  return c;
+}
+
+void FingerNode::onReconfigure(FingerNodeConfig& config, uint32_t /*level*/) {
+  const FingerNodeConfig now = currentConfig();
+  if (!reconfigure_synced_) {
+    // The server's first call carries what it read from the parameter server (or its own defaults, for a
+    // per-chamber list it cannot read): the node's actual values win.
+    reconfigure_synced_ = true;
+    config = now;
+    return;
+  }
+  try {
+    NodeSettings next = settings_;
+    const bool actuator = config.shear_modulus_pa != now.shear_modulus_pa || config.chamber_gap_m != now.chamber_gap_m;
+    if (actuator) {
+      // The same validation as a parameter file or a rosparam: fromRaw refuses, naming the key and the range.
+      RawParameterMap raw = settings_.finger.toRaw();
+      if (config.shear_modulus_pa != now.shear_modulus_pa) raw["shear_modulus_pa"] = {{config.shear_modulus_pa}, false};
+      if (config.chamber_gap_m != now.chamber_gap_m) raw["chamber_gap_m"] = {{config.chamber_gap_m}, false};
+      next.finger = FingerParameters::fromRaw(raw);
+    }
+    for (const auto& kv : {std::make_pair("max_rate_hz", config.max_rate_hz),
+                           std::make_pair("stale_timeout_s", config.stale_timeout_s)}) {
+      const NodeParameterSpec& sp = spec(kv.first);
+      if (!std::isfinite(kv.second) || (sp.min_open ? !(kv.second > sp.min_value) : !(kv.second >= sp.min_value)) ||
+          !(kv.second <= sp.max_value)) {
+        throw ParameterError(std::string("parameter '") + kv.first + "' = " + formatExact(kv.second) +
+                             " is outside its allowed range " + sp.allowed);
+      }
+    }
+    next.input.max_rate_hz = config.max_rate_hz;
+    next.input.stale_timeout_s = config.stale_timeout_s;
+    settings_ = next;
+    input_.updateSettings(settings_.input);
+    if (actuator) {
+      buildModel(nh_);
+      ROS_INFO("finger_node: reconfigured: shear_modulus_pa %s Pa, chamber_gap_m %s m; URDF republished",
+               formatExact(config.shear_modulus_pa).c_str(), formatExact(config.chamber_gap_m).c_str());
+    }
+  } catch (const ParameterError& e) {
+    ROS_ERROR("finger_node: reconfigure refused: %s; keeping the previous values", e.what());
+    config = now;
+  }
 }
 
 void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {

@@ -82,6 +82,9 @@ class PressureInputPolicy {
   /// before the first message, OK otherwise. A zero stamp is not a problem.
   InputReport report(double now_s);
 
+  /// New settings (a live reconfiguration); the counters and the timeline stay.
+  void updateSettings(const PressureInputSettings& settings) { settings_ = settings; }
+
   const InputCounters& counters() const { return counters_; }
   const PressureInputSettings& settings() const { return settings_; }
   double lastGaugePa() const { return last_gauge_pa_; }

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <diagnostic_updater/diagnostic_updater.h>
+#include <dynamic_reconfigure/server.h>
 #include <ros/ros.h>
 #include <sensor_msgs/FluidPressure.h>
 #include <sensor_msgs/JointState.h>
@@ -14,6 +15,7 @@
 #include <vector>
 
 #include "pneumatic_finger/FingerModelState.h"
+#include "pneumatic_finger/FingerNodeConfig.h"
 #include "pneumatic_finger/PressureForTipAngle.h"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/pressure_input.hpp"
@@ -61,6 +63,11 @@ class FingerNode {
   void onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg);
   bool onInverse(PressureForTipAngle::Request& req, PressureForTipAngle::Response& res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void onReconfigure(FingerNodeConfig& config, uint32_t level);
+  /// The live values as the node has them (chamber 1's for per-chamber keys).
+  FingerNodeConfig currentConfig() const;
+  /// Builds the model and publishes the URDF from settings_ (at start-up, and when the actuator is reconfigured).
+  void buildModel(ros::NodeHandle& nh);
   void publish(const FingerState& state, const ros::Time& stamp, bool clamped);
 
   NodeSettings settings_;
@@ -81,6 +88,11 @@ class FingerNode {
 
   // The input rules (stamps, time jumps, clamping, throttling, staleness) and their counters: ROS-free, in the core.
   PressureInputPolicy input_;
+
+  // dynamic_reconfigure: the calibrated parameters and the input rates, validated like rosparams, applied live.
+  std::unique_ptr<dynamic_reconfigure::Server<FingerNodeConfig>> reconfigure_;
+  bool reconfigure_synced_ = false;
+  ros::NodeHandle nh_;
 };
 
 }  // namespace pneumatic_finger
