@@ -22,6 +22,8 @@ PACKAGES=("$@"
   libcli11-dev
   # the cell sequencer's forward kinematics (package.xml: kdl_parser)
   libkdl-parser-dev liborocos-kdl-dev
+  # nodelets (package.xml: nodelet, pluginlib)
+  libnodeletlib-dev libnodelet-dev libnodeletlib-tools pluginlib-dev
   # live parameters (package.xml: dynamic_reconfigure)
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
   # benchmarks (package.xml: benchmark, gsl)
