@@ -201,6 +201,26 @@ TEST(UrdfCli, GeneratedUrdfPassesCheckUrdfWithPrefixedNames) {
   EXPECT_EQ(xml.find("<mesh"), std::string::npos);  // simple shapes only
 }
 
+TEST(UrdfCli, TheComposedRobotPassesCheckUrdfAsOneTree) {
+  const std::string file = testing::TempDir() + "/composed.urdf";
+  const std::string gen = std::string(FINGER_URDF_EXE) + " --robot " + PACKAGE_SOURCE_DIR +
+                          "/urdf/industrial_arm.urdf --gripper " + PACKAGE_SOURCE_DIR + "/config/gripper.yaml -o " + file;
+  ASSERT_EQ(std::system(gen.c_str()), 0);
+  const CliRun check = runShell("check_urdf " + file);
+  ASSERT_EQ(check.status, 0) << check.out << check.err;
+  EXPECT_NE(check.out.find("root Link: world"), std::string::npos) << check.out;
+  for (const char* link : {"gripper_plate", "finger_a_tip", "finger_b_tip", "finger_c_tip"}) {
+    EXPECT_NE(check.out.find(link), std::string::npos) << link;
+  }
+  // A bad gripper file: exit 2, one line naming the problem.
+  const std::string bad = testing::TempDir() + "/bad_gripper.yaml";
+  std::ofstream(bad) << "fingers:\n  - {prefix: x_, parent: flange}\n";
+  const CliRun refused = runShell(std::string(FINGER_URDF_EXE) + " --robot " + PACKAGE_SOURCE_DIR +
+                                  "/urdf/industrial_arm.urdf --gripper " + bad);
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find("no link 'flange'"), std::string::npos) << refused.err;
+}
+
 TEST(UrdfCli, InvalidPrefixIsRefused) {
   const std::string cmd = std::string(FINGER_URDF_EXE) + " --prefix 'bad name' >/dev/null 2>&1";
   const int raw = std::system(cmd.c_str());
