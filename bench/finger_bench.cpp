@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/stages.hpp"
 #include "reference_quad.hpp"
@@ -252,6 +253,22 @@ void benchPrimitive(benchmark::State& state, int which) {
   state.SetLabel(which == 0 ? "sqrt" : which == 1 ? "division" : "atan (glibc)");
 }
 
+// The contact rule's cost beside the free finger's (robust solver, validated range): an obstacle out of reach (the
+// reach test only), and a disk the tip reaches (bracketing and bisection for one touch at the higher pressures).
+void benchContact(benchmark::State& state, int which) {
+  const std::vector<double>& pressures = validatedPressures();
+  pf::FingerModel model(kParams);
+  const pf::ContactSolver solver(model);
+  const pf::Obstacle obstacle = which == 0 ? pf::Obstacle::disk(0.0, 0.2, 0.01) : pf::Obstacle::disk(0.075, 0.035, 0.01);
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const pf::ContactState s = solver.solve(pressures[i], obstacle);
+    benchmark::DoNotOptimize(s.backbone_m.data());
+    if (++i == pressures.size()) i = 0;
+  }
+  state.SetLabel(which == 0 ? "contact: obstacle out of reach" : "contact: disk at the tip, one touch");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -268,6 +285,10 @@ int main(int argc, char** argv) {
   for (int which = 0; which < 3; ++which) {
     benchmark::RegisterBenchmark(("latency/" + std::to_string(which)).c_str(),
                                  [which](benchmark::State& s) { benchPrimitive(s, which); });
+  }
+  for (int which = 0; which < 2; ++which) {
+    benchmark::RegisterBenchmark(("contact/" + std::to_string(which)).c_str(),
+                                 [which](benchmark::State& s) { benchContact(s, which); });
   }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

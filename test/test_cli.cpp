@@ -138,6 +138,24 @@ TEST(Cli, BadInputExitsTwoWithOneLineNamingItAndNoStdout) {
   }
 }
 
+TEST(Cli, AnObstacleDiskHoldsTheFingerWhereItTouches) {
+  // A disk in front of the tip's path: below the touch the free finger, above it the same held shape.
+  const CliRun free = run("--gauge-pa 98066.5 --gauge-pa 196133");
+  const CliRun held = run("--gauge-pa 98066.5 --gauge-pa 196133 --obstacle-disk 0.075,0.035,0.01");
+  ASSERT_EQ(held.status, 0) << held.err;
+  const auto f = lines(free.out), h = lines(held.out);
+  ASSERT_EQ(h.size(), 3u);
+  EXPECT_EQ(h[1], f[1]) << "not yet touching: the free finger";
+  EXPECT_NE(h[2], f[2]) << "touching: held";
+  EXPECT_LT(std::stod(fields(h[2])[10]), std::stod(fields(f[2])[10])) << "joint 7 held below its free angle";
+  const CliRun bad = run("--gauge-pa 1 --obstacle-disk 0.07,0.03,-1");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("radius"), std::string::npos) << bad.err;
+  const CliRun short_list = run("--gauge-pa 1 --obstacle-disk 0.07,0.03");
+  EXPECT_EQ(short_list.status, 2);
+  EXPECT_NE(short_list.err.find("X,Y,R"), std::string::npos) << short_list.err;
+}
+
 TEST(Cli, VacuumWarnsAndPrintsTheStraightFinger) {
   const CliRun r = run("--gauge-pa -20000");
   ASSERT_EQ(r.status, 0);

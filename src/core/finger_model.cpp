@@ -370,6 +370,19 @@ const FingerState& FingerModel::evaluate(double gauge_pa) {
   return state_;
 }
 
+bool FingerModel::jointAnglesAt(double gauge_pa, double* q) const {
+  std::array<double, kMaxChamberCount> theta;
+  for (std::size_t g = 0; g < groups_.size(); ++g) theta[g] = solveGroup(groups_[g], gauge_pa, false).half.rad;
+  double previous = 0.0;  // eq 37: q_n = theta_{n-1} + theta_n, theta_0 = 0 (the passive base segment)
+  for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
+    const double t = theta[static_cast<std::size_t>(group_of_chamber_[k])];
+    if (!std::isfinite(t)) return false;
+    q[k] = previous + t;
+    previous = t;
+  }
+  return true;
+}
+
 double FingerModel::tipAngleAt(double gauge_pa) const {
   // Theta_N = sum_n q_n = 2 sum_n theta_n - theta_N. The half angles live on the stack (at most the largest
   // chamber_count), not in the model's scratch, so that const methods are safe to call from several threads.

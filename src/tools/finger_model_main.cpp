@@ -4,6 +4,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
 
@@ -42,7 +43,9 @@ void printParameterTable() {
   }
 }
 
-void printCsv(pf::FingerModel& model, const std::vector<double>& pressures) {
+void printCsv(pf::FingerModel& model, const std::vector<double>& pressures, const pf::Obstacle* obstacle) {
+  const pf::ContactSolver contact(model);
+  bool warned_overlap = false;
   const int n = model.chamberCount();
   std::ostringstream out;
   out << "gauge_pa,stretch,bulge_m,half_angle_rad";
@@ -70,8 +73,21 @@ void printCsv(pf::FingerModel& model, const std::vector<double>& pressures) {
     }
     out << pf::formatExact(p) << ',' << pf::formatExact(s.stretch[0]) << ',' << pf::formatExact(s.bulge_m[0]) << ','
         << pf::formatExact(s.half_angle_rad[0]);
-    for (int j = 0; j < n; ++j) out << ',' << pf::formatExact(s.joint_angle_rad[j]);
-    const Eigen::Vector2d tip = s.tip();
+    Eigen::VectorXd q = s.joint_angle_rad;
+    Eigen::Vector2d tip = s.tip();
+    if (obstacle) {
+      // The finger closing on the obstacle: joints held where the backbone touched it (docs/GRASP.md).
+      const pf::ContactState c = contact.solve(p, *obstacle);
+      if (c.status == pf::ContactState::Status::kOverlapsAtRest && !warned_overlap) {
+        std::cerr << "finger_model: warning: the obstacle overlaps the straight finger; printing the free finger\n";
+        warned_overlap = true;
+      }
+      if (c.status == pf::ContactState::Status::kInContact) {
+        q = c.joint_angle_rad;
+        tip = c.backbone_m.col(c.backbone_m.cols() - 1);
+      }
+    }
+    for (int j = 0; j < n; ++j) out << ',' << pf::formatExact(q[j]);
     out << ',' << pf::formatExact(tip.x()) << ',' << pf::formatExact(tip.y()) << '\n';
   }
   std::cout << out.str();
@@ -91,6 +107,10 @@ int main(int argc, char** argv) {
   app.add_option("--gauge-pa", gauges, "gauge pressure P (Pa); repeat for several rows")->allow_extra_args(false);
   app.add_option("--sweep-pa", sweep, "FROM:TO:COUNT, evenly spaced gauge pressures (Pa)");
   app.add_flag("--parameters", parameter_table, "print the parameter table (Markdown) and exit");
+  std::string disk;
+  app.add_option("--obstacle-disk", disk,
+                 "X,Y,R: a disk in the finger's plane (m; x along the unbent finger from the mount, y toward the "
+                 "strain-limited side); the finger closes on it instead of passing through");
   return pf::runTool("finger_model", app, argc, argv, [&] {
     if (parameter_table) {
       printParameterTable();
@@ -105,7 +125,16 @@ int main(int argc, char** argv) {
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);
     pf::FingerModel model(parameters.load(), options);
-    printCsv(model, pressures);
+    pf::Obstacle obstacle = pf::Obstacle::disk(0, 0, 1);
+    if (!disk.empty()) {
+      const std::vector<std::string> f = pf::splitFields(disk);
+      if (f.size() != 3) throw pf::ParameterError("--obstacle-disk expects X,Y,R, got '" + disk + "'");
+      obstacle = pf::Obstacle::disk(pf::parseFiniteOption("--obstacle-disk X", f[0]),
+                                    pf::parseFiniteOption("--obstacle-disk Y", f[1]),
+                                    pf::parseFiniteOption("--obstacle-disk R", f[2]));
+      if (!obstacle.problem().empty()) throw pf::ParameterError("--obstacle-disk: " + obstacle.problem());
+    }
+    printCsv(model, pressures, disk.empty() ? nullptr : &obstacle);
     return 0;
   });
 }

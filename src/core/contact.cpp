@@ -1,0 +1,316 @@
+#include "pneumatic_finger/core/contact.hpp"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace pneumatic_finger {
+
+namespace {
+
+using Vec = Eigen::Vector2d;
+
+double cross(const Vec& a, const Vec& b) { return a.x() * b.y() - a.y() * b.x(); }
+
+// Parameter t in [0, 1] of the point of segment p -> q nearest to c.
+double nearestT(const Vec& p, const Vec& q, const Vec& c) {
+  const Vec d = q - p;
+  const double len2 = d.squaredNorm();
+  if (!(len2 > 0)) return 0.0;
+  return std::clamp((c - p).dot(d) / len2, 0.0, 1.0);
+}
+
+double pointSegmentDistance(const Vec& c, const Vec& p, const Vec& q) {
+  return (p + nearestT(p, q, c) * (q - p) - c).norm();
+}
+
+bool segmentsCross(const Vec& a, const Vec& b, const Vec& c, const Vec& d) {
+  const double d1 = cross(b - a, c - a), d2 = cross(b - a, d - a), d3 = cross(d - c, a - c), d4 = cross(d - c, b - c);
+  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0)) && d1 != 0 && d2 != 0 && d3 != 0 && d4 != 0;
+}
+
+double segmentSegmentDistance(const Vec& a, const Vec& b, const Vec& c, const Vec& d) {
+  if (segmentsCross(a, b, c, d)) return 0.0;
+  return std::min({pointSegmentDistance(a, c, d), pointSegmentDistance(b, c, d), pointSegmentDistance(c, a, b),
+                   pointSegmentDistance(d, a, b)});
+}
+
+}  // namespace
+
+Obstacle Obstacle::disk(double x_m, double y_m, double radius_m) {
+  Obstacle o;
+  o.kind_ = Kind::kDisk;
+  o.center_ = Vec(x_m, y_m);
+  o.radius_ = radius_m;
+  return o;
+}
+
+Obstacle Obstacle::polygon(const std::vector<Eigen::Vector2d>& vertices_m) {
+  Obstacle o;
+  o.kind_ = Kind::kPolygon;
+  o.vertices_ = vertices_m;
+  // Counter-clockwise, so that "inside" is to the left of every edge.
+  double area = 0;
+  for (std::size_t i = 0; i < o.vertices_.size(); ++i) {
+    area += cross(o.vertices_[i], o.vertices_[(i + 1) % o.vertices_.size()]);
+  }
+  if (area < 0) std::reverse(o.vertices_.begin(), o.vertices_.end());
+  return o;
+}
+
+Obstacle Obstacle::ellipse(double x_m, double y_m, double a_m, double b_m, double angle_rad) {
+  Obstacle o;
+  o.kind_ = Kind::kEllipse;
+  o.center_ = Vec(x_m, y_m);
+  o.a_ = a_m;
+  o.b_ = b_m;
+  o.cos_ = std::cos(angle_rad);
+  o.sin_ = std::sin(angle_rad);
+  return o;
+}
+
+std::string Obstacle::problem() const {
+  switch (kind_) {
+    case Kind::kDisk:
+      if (!center_.allFinite() || !std::isfinite(radius_)) return "the disk's centre and radius must be finite";
+      if (!(radius_ > 0)) return "the disk's radius must be > 0";
+      return "";
+    case Kind::kEllipse:
+      if (!center_.allFinite() || !std::isfinite(a_) || !std::isfinite(b_) || !std::isfinite(cos_)) {
+        return "the ellipse's centre, semi-axes and angle must be finite";
+      }
+      if (!(a_ > 0 && b_ > 0)) return "the ellipse's semi-axes must be > 0";
+      return "";
+    case Kind::kPolygon: {
+      if (vertices_.size() < 3) return "a polygon needs at least 3 vertices";
+      for (const Vec& v : vertices_) {
+        if (!v.allFinite()) return "the polygon's vertices must be finite";
+      }
+      for (std::size_t i = 0; i < vertices_.size(); ++i) {
+        const Vec& a = vertices_[i];
+        const Vec& b = vertices_[(i + 1) % vertices_.size()];
+        const Vec& c = vertices_[(i + 2) % vertices_.size()];
+        if (!(cross(b - a, c - b) > 0)) return "the polygon must be convex, with no repeated or collinear vertices";
+      }
+      return "";
+    }
+  }
+  return "";
+}
+
+double Obstacle::clearance(const Eigen::Vector2d& p, const Eigen::Vector2d& q) const {
+  switch (kind_) {
+    case Kind::kDisk:
+      return pointSegmentDistance(center_, p, q) - radius_;
+    case Kind::kEllipse: {
+      // In the ellipse's own frame scaled to the unit circle, touching is preserved (an affine map); the distance
+      // there, scaled back by the smaller semi-axis, is 0 exactly at touching and continuous on either side.
+      auto toUnit = [this](const Vec& v) {
+        const Vec d = v - center_;
+        return Vec((cos_ * d.x() + sin_ * d.y()) / a_, (-sin_ * d.x() + cos_ * d.y()) / b_);
+      };
+      return (pointSegmentDistance(Vec::Zero(), toUnit(p), toUnit(q)) - 1.0) * std::min(a_, b_);
+    }
+    case Kind::kPolygon: {
+      const std::size_t n = vertices_.size();
+      auto inside = [this, n](const Vec& v) {
+        double depth = INFINITY;
+        for (std::size_t i = 0; i < n; ++i) {
+          const Vec& a = vertices_[i];
+          const Vec edge = vertices_[(i + 1) % n] - a;
+          const double s = cross(edge, v - a) / edge.norm();  // distance to the left of the edge's line
+          if (!(s > 0)) return 0.0;
+          depth = std::min(depth, s);
+        }
+        return depth;
+      };
+      const double depth = std::max(inside(p), inside(q));
+      if (depth > 0) return -depth;
+      double d = INFINITY;
+      for (std::size_t i = 0; i < n; ++i) d = std::min(d, segmentSegmentDistance(p, q, vertices_[i], vertices_[(i + 1) % n]));
+      return d;
+    }
+  }
+  return INFINITY;
+}
+
+Eigen::Vector2d Obstacle::nearestPoint(const Eigen::Vector2d& p, const Eigen::Vector2d& q) const {
+  switch (kind_) {
+    case Kind::kDisk:
+      return p + nearestT(p, q, center_) * (q - p);
+    case Kind::kEllipse: {
+      auto toUnit = [this](const Vec& v) {
+        const Vec d = v - center_;
+        return Vec((cos_ * d.x() + sin_ * d.y()) / a_, (-sin_ * d.x() + cos_ * d.y()) / b_);
+      };
+      return p + nearestT(toUnit(p), toUnit(q), Vec::Zero()) * (q - p);  // an affine map keeps t
+    }
+    case Kind::kPolygon: {
+      // Among the segment's ends and the feet of the polygon's corners, the one nearest the polygon.
+      std::vector<Vec> candidates = {p, q};
+      for (const Vec& v : vertices_) candidates.push_back(p + nearestT(p, q, v) * (q - p));
+      Vec best = p;
+      double best_d = INFINITY;
+      for (const Vec& c : candidates) {
+        const double d = clearance(c, c);
+        if (d < best_d) best_d = d, best = c;
+      }
+      return best;
+    }
+  }
+  return p;
+}
+
+double Obstacle::distanceFromOrigin() const {
+  switch (kind_) {
+    case Kind::kDisk:
+      return center_.norm() - radius_;
+    case Kind::kEllipse:
+      return center_.norm() - std::max(a_, b_);  // a lower bound
+    case Kind::kPolygon: {
+      const double c = clearance(Vec::Zero(), Vec::Zero());
+      return std::max(c, 0.0);
+    }
+  }
+  return 0.0;
+}
+
+ContactSolver::ContactSolver(const FingerModel& model) : model_(model) {
+  const FingerParameters& p = model.parameters();
+  length_m_ = p.base_segment_length_m;
+  for (double z : p.segment_length_m) length_m_ += z;
+}
+
+void ContactSolver::backbone(const Eigen::VectorXd& q, Eigen::Matrix2Xd& points) const {
+  const FingerParameters& p = model_.parameters();
+  const int n = p.chamber_count;
+  points.resize(2, n + 2);
+  points.col(0) = Vec::Zero();
+  points.col(1) = Vec(p.base_segment_length_m, 0.0);
+  double direction = 0.0;
+  for (int i = 0; i < n; ++i) {
+    direction += q[i];
+    const double z = p.segment_length_m[static_cast<std::size_t>(i)];
+    points.col(i + 2) = points.col(i + 1) + z * Vec(std::cos(direction), std::sin(direction));
+  }
+}
+
+ContactState ContactSolver::solve(double gauge_pa, const Obstacle& obstacle) const {
+  const int n = model_.chamberCount();
+  ContactState out;
+  out.joint_angle_rad = Eigen::VectorXd::Zero(n);
+  out.held.assign(static_cast<std::size_t>(n), false);
+  const double pressure = std::max(gauge_pa, 0.0);
+  Eigen::VectorXd free_q(n);
+  if (!model_.jointAnglesAt(pressure, free_q.data())) {
+    out.status = ContactState::Status::kSolverFailure;
+    backbone(out.joint_angle_rad, out.backbone_m);
+    return out;
+  }
+  out.joint_angle_rad = free_q;
+  backbone(out.joint_angle_rad, out.backbone_m);
+  // Model only what the scene needs: an obstacle beyond the finger's reach costs one comparison.
+  if (obstacle.distanceFromOrigin() > length_m_) return out;
+  Eigen::Matrix2Xd points(2, n + 2);
+  backbone(Eigen::VectorXd::Zero(n), points);
+  for (int k = 0; k <= n; ++k) {
+    if (obstacle.clearance(points.col(k), points.col(k + 1)) <= 0) {
+      out.status = ContactState::Status::kOverlapsAtRest;
+      return out;
+    }
+  }
+
+  // Joints 1..frozen are held at frozen_q; the others follow q(p). Segment k (O_k -> O_k+1) moves with joints 1..k,
+  // so the segments that can still move are frozen+1..N.
+  int frozen = 0;
+  Eigen::VectorXd q(n), frozen_q = Eigen::VectorXd::Zero(n);
+  auto configure = [&](double p) {
+    if (!model_.jointAnglesAt(p, q.data())) return false;
+    q.head(frozen) = frozen_q.head(frozen);
+    backbone(q, points);
+    return true;
+  };
+  // The smallest clearance of the moving segments at pressure p, and which segment has it.
+  auto clearanceAt = [&](double p, int& segment) {
+    if (!configure(p)) return -std::numeric_limits<double>::infinity();
+    double c = INFINITY;
+    for (int k = frozen + 1; k <= n; ++k) {
+      const double ck = obstacle.clearance(points.col(k), points.col(k + 1));
+      if (ck < c) c = ck, segment = k;
+    }
+    return c;
+  };
+  // Brackets on a fixed grid in sqrt(p) (the angles grow like it), the same whatever pressure is asked for: the touch
+  // pressures, and so the frozen angles, then do not depend on the target pressure, and no joint moves back as the
+  // pressure rises. The grid runs one step past the target when needed, so a bracket is never cut short.
+  constexpr double kGridStep = 10.0;    // sqrt(Pa): 45 brackets up to 2 kg/cm^2
+  constexpr double kTouchM = 1e-12;     // segments this close at the touch are touching it too
+  double from = 0.0;
+  while (frozen < n) {
+    const double u0 = std::sqrt(from), u_end = std::sqrt(pressure);
+    double lo = -1.0, hi = -1.0;
+    int seg = 0;
+    std::array<double, 3> c{INFINITY, INFINITY, clearanceAt(from, seg)};  // the last three samples
+    for (int j = 1; lo < 0; ++j) {
+      const double u_prev = u0 + (j - 1) * kGridStep, u = u0 + j * kGridStep;
+      c = {c[1], c[2], clearanceAt(u * u, seg)};
+      if (c[2] <= 0) {
+        lo = u_prev * u_prev;
+        hi = u * u;
+        break;
+      }
+      // A grazing touch between two samples: a local minimum of the clearance, searched by golden sections; it
+      // counts when it reaches the touch distance.
+      if (j >= 2 && c[1] < c[0] && c[1] < c[2]) {
+        double a = u - 2 * kGridStep, b = u;
+        for (int it = 0; it < 200 && b - a > 1e-16 * b; ++it) {
+          const double m1 = b - 0.6180339887498949 * (b - a), m2 = a + 0.6180339887498949 * (b - a);
+          int s1 = 0, s2 = 0;
+          if (clearanceAt(m1 * m1, s1) < clearanceAt(m2 * m2, s2)) {
+            b = m2;
+          } else {
+            a = m1;
+          }
+        }
+        const double u_min = 0.5 * (a + b);
+        if (clearanceAt(u_min * u_min, seg) <= kTouchM) {
+          lo = hi = u_min * u_min;
+          break;
+        }
+      }
+      if (u >= u_end) break;  // clear up to (and past) the pressure asked for
+    }
+    if (lo < 0) break;
+    // Bisection on the touch condition: lo clear, hi touching, until the pressures agree to the last digits.
+    for (int it = 0; it < 200 && hi - lo > kRelativePressureTolerance * hi; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (clearanceAt(mid, seg) <= 0 ? hi : lo) = mid;
+    }
+    if (lo > pressure) break;  // the touch comes after the pressure asked for
+    // Freeze at lo, the last shape clear of the obstacle: no joint passes its free angle, nothing penetrates.
+    const double touch_c = clearanceAt(lo, seg);
+    if (!std::isfinite(touch_c)) {
+      out.status = ContactState::Status::kSolverFailure;
+      return out;
+    }
+    int m = seg;
+    for (int k = frozen + 1; k <= n; ++k) {
+      if (obstacle.clearance(points.col(k), points.col(k + 1)) <= touch_c + kTouchM) m = std::max(m, k);
+    }
+    if (out.touches == 0) out.first_touch_gauge_pa = lo;
+    ++out.touches;
+    out.contact_points_m.push_back(obstacle.nearestPoint(points.col(seg), points.col(seg + 1)));
+    frozen_q.head(m) = q.head(m);
+    frozen = m;
+    from = lo;
+  }
+  out.joint_angle_rad = free_q;
+  out.joint_angle_rad.head(frozen) = frozen_q.head(frozen);
+  for (int i = 0; i < frozen; ++i) out.held[static_cast<std::size_t>(i)] = true;
+  backbone(out.joint_angle_rad, out.backbone_m);
+  out.status = frozen > 0 ? ContactState::Status::kInContact : ContactState::Status::kFree;
+  return out;
+}
+
+}  // namespace pneumatic_finger

@@ -1,0 +1,202 @@
+// The contact rule (core/contact.hpp) against an independent reference written here: a fine pressure scan with its
+// own geometry and its own bisection. Then the rule's properties and its special cases.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "pneumatic_finger/core/contact.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+struct Disk {
+  double x, y, r;
+};
+
+// The reference: its own backbone and distance, a scan of 4000 pressures, and 200 bisection steps per touch.
+struct Reference {
+  std::vector<double> q;
+  std::vector<bool> held;
+  double first_touch = NAN;
+};
+
+std::vector<std::pair<double, double>> chain(const pf::FingerParameters& p, const std::vector<double>& q) {
+  std::vector<std::pair<double, double>> o = {{0.0, 0.0}, {p.base_segment_length_m, 0.0}};
+  double angle = 0;
+  for (std::size_t i = 0; i < q.size(); ++i) {
+    angle += q[i];
+    o.push_back({o.back().first + p.segment_length_m[i] * std::cos(angle),
+                 o.back().second + p.segment_length_m[i] * std::sin(angle)});
+  }
+  return o;
+}
+
+double distanceToSegment(const Disk& d, std::pair<double, double> a, std::pair<double, double> b) {
+  const double ux = b.first - a.first, uy = b.second - a.second;
+  double t = ((d.x - a.first) * ux + (d.y - a.second) * uy) / (ux * ux + uy * uy);
+  t = std::fmax(0.0, std::fmin(1.0, t));
+  return std::hypot(a.first + t * ux - d.x, a.second + t * uy - d.y);
+}
+
+Reference reference(const pf::FingerParameters& params, double pressure, const Disk& disk) {
+  const int n = params.chamber_count;
+  pf::FingerModel model(params);
+  auto free = [&](double p) {
+    const pf::FingerState& s = model.evaluate(p);
+    return std::vector<double>(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n);
+  };
+  Reference r;
+  r.held.assign(static_cast<std::size_t>(n), false);
+  std::vector<double> frozen_q(static_cast<std::size_t>(n), 0.0);
+  int frozen = 0;
+  auto config = [&](double p) {
+    std::vector<double> q = free(p);
+    for (int i = 0; i < frozen; ++i) q[static_cast<std::size_t>(i)] = frozen_q[static_cast<std::size_t>(i)];
+    return q;
+  };
+  auto penetrates = [&](double p) {
+    const auto o = chain(params, config(p));
+    for (int k = frozen + 1; k <= n; ++k) {
+      if (distanceToSegment(disk, o[static_cast<std::size_t>(k)], o[static_cast<std::size_t>(k + 1)]) <= disk.r) return true;
+    }
+    return false;
+  };
+  const int steps = 4000;
+  double previous = 0.0;
+  for (int i = 1; i <= steps && frozen < n; ++i) {
+    const double p = pressure * i / steps;
+    if (!penetrates(p)) {
+      previous = p;
+      continue;
+    }
+    double lo = previous, hi = p;
+    for (int it = 0; it < 200; ++it) {
+      const double mid = 0.5 * (lo + hi);
+      (penetrates(mid) ? hi : lo) = mid;
+    }
+    if (std::isnan(r.first_touch)) r.first_touch = lo;
+    const std::vector<double> q = config(lo);
+    const auto o = chain(params, q);
+    int m = 0;
+    for (int k = frozen + 1; k <= n; ++k) {
+      if (distanceToSegment(disk, o[static_cast<std::size_t>(k)], o[static_cast<std::size_t>(k + 1)]) - disk.r <= 1e-12) m = k;
+    }
+    for (int k = 0; k < m; ++k) frozen_q[static_cast<std::size_t>(k)] = q[static_cast<std::size_t>(k)];
+    frozen = std::max(frozen, m);
+    previous = lo;
+    i = static_cast<int>(std::floor(lo / pressure * steps));  // scan on from the touch
+  }
+  r.q = config(pressure);
+  for (int k = 0; k < frozen; ++k) r.held[static_cast<std::size_t>(k)] = true;
+  return r;
+}
+
+const pf::FingerParameters kFinger = pf::FingerParameters::defaults();
+
+}  // namespace
+
+TEST(Contact, MatchesTheIndependentReferenceForDisksAcrossTheFinger) {
+  pf::FingerModel model(kFinger);
+  const pf::ContactSolver solver(model);
+  // Disks on the strain-limited side that the curling finger reaches first with segment 3, 5, 6 and 7 (found by
+  // placing them 0.1 mm from a segment's middle at 1.2e5 Pa), one it never reaches, and one wide one.
+  const std::vector<Disk> disks = {{0.0388324, 0.00650505, 0.003}, {0.0567121, 0.0136807, 0.003},
+                                   {0.0632674, 0.0211602, 0.006}, {0.075, 0.035, 0.01},
+                                   {0.05, 0.02, 0.004},           {0.02, 0.03, 0.015}};
+  int in_contact = 0;
+  for (const Disk& d : disks) {
+    const pf::ContactState got = solver.solve(196133.0, pf::Obstacle::disk(d.x, d.y, d.r));
+    const Reference want = reference(kFinger, 196133.0, d);
+    in_contact += got.status == pf::ContactState::Status::kInContact;
+    for (int i = 0; i < 7; ++i) {
+      EXPECT_NEAR(got.joint_angle_rad[i], want.q[static_cast<std::size_t>(i)], 1e-12) << "disk " << d.x << "," << d.y;
+      EXPECT_EQ(got.held[static_cast<std::size_t>(i)], want.held[static_cast<std::size_t>(i)]) << "joint " << i + 1;
+    }
+    if (!std::isnan(want.first_touch)) EXPECT_NEAR(got.first_touch_gauge_pa, want.first_touch, 1e-9 * want.first_touch);
+  }
+  EXPECT_GE(in_contact, 4) << "the cases must exercise the rule";
+}
+
+TEST(Contact, NoJointPassesItsFreeAngleNothingPenetratesAndNoJointGoesBack) {
+  pf::FingerModel model(kFinger);
+  const pf::ContactSolver solver(model);
+  for (const pf::Obstacle& obstacle :
+       {pf::Obstacle::disk(0.07, 0.03, 0.004), pf::Obstacle::ellipse(0.07, 0.035, 0.008, 0.004, 0.3),
+        pf::Obstacle::polygon({{0.06, 0.03}, {0.08, 0.03}, {0.08, 0.05}, {0.06, 0.05}})}) {
+    ASSERT_EQ(obstacle.problem(), "");
+    Eigen::VectorXd previous = Eigen::VectorXd::Zero(7);
+    for (double p = 0; p <= 294199.5; p += 4903.325) {
+      const pf::ContactState s = solver.solve(p, obstacle);
+      Eigen::VectorXd free(7);
+      ASSERT_TRUE(model.jointAnglesAt(p, free.data()));
+      for (int i = 0; i < 7; ++i) {
+        EXPECT_LE(s.joint_angle_rad[i], free[i]) << "P = " << p;
+        EXPECT_GE(s.joint_angle_rad[i], previous[i]) << "P = " << p << " joint " << i + 1;
+      }
+      for (int k = 0; k <= 7; ++k) {
+        EXPECT_GT(obstacle.clearance(s.backbone_m.col(k), s.backbone_m.col(k + 1)), -1e-12) << "P = " << p;
+      }
+      previous = s.joint_angle_rad;
+    }
+  }
+}
+
+TEST(Contact, ARoundEllipseIsTheDisk) {
+  pf::FingerModel model(kFinger);
+  const pf::ContactSolver solver(model);
+  const pf::ContactState disk = solver.solve(2e5, pf::Obstacle::disk(0.07, 0.03, 0.004));
+  const pf::ContactState ellipse = solver.solve(2e5, pf::Obstacle::ellipse(0.07, 0.03, 0.004, 0.004, 1.0));
+  ASSERT_EQ(disk.status, pf::ContactState::Status::kInContact);
+  for (int i = 0; i < 7; ++i) EXPECT_NEAR(ellipse.joint_angle_rad[i], disk.joint_angle_rad[i], 1e-12);
+}
+
+TEST(Contact, AnObstacleOutOfReachLeavesTheFreeFinger) {
+  pf::FingerModel model(kFinger);
+  const pf::ContactSolver solver(model);
+  // 85 mm of finger; a disk whose nearest point is 85.001 mm from the mount.
+  const pf::ContactState s = solver.solve(196133.0, pf::Obstacle::disk(0.0, 0.090001, 0.005));
+  EXPECT_EQ(s.status, pf::ContactState::Status::kFree);
+  EXPECT_TRUE(std::isnan(s.first_touch_gauge_pa));
+  EXPECT_EQ(s.touches, 0);
+  const pf::FingerState& free = model.evaluate(196133.0);
+  for (int i = 0; i < 7; ++i) EXPECT_EQ(s.joint_angle_rad[i], free.joint_angle_rad[i]);
+  EXPECT_NEAR((s.backbone_m - free.backbone_m).cwiseAbs().maxCoeff(), 0.0, 1e-15);
+}
+
+TEST(Contact, JustOutOfReachOfTheCurlingFingerIsNoTouch) {
+  // A disk that the free finger at 2 kg/cm^2 misses by 1 um: no contact, the free finger.
+  pf::FingerModel model(kFinger);
+  const pf::ContactSolver solver(model);
+  const pf::FingerState& s = model.evaluate(196133.0);
+  const Eigen::Vector2d tip = s.tip();
+  const Eigen::Vector2d ahead(std::cos(s.tip_angle_rad), std::sin(s.tip_angle_rad));
+  const double r = 0.003;
+  const Eigen::Vector2d c = tip + (r + 1e-6) * ahead;
+  EXPECT_EQ(solver.solve(196133.0, pf::Obstacle::disk(c.x(), c.y(), r)).status, pf::ContactState::Status::kFree);
+  // And 1 um closer it is touched, by the tip's segment: every joint is held.
+  const Eigen::Vector2d closer = tip + (r - 1e-6) * ahead;
+  const pf::ContactState t = solver.solve(196133.0, pf::Obstacle::disk(closer.x(), closer.y(), r));
+  EXPECT_EQ(t.status, pf::ContactState::Status::kInContact);
+  for (bool h : t.held) EXPECT_TRUE(h);
+  ASSERT_EQ(t.contact_points_m.size(), 1u);
+  EXPECT_NEAR((t.contact_points_m[0] - t.backbone_m.col(8)).norm(), 0.0, 1e-4) << "the tip touches";
+}
+
+TEST(Contact, AnObstacleOverlappingTheStraightFingerIsReportedNotSolved) {
+  pf::FingerModel model(kFinger);
+  const pf::ContactSolver solver(model);
+  const pf::ContactState s = solver.solve(1e5, pf::Obstacle::disk(0.04, 0.001, 0.002));
+  EXPECT_EQ(s.status, pf::ContactState::Status::kOverlapsAtRest);
+}
+
+TEST(Contact, BadObstaclesAreNamed) {
+  EXPECT_NE(pf::Obstacle::disk(0, 0, -1).problem().find("radius"), std::string::npos);
+  EXPECT_NE(pf::Obstacle::disk(NAN, 0, 1).problem().find("finite"), std::string::npos);
+  EXPECT_NE(pf::Obstacle::polygon({{0, 0}, {1, 0}}).problem().find("3 vertices"), std::string::npos);
+  EXPECT_NE(pf::Obstacle::polygon({{0, 0}, {2, 0}, {1, 0.1}, {2, 2}, {0, 2}}).problem().find("convex"), std::string::npos);
+  EXPECT_NE(pf::Obstacle::ellipse(0, 0, 1, 0, 0).problem().find("semi-axes"), std::string::npos);
+  EXPECT_EQ(pf::Obstacle::polygon({{0, 2}, {2, 2}, {2, 0}, {0, 0}}).problem(), "");  // clockwise is fine
+}
