@@ -200,3 +200,53 @@ TEST(Contact, BadObstaclesAreNamed) {
   EXPECT_NE(pf::Obstacle::ellipse(0, 0, 1, 0, 0).problem().find("semi-axes"), std::string::npos);
   EXPECT_EQ(pf::Obstacle::polygon({{0, 2}, {2, 2}, {2, 0}, {0, 0}}).problem(), "");  // clockwise is fine
 }
+
+// Hard case: a touch exactly at a joint. A narrow wedge whose point sits on joint 4's path at 1.2e5 Pa, opening
+// along that path: joint 4 is the first point of the backbone to reach it, where segments 3 and 4 meet, so both
+// touch at once and joints 1..4 freeze; joints 5..7 go on.
+TEST(Contact, ATouchExactlyAtAJointFreezesTheJointsUpToIt) {
+  pf::FingerModel model(kFinger);
+  const pf::ContactSolver solver(model);
+  const double pj = 1.2e5;
+  auto joint4 = [&](double p) { return Eigen::Vector2d(model.evaluate(p).backbone_m.col(4)); };
+  const Eigen::Vector2d apex = joint4(pj);
+  const Eigen::Vector2d v = (joint4(pj * (1 + 1e-6)) - joint4(pj * (1 - 1e-6))).normalized();
+  const Eigen::Vector2d w(-v.y(), v.x());
+  const pf::Obstacle wedge = pf::Obstacle::polygon({apex, apex + 0.005 * v + 0.0002 * w, apex + 0.005 * v - 0.0002 * w});
+  ASSERT_EQ(wedge.problem(), "");
+  const pf::ContactState s = solver.solve(196133.0, wedge);
+  ASSERT_EQ(s.status, pf::ContactState::Status::kInContact);
+  EXPECT_NEAR(s.first_touch_gauge_pa, pj, 1e-6 * pj);
+  ASSERT_GE(s.contact_points_m.size(), 1u);
+  EXPECT_NEAR((s.contact_points_m[0] - apex).norm(), 0.0, 1e-9);
+  for (int i = 0; i < 4; ++i) EXPECT_TRUE(s.held[static_cast<std::size_t>(i)]) << "joint " << i + 1;
+  // Held at their angles at the touch; the joints after 4 kept following the pressure until they touched or not.
+  Eigen::VectorXd at_touch(7);
+  ASSERT_TRUE(model.jointAnglesAt(s.first_touch_gauge_pa, at_touch.data()));
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(s.joint_angle_rad[i], at_touch[i], 1e-12);
+  EXPECT_GT(s.joint_angle_rad[4], at_touch[4]) << "joint 5 went on";
+}
+
+// Hard case: a grazing touch. A disk ahead of the tip, tangent to the tip's path at 1.2e5 Pa on the side the path
+// bends away from: the clearance comes down to 0 at that pressure and rises again, never negative. It counts as the
+// touch (the finger reached the object), and every joint freezes there.
+TEST(Contact, AGrazingTouchCounts) {
+  pf::FingerModel model(kFinger);
+  const pf::ContactSolver solver(model);
+  const double pg = 1.2e5;
+  auto tip = [&](double p) { return Eigen::Vector2d(model.evaluate(p).tip()); };
+  const Eigen::Vector2d t0 = tip(pg);
+  const Eigen::Vector2d tangent = (tip(pg * (1 + 1e-6)) - tip(pg * (1 - 1e-6))).normalized();
+  Eigen::Vector2d normal(-tangent.y(), tangent.x());
+  // The side the path bends away from: the second difference points the other way.
+  const Eigen::Vector2d bend = tip(pg * 1.05) + tip(pg * 0.95) - 2 * t0;
+  if (normal.dot(bend) > 0) normal = -normal;
+  const double r = 0.002;
+  const Eigen::Vector2d c = t0 + r * normal;
+  const pf::ContactState s = solver.solve(196133.0, pf::Obstacle::disk(c.x(), c.y(), r));
+  ASSERT_EQ(s.status, pf::ContactState::Status::kInContact);
+  EXPECT_NEAR(s.first_touch_gauge_pa, pg, 1e-4 * pg);
+  for (bool h : s.held) EXPECT_TRUE(h);
+  // Below the grazing pressure the finger is free.
+  EXPECT_EQ(solver.solve(0.99 * pg, pf::Obstacle::disk(c.x(), c.y(), r)).status, pf::ContactState::Status::kFree);
+}
