@@ -260,13 +260,17 @@ void benchContact(benchmark::State& state, int which) {
   pf::FingerModel model(kParams);
   const pf::ContactSolver solver(model);
   const pf::Obstacle obstacle = which == 0 ? pf::Obstacle::disk(0.0, 0.2, 0.01) : pf::Obstacle::disk(0.075, 0.035, 0.01);
+  // which == 2: a ContactTracker on the same disk (a grasp: the object stays, the pressure changes).
+  pf::ContactTracker tracker(model, obstacle);
   std::size_t i = 0;
   for (auto _ : state) {
-    const pf::ContactState s = solver.solve(pressures[i], obstacle);
+    const pf::ContactState s = which == 2 ? tracker.solve(pressures[i]) : solver.solve(pressures[i], obstacle);
     benchmark::DoNotOptimize(s.backbone_m.data());
     if (++i == pressures.size()) i = 0;
   }
-  state.SetLabel(which == 0 ? "contact: obstacle out of reach" : "contact: disk at the tip, one touch");
+  state.SetLabel(which == 0 ? "contact: obstacle out of reach"
+                 : which == 1 ? "contact: disk at the tip, one touch, from scratch"
+                              : "contact: the same, ContactTracker (events kept)");
 }
 
 }  // namespace
@@ -286,7 +290,7 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("latency/" + std::to_string(which)).c_str(),
                                  [which](benchmark::State& s) { benchPrimitive(s, which); });
   }
-  for (int which = 0; which < 2; ++which) {
+  for (int which = 0; which < 3; ++which) {
     benchmark::RegisterBenchmark(("contact/" + std::to_string(which)).c_str(),
                                  [which](benchmark::State& s) { benchContact(s, which); });
   }

@@ -250,3 +250,24 @@ TEST(Contact, AGrazingTouchCounts) {
   // Below the grazing pressure the finger is free.
   EXPECT_EQ(solver.solve(0.99 * pg, pf::Obstacle::disk(c.x(), c.y(), r)).status, pf::ContactState::Status::kFree);
 }
+
+// The tracker keeps the touch events it has found; in any order of pressures it answers what the from-scratch
+// solver answers, bit for bit.
+TEST(Contact, TheTrackerAnswersTheSolverBitForBitInAnyOrder) {
+  pf::FingerModel model(kFinger);
+  const pf::ContactSolver solver(model);
+  for (const pf::Obstacle& obstacle : {pf::Obstacle::disk(0.0388324, 0.00650505, 0.003),
+                                       pf::Obstacle::disk(0.075, 0.035, 0.01), pf::Obstacle::disk(0.0, 0.2, 0.01),
+                                       pf::Obstacle::ellipse(0.07, 0.035, 0.008, 0.004, 0.3)}) {
+    pf::ContactTracker tracker(model, obstacle);
+    for (double p : {196133.0, 50000.0, 150000.0, 120000.0, 294199.5, 0.0, 130000.0, 196133.0, 98066.5}) {
+      const pf::ContactState want = solver.solve(p, obstacle);
+      const pf::ContactState got = tracker.solve(p);
+      EXPECT_EQ(got.status, want.status) << p;
+      EXPECT_EQ(got.held, want.held) << p;
+      EXPECT_EQ(got.touches, want.touches) << p;
+      for (int i = 0; i < 7; ++i) EXPECT_EQ(got.joint_angle_rad[i], want.joint_angle_rad[i]) << p << " joint " << i + 1;
+      if (want.touches > 0) EXPECT_EQ(got.first_touch_gauge_pa, want.first_touch_gauge_pa) << p;
+    }
+  }
+}

@@ -196,35 +196,14 @@ void ContactSolver::backbone(const Eigen::VectorXd& q, Eigen::Matrix2Xd& points)
   }
 }
 
-ContactState ContactSolver::solve(double gauge_pa, const Obstacle& obstacle) const {
+ContactSolver::Event ContactSolver::findEvent(const Obstacle& obstacle, double from, int frozen,
+                                              const Eigen::VectorXd& frozen_q, double u_end, double& u_clear) const {
   const int n = model_.chamberCount();
-  ContactState out;
-  out.joint_angle_rad = Eigen::VectorXd::Zero(n);
-  out.held.assign(static_cast<std::size_t>(n), false);
-  const double pressure = std::max(gauge_pa, 0.0);
-  Eigen::VectorXd free_q(n);
-  if (!model_.jointAnglesAt(pressure, free_q.data())) {
-    out.status = ContactState::Status::kSolverFailure;
-    backbone(out.joint_angle_rad, out.backbone_m);
-    return out;
-  }
-  out.joint_angle_rad = free_q;
-  backbone(out.joint_angle_rad, out.backbone_m);
-  // Model only what the scene needs: an obstacle beyond the finger's reach costs one comparison.
-  if (obstacle.distanceFromOrigin() > length_m_) return out;
+  Event event;
+  Eigen::VectorXd q(n);
   Eigen::Matrix2Xd points(2, n + 2);
-  backbone(Eigen::VectorXd::Zero(n), points);
-  for (int k = 0; k <= n; ++k) {
-    if (obstacle.clearance(points.col(k), points.col(k + 1)) <= 0) {
-      out.status = ContactState::Status::kOverlapsAtRest;
-      return out;
-    }
-  }
-
   // Joints 1..frozen are held at frozen_q; the others follow q(p). Segment k (O_k -> O_k+1) moves with joints 1..k,
   // so the segments that can still move are frozen+1..N.
-  int frozen = 0;
-  Eigen::VectorXd q(n), frozen_q = Eigen::VectorXd::Zero(n);
   auto configure = [&](double p) {
     if (!model_.jointAnglesAt(p, q.data())) return false;
     q.head(frozen) = frozen_q.head(frozen);
@@ -246,69 +225,138 @@ ContactState ContactSolver::solve(double gauge_pa, const Obstacle& obstacle) con
   // pressure rises. The grid runs one step past the target when needed, so a bracket is never cut short.
   constexpr double kGridStep = 10.0;    // sqrt(Pa): 45 brackets up to 2 kg/cm^2
   constexpr double kTouchM = 1e-12;     // segments this close at the touch are touching it too
-  double from = 0.0;
-  while (frozen < n) {
-    const double u0 = std::sqrt(from), u_end = std::sqrt(pressure);
-    double lo = -1.0, hi = -1.0;
-    int seg = 0;
-    std::array<double, 3> c{INFINITY, INFINITY, clearanceAt(from, seg)};  // the last three samples
-    for (int j = 1; lo < 0; ++j) {
-      const double u_prev = u0 + (j - 1) * kGridStep, u = u0 + j * kGridStep;
-      c = {c[1], c[2], clearanceAt(u * u, seg)};
-      if (c[2] <= 0) {
-        lo = u_prev * u_prev;
-        hi = u * u;
+  const double u0 = std::sqrt(from);
+  double lo = -1.0, hi = -1.0;
+  int seg = 0;
+  std::array<double, 3> c{INFINITY, INFINITY, clearanceAt(from, seg)};  // the last three samples
+  for (int j = 1; lo < 0; ++j) {
+    const double u_prev = u0 + (j - 1) * kGridStep, u = u0 + j * kGridStep;
+    c = {c[1], c[2], clearanceAt(u * u, seg)};
+    if (c[2] <= 0) {
+      lo = u_prev * u_prev;
+      hi = u * u;
+      break;
+    }
+    // A grazing touch between two samples: a local minimum of the clearance, searched by golden sections; it
+    // counts when it reaches the touch distance.
+    if (j >= 2 && c[1] < c[0] && c[1] < c[2]) {
+      double a = u - 2 * kGridStep, b = u;
+      for (int it = 0; it < 200 && b - a > 1e-16 * b; ++it) {
+        const double m1 = b - 0.6180339887498949 * (b - a), m2 = a + 0.6180339887498949 * (b - a);
+        int s1 = 0, s2 = 0;
+        if (clearanceAt(m1 * m1, s1) < clearanceAt(m2 * m2, s2)) {
+          b = m2;
+        } else {
+          a = m1;
+        }
+      }
+      const double u_min = 0.5 * (a + b);
+      if (clearanceAt(u_min * u_min, seg) <= kTouchM) {
+        lo = hi = u_min * u_min;
         break;
       }
-      // A grazing touch between two samples: a local minimum of the clearance, searched by golden sections; it
-      // counts when it reaches the touch distance.
-      if (j >= 2 && c[1] < c[0] && c[1] < c[2]) {
-        double a = u - 2 * kGridStep, b = u;
-        for (int it = 0; it < 200 && b - a > 1e-16 * b; ++it) {
-          const double m1 = b - 0.6180339887498949 * (b - a), m2 = a + 0.6180339887498949 * (b - a);
-          int s1 = 0, s2 = 0;
-          if (clearanceAt(m1 * m1, s1) < clearanceAt(m2 * m2, s2)) {
-            b = m2;
-          } else {
-            a = m1;
-          }
-        }
-        const double u_min = 0.5 * (a + b);
-        if (clearanceAt(u_min * u_min, seg) <= kTouchM) {
-          lo = hi = u_min * u_min;
-          break;
-        }
-      }
-      if (u >= u_end) break;  // clear up to (and past) the pressure asked for
     }
-    if (lo < 0) break;
-    // Bisection on the touch condition: lo clear, hi touching, until the pressures agree to the last digits.
-    for (int it = 0; it < 200 && hi - lo > kRelativePressureTolerance * hi; ++it) {
-      const double mid = 0.5 * (lo + hi);
-      (clearanceAt(mid, seg) <= 0 ? hi : lo) = mid;
+    if (u >= u_end) {  // clear up to (and past) the pressure asked for
+      u_clear = u;
+      return event;
     }
-    if (lo > pressure) break;  // the touch comes after the pressure asked for
-    // Freeze at lo, the last shape clear of the obstacle: no joint passes its free angle, nothing penetrates.
-    const double touch_c = clearanceAt(lo, seg);
-    if (!std::isfinite(touch_c)) {
-      out.status = ContactState::Status::kSolverFailure;
-      return out;
-    }
-    int m = seg;
-    for (int k = frozen + 1; k <= n; ++k) {
-      if (obstacle.clearance(points.col(k), points.col(k + 1)) <= touch_c + kTouchM) m = std::max(m, k);
-    }
-    if (out.touches == 0) out.first_touch_gauge_pa = lo;
-    ++out.touches;
-    out.contact_points_m.push_back(obstacle.nearestPoint(points.col(seg), points.col(seg + 1)));
-    frozen_q.head(m) = q.head(m);
-    frozen = m;
-    from = lo;
+  }
+  // Bisection on the touch condition: lo clear, hi touching, until the pressures agree to the last digits.
+  for (int it = 0; it < 200 && hi - lo > kRelativePressureTolerance * hi; ++it) {
+    const double mid = 0.5 * (lo + hi);
+    (clearanceAt(mid, seg) <= 0 ? hi : lo) = mid;
+  }
+  // Freeze at lo, the last shape clear of the obstacle: no joint passes its free angle, nothing penetrates.
+  const double touch_c = clearanceAt(lo, seg);
+  event.found = true;
+  if (!std::isfinite(touch_c)) {
+    event.failed = true;
+    return event;
+  }
+  int m = seg;
+  for (int k = frozen + 1; k <= n; ++k) {
+    if (obstacle.clearance(points.col(k), points.col(k + 1)) <= touch_c + kTouchM) m = std::max(m, k);
+  }
+  event.gauge_pa = lo;
+  event.frozen = m;
+  event.frozen_q = frozen_q;
+  event.frozen_q.segment(frozen, m - frozen) = q.segment(frozen, m - frozen);
+  event.point_m = obstacle.nearestPoint(points.col(seg), points.col(seg + 1));
+  return event;
+}
+
+ContactState ContactSolver::solve(double gauge_pa, const Obstacle& obstacle) const {
+  ContactTracker tracker(model_, obstacle);
+  return tracker.solve(gauge_pa);
+}
+
+ContactTracker::ContactTracker(const FingerModel& model, const Obstacle& obstacle)
+    : solver_(model), obstacle_(obstacle) {
+  const int n = model.chamberCount();
+  frozen_q_ = Eigen::VectorXd::Zero(n);
+  // Model only what the scene needs: an obstacle beyond the finger's reach costs one comparison, once.
+  out_of_reach_ = obstacle.distanceFromOrigin() > solver_.length_m_;
+  if (out_of_reach_) return;
+  Eigen::Matrix2Xd points(2, n + 2);
+  solver_.backbone(Eigen::VectorXd::Zero(n), points);
+  for (int k = 0; k <= n; ++k) overlaps_at_rest_ = overlaps_at_rest_ || obstacle.clearance(points.col(k), points.col(k + 1)) <= 0;
+}
+
+ContactState ContactTracker::solve(double gauge_pa) {
+  const FingerModel& model = solver_.model_;
+  const int n = model.chamberCount();
+  ContactState out;
+  out.held.assign(static_cast<std::size_t>(n), false);
+  const double pressure = std::max(gauge_pa, 0.0);
+  Eigen::VectorXd free_q(n);
+  if (!model.jointAnglesAt(pressure, free_q.data())) {
+    out.status = ContactState::Status::kSolverFailure;
+    out.joint_angle_rad = Eigen::VectorXd::Zero(n);
+    solver_.backbone(out.joint_angle_rad, out.backbone_m);
+    return out;
   }
   out.joint_angle_rad = free_q;
-  out.joint_angle_rad.head(frozen) = frozen_q.head(frozen);
+  if (!out_of_reach_ && overlaps_at_rest_) out.status = ContactState::Status::kOverlapsAtRest;
+  if (out_of_reach_ || overlaps_at_rest_) {
+    solver_.backbone(out.joint_angle_rad, out.backbone_m);
+    return out;
+  }
+  // The touch events do not depend on the pressure asked for: they are found once, in order, and kept. A pressure
+  // within what is already known costs only the free model and the backbone.
+  const double u_end = std::sqrt(pressure);
+  while (!failed_ && (events_.empty() || events_.back().gauge_pa <= pressure) && frozen_ < n && u_end > u_clear_) {
+    const double from = events_.empty() ? 0.0 : events_.back().gauge_pa;
+    double u_clear = 0.0;
+    const ContactSolver::Event e = solver_.findEvent(obstacle_, from, frozen_, frozen_q_, u_end, u_clear);
+    if (!e.found) {
+      u_clear_ = u_clear;  // no touch after the last event up to here
+      break;
+    }
+    if (e.failed) {
+      failed_ = true;
+      break;
+    }
+    events_.push_back(e);
+    frozen_ = e.frozen;
+    frozen_q_ = e.frozen_q;
+    u_clear_ = 0.0;  // a new segment of the search starts at this event
+  }
+  if (failed_) {
+    out.status = ContactState::Status::kSolverFailure;
+    solver_.backbone(out.joint_angle_rad, out.backbone_m);
+    return out;
+  }
+  int frozen = 0;
+  for (const ContactSolver::Event& e : events_) {
+    if (e.gauge_pa > pressure) break;
+    if (out.touches == 0) out.first_touch_gauge_pa = e.gauge_pa;
+    ++out.touches;
+    out.contact_points_m.push_back(e.point_m);
+    frozen = e.frozen;
+    out.joint_angle_rad.head(frozen) = e.frozen_q.head(frozen);
+  }
   for (int i = 0; i < frozen; ++i) out.held[static_cast<std::size_t>(i)] = true;
-  backbone(out.joint_angle_rad, out.backbone_m);
+  solver_.backbone(out.joint_angle_rad, out.backbone_m);
   out.status = frozen > 0 ? ContactState::Status::kInContact : ContactState::Status::kFree;
   return out;
 }

@@ -71,16 +71,48 @@ class ContactSolver {
  public:
   explicit ContactSolver(const FingerModel& model);
 
-  /// The finger at @p gauge_pa with @p obstacle. Out of reach: the free finger, and no contact work at all.
+  /// The finger at @p gauge_pa with @p obstacle, found from scratch (ContactTracker keeps what it found).
   ContactState solve(double gauge_pa, const Obstacle& obstacle) const;
 
   /// The touch pressures are found to this relative precision (angles follow to about 1e-14 rad).
   static constexpr double kRelativePressureTolerance = 1e-15;
 
  private:
+  friend class ContactTracker;
+  /// One touch event: the joints 1..frozen held at frozen_q from gauge_pa on.
+  struct Event {
+    bool found = false, failed = false;
+    double gauge_pa = 0.0;
+    int frozen = 0;
+    Eigen::VectorXd frozen_q;
+    Eigen::Vector2d point_m = Eigen::Vector2d::Zero();
+  };
+  /// The first touch after @p from with joints 1..@p frozen held, searched up to sqrt(p) = @p u_end (one grid step
+  /// past it at most). Not found: @p u_clear is how far the search went clear.
+  Event findEvent(const Obstacle& obstacle, double from, int frozen, const Eigen::VectorXd& frozen_q, double u_end,
+                  double& u_clear) const;
   void backbone(const Eigen::VectorXd& q, Eigen::Matrix2Xd& points) const;
   const FingerModel& model_;
   double length_m_ = 0.0;
+};
+
+/// The contact rule for one obstacle that stays where it is while the pressure changes (a grasp): the touch events
+/// do not depend on the pressure asked for, so each is found once and kept. A pressure within what is already known
+/// costs the free model and the backbone only; the answers are those of ContactSolver::solve, bit for bit. Not
+/// thread-safe (it caches); one per finger and obstacle.
+class ContactTracker {
+ public:
+  ContactTracker(const FingerModel& model, const Obstacle& obstacle);
+  ContactState solve(double gauge_pa);
+
+ private:
+  ContactSolver solver_;
+  Obstacle obstacle_;
+  bool out_of_reach_ = false, overlaps_at_rest_ = false, failed_ = false;
+  std::vector<ContactSolver::Event> events_;
+  int frozen_ = 0;
+  Eigen::VectorXd frozen_q_;
+  double u_clear_ = 0.0;  // sqrt(p) up to which no touch follows the last event
 };
 
 }  // namespace pneumatic_finger
