@@ -21,6 +21,7 @@
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
+#include "ros_test_main.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -363,12 +364,4 @@ TEST(FingerNodeParameters, EveryBadParameterStopsTheNodeNamingTheKey) {
   }
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "finger_node_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  ros::shutdown();
-  return result;
-}
+int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "finger_node_test", 2); }

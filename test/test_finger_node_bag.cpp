@@ -9,6 +9,7 @@
 #include <mutex>
 #include <string>
 #include <vector>
+#include "ros_test_main.hpp"
 
 namespace {
 
@@ -63,12 +64,4 @@ TEST(FingerNodeBag, JointStatesOnEveryLoopOfABagPlayedWithClockAndLoop) {
   EXPECT_GE(g_time_jumps, 1) << "diagnostics do not count the jumps back";
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "finger_node_bag_test");
-  ros::AsyncSpinner spinner(1);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  ros::shutdown();
-  return result;
-}
+int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "finger_node_bag_test", 1); }

@@ -17,6 +17,7 @@
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
+#include "ros_test_main.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -318,12 +319,4 @@ TEST_F(FaultTest, RegulatorPublisherRestartIsFollowed) {
   EXPECT_NEAR(js.position[3], model.evaluate(160000).joint_angle_rad[3], 1e-12);
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "finger_node_faults_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  ros::shutdown();
-  return result;
-}
+int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "finger_node_faults_test", 2); }

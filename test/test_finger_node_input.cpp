@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pneumatic_finger/FingerModelState.h"
+#include "ros_test_main.hpp"
 
 namespace {
 
@@ -137,12 +138,4 @@ TEST_F(FingerNodeInput, ASolverWithNoAnswerPublishesNothingAndSaysWhy) {
   }
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "finger_node_input_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  ros::shutdown();
-  return result;
-}
+int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "finger_node_input_test", 2); }

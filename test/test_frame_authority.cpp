@@ -12,6 +12,7 @@
 #include <set>
 #include <string>
 #include <tuple>
+#include "ros_test_main.hpp"
 
 namespace {
 
@@ -125,12 +126,4 @@ TEST(FrameAuthority, EitherWayEveryFrameHasOnePublisherAndBothComputeTheSameTran
   EXPECT_GE(compared, 6 * 7) << "too few transforms compared";
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "frame_authority_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  ros::shutdown();
-  return result;
-}
+int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "frame_authority_test", 2); }

@@ -12,6 +12,7 @@
 #include <map>
 #include <mutex>
 #include <set>
+#include "ros_test_main.hpp"
 
 namespace {
 
@@ -97,12 +98,4 @@ TEST(PickAndPlaceCell, RunsACycleWithFingertipsClosingAndOpeningAndOneAuthorityP
   }
 }
 
-int main(int argc, char** argv) {
-  testing::InitGoogleTest(&argc, argv);
-  ros::init(argc, argv, "pick_and_place_cell_test");
-  ros::AsyncSpinner spinner(2);
-  spinner.start();
-  const int result = RUN_ALL_TESTS();
-  ros::shutdown();
-  return result;
-}
+int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "pick_and_place_cell_test", 2); }

@@ -105,19 +105,24 @@ bool asNumber(const XmlRpc::XmlRpcValue& v, double& out) {
   return true;
 }
 
-double readDouble(const ros::NodeHandle& nh, const std::string& key, double max_override = NAN) {
+// The one range check of a node number: at start-up (rosparam) and live (dynamic_reconfigure).
+double checkNumber(const std::string& key, double x, double max_override = NAN) {
   const NodeParameterSpec& sp = spec(key);
   const double hi = std::isnan(max_override) ? sp.max_value : max_override;
-  XmlRpc::XmlRpcValue v;
-  if (!nh.getParam(key, v)) return sp.default_value;
-  double x;
-  if (!asNumber(v, x)) throw ParameterError("parameter '" + key + "' = " + describe(v) + " is not a number");
   if (!std::isfinite(x) || (sp.min_open ? !(x > sp.min_value) : !(x >= sp.min_value)) || !(x <= hi)) {
     std::ostringstream s;
     s << "parameter '" << key << "' = " << formatExact(x) << " is outside its allowed range " << sp.allowed;
     throw ParameterError(s.str());
   }
   return x;
+}
+
+double readDouble(const ros::NodeHandle& nh, const std::string& key, double max_override = NAN) {
+  XmlRpc::XmlRpcValue v;
+  if (!nh.getParam(key, v)) return spec(key).default_value;
+  double x;
+  if (!asNumber(v, x)) throw ParameterError("parameter '" + key + "' = " + describe(v) + " is not a number");
+  return checkNumber(key, x, max_override);
 }
 
 bool readBool(const ros::NodeHandle& nh, const std::string& key) {
@@ -457,17 +462,8 @@ void FingerNode::onReconfigure(FingerNodeConfig& config, uint32_t /*level*/) {
       if (config.chamber_gap_m != now.chamber_gap_m) raw["chamber_gap_m"] = {{config.chamber_gap_m}, false};
       next.finger = FingerParameters::fromRaw(raw);
     }
-    for (const auto& kv : {std::make_pair("max_rate_hz", config.max_rate_hz),
-                           std::make_pair("stale_timeout_s", config.stale_timeout_s)}) {
-      const NodeParameterSpec& sp = spec(kv.first);
-      if (!std::isfinite(kv.second) || (sp.min_open ? !(kv.second > sp.min_value) : !(kv.second >= sp.min_value)) ||
-          !(kv.second <= sp.max_value)) {
-        throw ParameterError(std::string("parameter '") + kv.first + "' = " + formatExact(kv.second) +
-                             " is outside its allowed range " + sp.allowed);
-      }
-    }
-    next.input.max_rate_hz = config.max_rate_hz;
-    next.input.stale_timeout_s = config.stale_timeout_s;
+    next.input.max_rate_hz = checkNumber("max_rate_hz", config.max_rate_hz);
+    next.input.stale_timeout_s = checkNumber("stale_timeout_s", config.stale_timeout_s);
     settings_ = next;
     input_.updateSettings(settings_.input);
     if (actuator) {
