@@ -106,18 +106,18 @@ TEST(Contact, MatchesTheIndependentReferenceForDisksAcrossTheFinger) {
   const std::vector<Disk> disks = {{0.0388324, 0.00650505, 0.003}, {0.0567121, 0.0136807, 0.003},
                                    {0.0632674, 0.0211602, 0.006}, {0.075, 0.035, 0.01},
                                    {0.05, 0.02, 0.004},           {0.02, 0.03, 0.015}};
-  int in_contact = 0;
+  int walls_in_contact = 0;
   for (const Disk& d : disks) {
     const pf::ContactState got = solver.solve(196133.0, pf::Obstacle::disk(d.x, d.y, d.r));
     const Reference want = reference(kFinger, 196133.0, d);
-    in_contact += got.status == pf::ContactState::Status::kInContact;
+    walls_in_contact += got.status == pf::ContactState::Status::kInContact;
     for (int i = 0; i < 7; ++i) {
       EXPECT_NEAR(got.joint_angle_rad[i], want.q[static_cast<std::size_t>(i)], 1e-12) << "disk " << d.x << "," << d.y;
       EXPECT_EQ(got.held[static_cast<std::size_t>(i)], want.held[static_cast<std::size_t>(i)]) << "joint " << i + 1;
     }
     if (!std::isnan(want.first_touch)) EXPECT_NEAR(got.first_touch_gauge_pa, want.first_touch, 1e-9 * want.first_touch);
   }
-  EXPECT_GE(in_contact, 4) << "the cases must exercise the rule";
+  EXPECT_GE(walls_in_contact, 4) << "the cases must exercise the rule";
 }
 
 TEST(Contact, NoJointPassesItsFreeAngleNothingPenetratesAndNoJointGoesBack) {

@@ -185,7 +185,7 @@ TEST_F(FingerNodeTest, FingerStateCarriesTheModel) {
       EXPECT_EQ(s.half_angle_rad[k], want.half_angle_rad[i]) << i;
       EXPECT_EQ(s.joint_angle_rad[k], want.joint_angle_rad[i]) << i;
     }
-    EXPECT_TRUE(s.in_contact);
+    EXPECT_TRUE(s.walls_in_contact);
     EXPECT_EQ(s.in_validated_range, p <= 196133.0);
     EXPECT_EQ(s.status, pf::FingerModelState::STATUS_OK);
   }

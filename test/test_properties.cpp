@@ -24,8 +24,8 @@ TEST(Property, HalfAngleIsZeroBelowContactAndPositiveAbove) {
   ASSERT_GT(pc, 0.0);
   for (double f : {0.0, 0.5, 0.9, 0.999999}) EXPECT_EQ(model.evaluate(pc * f).half_angle_rad[0], 0.0) << f;
   for (double f : {1.000001, 1.1, 2.0, 10.0}) EXPECT_GT(model.evaluate(pc * f).half_angle_rad[0], 0.0) << f;
-  EXPECT_FALSE(model.evaluate(pc * 0.5).in_contact);
-  EXPECT_TRUE(model.evaluate(pc * 2).in_contact);
+  EXPECT_FALSE(model.evaluate(pc * 0.5).walls_in_contact);
+  EXPECT_TRUE(model.evaluate(pc * 2).walls_in_contact);
 }
 
 TEST(Property, HalfAngleIsNonDecreasingInPressure) {

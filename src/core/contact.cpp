@@ -162,6 +162,23 @@ Eigen::Vector2d Obstacle::nearestPoint(const Eigen::Vector2d& p, const Eigen::Ve
   return p;
 }
 
+std::vector<Eigen::Vector2d> Obstacle::outline(int samples) const {
+  if (kind_ == Kind::kPolygon) return vertices_;
+  std::vector<Vec> points;
+  const int n = std::max(samples, 3);
+  points.reserve(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    const double phi = 2 * M_PI * i / n;
+    if (kind_ == Kind::kDisk) {
+      points.push_back(center_ + radius_ * Vec(std::cos(phi), std::sin(phi)));
+    } else {
+      const Vec local(a_ * std::cos(phi), b_ * std::sin(phi));
+      points.push_back(center_ + Vec(cos_ * local.x() - sin_ * local.y(), sin_ * local.x() + cos_ * local.y()));
+    }
+  }
+  return points;
+}
+
 double Obstacle::distanceFromOrigin() const {
   switch (kind_) {
     case Kind::kDisk:

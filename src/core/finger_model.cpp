@@ -279,7 +279,7 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
     sin_prev = h.sin;
   }
   out.tip_angle_rad = tip_angle;
-  out.in_contact = contact;
+  out.walls_in_contact = contact;
 }
 
 namespace {
@@ -312,7 +312,7 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, const HalfAngl
     dir_c = c_new;
   }
   out.tip_angle_rad = h.rad + (n - 1) * q;
-  out.in_contact = h.rad > 0.0;
+  out.walls_in_contact = h.rad > 0.0;
 }
 
 }  // namespace

@@ -73,6 +73,11 @@ const std::vector<NodeParameterSpec>& specs() {
       text("pressure_topic", "pressure", "a ROS name", "subscribed sensor_msgs/FluidPressure"),
       text("joint_states_topic", "joint_states", "a ROS name", "published sensor_msgs/JointState"),
       text("finger_state_topic", "finger_state", "a ROS name", "published pneumatic_finger/FingerModelState"),
+      text("grasp_object_topic", "grasp_object", "a ROS name",
+           "subscribed pneumatic_finger/GraspObject (latched): the object the finger closes on"),
+      number("object_rate_hz", 30.0, 0, true, 1000, "Hz",
+             "while there is a grasp object: how often its pose in the finger's frame is looked up (tf) and, when it "
+             "changed (the arm or the object moved), the finger re-solved and re-published"),
   };
   return table;
 }
@@ -159,6 +164,32 @@ std::array<double, 3> readTriple(const ros::NodeHandle& nh, const std::string& k
     }
   }
   return out;
+}
+
+// The solid a GraspObject message describes, in its own frame; the reason it is not valid, empty when it is.
+std::string solidFromMessage(const GraspObject& msg, SolidObject& solid) {
+  const auto& d = msg.shape.dimensions;
+  using Prim = shape_msgs::SolidPrimitive;
+  if (msg.shape.type == Prim::BOX && d.size() == 3) {
+    solid.shape = SolidObject::Shape::kBox;
+    solid.box_size_m = Eigen::Vector3d(d[Prim::BOX_X], d[Prim::BOX_Y], d[Prim::BOX_Z]);
+  } else if (msg.shape.type == Prim::SPHERE && d.size() == 1) {
+    solid.shape = SolidObject::Shape::kSphere;
+    solid.radius_m = d[Prim::SPHERE_RADIUS];
+  } else if (msg.shape.type == Prim::CYLINDER && d.size() == 2) {
+    solid.shape = SolidObject::Shape::kCylinder;
+    solid.height_m = d[Prim::CYLINDER_HEIGHT];
+    solid.radius_m = d[Prim::CYLINDER_RADIUS];
+  } else {
+    return "shape type " + std::to_string(msg.shape.type) + " with " + std::to_string(d.size()) +
+           " dimensions is not a BOX (3), SPHERE (1) or CYLINDER (2)";
+  }
+  const auto& o = msg.pose.orientation;
+  const Eigen::Quaterniond rotation(o.w, o.x, o.y, o.z);
+  if (!(std::fabs(rotation.norm() - 1.0) <= 1e-6)) return "the pose's orientation is not a unit quaternion";
+  solid.pose = Eigen::Translation3d(msg.pose.position.x, msg.pose.position.y, msg.pose.position.z) *
+               rotation.normalized();
+  return solid.problem();
 }
 
 void checkName(const std::string& key, const std::string& name) {
@@ -251,6 +282,9 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   s.pressure_topic = readString(nh, "pressure_topic");
   s.joint_states_topic = readString(nh, "joint_states_topic");
   s.finger_state_topic = readString(nh, "finger_state_topic");
+  s.grasp_object_topic = readString(nh, "grasp_object_topic");
+  s.object_rate_hz = readDouble(nh, "object_rate_hz");
+  checkName("grasp_object_topic", s.grasp_object_topic);
   checkName("description_param", s.description_param);
   checkName("pressure_topic", s.pressure_topic);
   checkName("joint_states_topic", s.joint_states_topic);
@@ -278,6 +312,11 @@ void FingerNode::buildModel(ros::NodeHandle& nh) {
   // The URDF, for rviz and for anyone who reads the chain (planners): the same names as joint_states and tf. Its
   // joint limits follow the actuator, so it is republished when the actuator changes.
   nh.setParam(settings_.description_param, fingerUrdf(settings_.finger, settings_.urdf));
+  finger_length_m_ = settings_.finger.base_segment_length_m;
+  for (double z : settings_.finger.segment_length_m) finger_length_m_ += z;
+  // A tracker refers to the model it was made with: the section is cut again for the new one.
+  tracker_.reset();
+  object_located_ = false;
 }
 
 FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
@@ -333,6 +372,9 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
   finger_state_.half_angle_rad.resize(static_cast<std::size_t>(n));
   finger_state_.joint_angle_rad.resize(static_cast<std::size_t>(n));
   finger_state_.backbone.resize(static_cast<std::size_t>(n + 2));
+  finger_state_.held_by_contact.resize(static_cast<std::size_t>(n));
+  finger_state_.first_touch_gauge_pa = NAN;
+  finger_state_.touch_gauge_pa = NAN;
 
   joint_states_pub_ = nh.advertise<sensor_msgs::JointState>(settings_.joint_states_topic, 10);
   finger_state_pub_ = nh.advertise<FingerModelState>(settings_.finger_state_topic, 10);
@@ -345,6 +387,7 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
   // and the updater's own rate limit, would both wait until the clock caught up again, and diagnostics would stop.
   diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0),
                                           [this](const ros::WallTimerEvent&) { diagnostics_.force_update(); });
+  object_sub_ = nh.subscribe(settings_.grasp_object_topic, 1, &FingerNode::onGraspObject, this);
   // Queue of 1 when throttled (only the newest pressure matters); otherwise keep up with bursts.
   pressure_sub_ = nh.subscribe(settings_.pressure_topic, settings_.input.max_rate_hz > 0 ? 1 : 100, &FingerNode::onPressure,
                                this, ros::TransportHints().tcpNoDelay());
@@ -370,29 +413,53 @@ void FingerNode::onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg) {
       break;
   }
   if (!d.time_jumped && !d.problem.empty()) ROS_WARN_THROTTLE(5.0, "finger_node: %s", d.problem.c_str());
-  const FingerState& state = model_->evaluate(d.gauge_pa);
-  if (state.status == EvaluationStatus::kSolverFailure) {
-    // Nothing non-finite is ever published: the last state stays, and diagnostics say why.
-    input_.noteSolverFailure(std::string("solver '") + solverName(settings_.solver) + "' found no finite answer at " +
-                                 formatExact(d.gauge_pa) + " Pa gauge; last state kept",
-                             now.toSec());
-    ROS_WARN_THROTTLE(5.0, "finger_node: %s", input_.lastProblem().c_str());
-    return;
-  }
-  if (state.status == EvaluationStatus::kVacuum) {
-    input_.noteVacuum(d.gauge_pa, now.toSec());
-    ROS_WARN_THROTTLE(5.0, "finger_node: %s", input_.lastProblem().c_str());
-  }
   // The message's own stamp to the nanosecond (the policy compares seconds as doubles), or the receive time.
-  publish(state, d.stamp_replaced ? now : msg->header.stamp, d.clamped);
+  publishAt(d.gauge_pa, d.stamp_replaced ? now : msg->header.stamp, d.clamped);
 }
 
-void FingerNode::publish(const FingerState& state, const ros::Time& stamp, bool clamped) {
+bool FingerNode::publishAt(double gauge_pa, const ros::Time& stamp, bool clamped) {
+  const ros::Time now = ros::Time::now();
+  const FingerState& state = model_->evaluate(gauge_pa);
+  ContactState contact;
+  bool failed = state.status == EvaluationStatus::kSolverFailure;
+  // The contact rule only with a section within reach: otherwise the free finger is the answer, at no extra cost.
+  const bool with_contact = !failed && tracker_ && !tracker_->outOfReach();
+  if (with_contact) {
+    contact = tracker_->solve(state.gauge_pa);
+    failed = contact.status == ContactState::Status::kSolverFailure;
+  }
+  if (failed) {
+    // Nothing non-finite is ever published: the last state stays, and diagnostics say why.
+    input_.noteSolverFailure(std::string("solver '") + solverName(settings_.solver) + "' found no finite answer at " +
+                                 formatExact(gauge_pa) + " Pa gauge" + (with_contact ? " (with the grasp object)" : "") +
+                                 "; last state kept",
+                             now.toSec());
+    ROS_WARN_THROTTLE(5.0, "finger_node: %s", input_.lastProblem().c_str());
+    return false;
+  }
+  if (state.status == EvaluationStatus::kVacuum) {
+    input_.noteVacuum(gauge_pa, now.toSec());
+    ROS_WARN_THROTTLE(5.0, "finger_node: %s", input_.lastProblem().c_str());
+  }
+  have_pressure_ = true;
+  last_gauge_pa_ = gauge_pa;
+  last_clamped_ = clamped;
+  publish(state, with_contact ? &contact : nullptr, stamp, clamped);
+  return true;
+}
+
+void FingerNode::publish(const FingerState& state, const ContactState* contact, const ros::Time& stamp, bool clamped) {
   const int n = settings_.finger.chamber_count;
+  // With contact the joints, backbone and tip are the contact rule's; stretch, bulge and half angle stay the free
+  // chambers' (they depend on the pressure alone).
+  const double* q_rad = contact ? contact->joint_angle_rad.data() : state.joint_angle_rad.data();
+  const Eigen::Matrix2Xd& backbone = contact ? contact->backbone_m : state.backbone_m;
+  double tip_angle_rad = 0.0;
   joint_states_.header.stamp = stamp;
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
-    const double q = state.joint_angle_rad[i];
+    const double q = q_rad[i];
+    tip_angle_rad += q;
     joint_states_.position[k] = q;
     auto& t = transforms_[k];
     t.header.stamp = stamp;
@@ -402,26 +469,143 @@ void FingerNode::publish(const FingerState& state, const ros::Time& stamp, bool 
     finger_state_.bulge_m[k] = state.bulge_m[i];
     finger_state_.half_angle_rad[k] = state.half_angle_rad[i];
     finger_state_.joint_angle_rad[k] = q;
+    finger_state_.held_by_contact[k] = contact && contact->held[k];
   }
+  if (!contact) tip_angle_rad = state.tip_angle_rad;  // the model's own sum, bit for bit
   for (int i = 0; i < n + 2; ++i) {
     auto& p = finger_state_.backbone[static_cast<std::size_t>(i)];
-    p.x = state.backbone_m(0, i);
-    p.y = state.backbone_m(1, i);
+    p.x = backbone(0, i);
+    p.y = backbone(1, i);
   }
   finger_state_.header.stamp = stamp;
   finger_state_.gauge_pa = state.gauge_pa;
   finger_state_.tip.position = finger_state_.backbone.back();
-  finger_state_.tip.orientation.z = std::sin(0.5 * state.tip_angle_rad);
-  finger_state_.tip.orientation.w = std::cos(0.5 * state.tip_angle_rad);
-  finger_state_.tip_angle_rad = state.tip_angle_rad;
-  finger_state_.in_contact = state.in_contact;
+  finger_state_.tip.orientation.z = std::sin(0.5 * tip_angle_rad);
+  finger_state_.tip.orientation.w = std::cos(0.5 * tip_angle_rad);
+  finger_state_.tip_angle_rad = tip_angle_rad;
+  finger_state_.walls_in_contact = state.walls_in_contact;
   finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.input.validated_max_gauge_pa;
   finger_state_.status = state.status == EvaluationStatus::kVacuum ? FingerModelState::STATUS_VACUUM
                           : clamped                                  ? FingerModelState::STATUS_CLAMPED
                                                                      : FingerModelState::STATUS_OK;
+  finger_state_.object_id = object_ ? object_->id : std::string();
+  finger_state_.object_status = object_status_;
+  finger_state_.touch_gauge_pa = touch_gauge_pa_;
+  finger_state_.first_touch_gauge_pa = NAN;
+  finger_state_.contact_points.clear();
+  if (contact) {
+    using Status = ContactState::Status;
+    finger_state_.object_status = contact->status == Status::kInContact       ? FingerModelState::OBJECT_TOUCHING
+                                  : contact->status == Status::kOverlapsAtRest ? FingerModelState::OBJECT_OVERLAPS_AT_REST
+                                                                               : FingerModelState::OBJECT_CLEAR;
+    finger_state_.first_touch_gauge_pa = contact->first_touch_gauge_pa;
+    for (const Eigen::Vector2d& c : contact->contact_points_m) {
+      geometry_msgs::Point p;
+      p.x = c.x();
+      p.y = c.y();
+      finger_state_.contact_points.push_back(p);
+    }
+  }
   if (tf_) tf_->sendTransform(transforms_);
   joint_states_pub_.publish(joint_states_);
   finger_state_pub_.publish(finger_state_);
+}
+
+void FingerNode::onGraspObject(const GraspObject::ConstPtr& msg) {
+  object_located_ = false;
+  tracker_.reset();
+  touch_gauge_pa_ = NAN;
+  object_problem_.clear();
+  if (msg->id.empty()) {
+    object_.reset();
+    object_timer_.stop();
+    object_status_ = FingerModelState::OBJECT_NONE;
+    ROS_INFO("finger_node: grasp object cleared");
+  } else {
+    // Validate before use: a bad object is refused by name and the finger stays free.
+    std::string why = solidFromMessage(*msg, object_in_frame_);
+    if (why.empty() && msg->header.frame_id.empty()) why = "header.frame_id is empty";
+    if (!why.empty()) {
+      ROS_ERROR("finger_node: grasp object '%s' refused: %s; the finger stays free", msg->id.c_str(), why.c_str());
+      object_.reset();
+      object_timer_.stop();
+      object_status_ = FingerModelState::OBJECT_NONE;
+      object_problem_ = "grasp object '" + msg->id + "' refused: " + why;
+      if (have_pressure_) publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
+      return;
+    }
+    object_ = msg;
+    const std::string finger_frame = segmentLinkName(settings_.urdf.prefix, 0);
+    if (msg->header.frame_id != finger_frame && !tf_buffer_) {
+      tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
+      tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_);
+    }
+    if (!object_timer_.isValid()) {
+      object_timer_ = nh_.createTimer(ros::Duration(1.0 / settings_.object_rate_hz), &FingerNode::onObjectTimer, this);
+    }
+    object_timer_.start();
+    ROS_INFO("finger_node: grasp object '%s' in '%s'", msg->id.c_str(), msg->header.frame_id.c_str());
+  }
+  updateObject();
+  if (have_pressure_) publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
+}
+
+void FingerNode::onObjectTimer(const ros::TimerEvent&) {
+  if (updateObject() && have_pressure_) publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
+}
+
+bool FingerNode::updateObject() {
+  if (!object_) return false;
+  const std::string finger_frame = segmentLinkName(settings_.urdf.prefix, 0);
+  // The object's pose in this finger's frame: the message's pose composed with tf's latest finger <- object frame.
+  Eigen::Isometry3d finger_from_frame = Eigen::Isometry3d::Identity();
+  if (object_->header.frame_id != finger_frame) {
+    try {
+      const auto t = tf_buffer_->lookupTransform(finger_frame, object_->header.frame_id, ros::Time(0)).transform;
+      finger_from_frame = Eigen::Translation3d(t.translation.x, t.translation.y, t.translation.z) *
+                          Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z);
+    } catch (const tf2::TransformException& e) {
+      ++transform_failures_;
+      object_problem_ = "no transform from '" + object_->header.frame_id + "' to '" + finger_frame + "': " + e.what();
+      ROS_WARN_THROTTLE(5.0, "finger_node: grasp object '%s': %s", object_->id.c_str(), object_problem_.c_str());
+      const bool changed = object_status_ != FingerModelState::OBJECT_NO_TRANSFORM;
+      object_status_ = FingerModelState::OBJECT_NO_TRANSFORM;
+      tracker_.reset();
+      object_located_ = false;
+      return changed;
+    }
+  }
+  SolidObject solid = object_in_frame_;
+  solid.pose = finger_from_frame * object_in_frame_.pose;
+  // Unchanged pose relative to the finger (a still arm and object): the tracker and its touch events stay.
+  if (object_located_ && solid.pose.matrix() == object_in_finger_.pose.matrix()) return false;
+  object_in_finger_ = solid;
+  object_located_ = true;
+  object_problem_.clear();
+  tracker_.reset();
+  touch_gauge_pa_ = NAN;
+  // Out of reach (the bounding sphere beyond the finger's length, or off its plane): no section, no contact work.
+  const Eigen::Vector3d c = solid.pose.translation();
+  const double r = solid.boundingRadius();
+  std::optional<Obstacle> section;
+  if (c.norm() - r <= finger_length_m_ && std::fabs(c.z()) < r) section = sectionByFingerPlane(solid);
+  if (!section || section->distanceFromOrigin() > finger_length_m_) {
+    object_status_ = FingerModelState::OBJECT_OUT_OF_REACH;
+    return true;
+  }
+  ++sections_cut_;
+  tracker_ = std::make_unique<ContactTracker>(*model_, *section);
+  // The whole range at once: the first touch is then known for the gripper action, and every pressure after this
+  // is answered from the kept events.
+  const ContactState full = tracker_->solve(settings_.urdf.max_gauge_pa);
+  touch_gauge_pa_ = full.first_touch_gauge_pa;
+  object_status_ = full.status == ContactState::Status::kOverlapsAtRest ? FingerModelState::OBJECT_OVERLAPS_AT_REST
+                                                                         : FingerModelState::OBJECT_CLEAR;
+  if (full.status == ContactState::Status::kOverlapsAtRest) {
+    object_problem_ = "grasp object '" + object_->id + "' overlaps the straight finger: reported, not solved";
+    ROS_WARN_THROTTLE(5.0, "finger_node: %s", object_problem_.c_str());
+  }
+  return true;
 }
 
 bool FingerNode::onInverse(PressureForTipAngle::Request& req, PressureForTipAngle::Response& res) {
@@ -499,6 +683,15 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("skipped by max_rate_hz or same instant", c.throttled);
   status.add("model evaluations (unchanged pressures reuse the last)", model_->computationCount());
   if (!input_.lastProblem().empty()) status.add("last problem", input_.lastProblem());
+  status.add("grasp object", object_ ? object_->id : std::string("(none)"));
+  status.add("grasp object status", static_cast<int>(object_status_));
+  status.add("predicted first touch (Pa gauge)", touch_gauge_pa_);
+  status.add("object sections cut (pose changed)", sections_cut_);
+  status.add("object transform failures", transform_failures_);
+  if (!object_problem_.empty()) {
+    status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, object_problem_);
+    status.add("grasp object problem", object_problem_);
+  }
 }
 
 }  // namespace pneumatic_finger

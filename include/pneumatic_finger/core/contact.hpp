@@ -39,6 +39,13 @@ class Obstacle {
   /// a finger of length L when distanceFromOrigin() > L.
   double distanceFromOrigin() const;
 
+  /// Points along the region's boundary, counter-clockwise (a polygon's corners; @p samples points of a disk or an
+  /// ellipse), for drawing it.
+  std::vector<Eigen::Vector2d> outline(int samples = 64) const;
+
+  /// Whether @p p lies inside the region or on its boundary.
+  bool contains(const Eigen::Vector2d& p) const { return clearance(p, p) <= 0; }
+
   /// Why the obstacle is not valid (not finite, radius <= 0, polygon not convex), empty when it is.
   std::string problem() const;
 
@@ -104,6 +111,8 @@ class ContactTracker {
  public:
   ContactTracker(const FingerModel& model, const Obstacle& obstacle);
   ContactState solve(double gauge_pa);
+  /// The obstacle lies beyond the finger's length: solve() is the free model alone.
+  bool outOfReach() const { return out_of_reach_; }
 
  private:
   ContactSolver solver_;

@@ -57,7 +57,7 @@ struct FingerState {
   Eigen::VectorXd joint_angle_rad;       ///< q_n = theta_{n-1} + theta_n, n = 1..N (rad)
   Eigen::Matrix2Xd backbone_m;           ///< O_0 .. O_{N+1} as columns (m); O_{N+1} is the tip
   double tip_angle_rad = 0.0;            ///< Theta_N: direction of the last segment = sum of joint angles
-  bool in_contact = false;               ///< some wall pair pushes (theta_n > 0)
+  bool walls_in_contact = false;               ///< some wall pair pushes (theta_n > 0)
   EvaluationStatus status = EvaluationStatus::kOk;
 
   /// Tip position O_{N+1}.
@@ -66,7 +66,7 @@ struct FingerState {
 
 /// Stages 5-6 (eq 37-38): joint angles q_n = theta_{n-1} + theta_n, the tip direction Theta_N and the backbone
 /// O_0..O_{N+1}, from each chamber's half angle (with its cosine and sine). Fills joint_angle_rad, half_angle_rad,
-/// backbone_m, tip_angle_rad and in_contact of @p out, which must be sized for parameters.chamber_count.
+/// backbone_m, tip_angle_rad and walls_in_contact of @p out, which must be sized for parameters.chamber_count.
 /// The direction is carried as a unit complex number rotated by (cos, sin) of both half angles, so the whole
 /// backbone costs no trigonometric call.
 void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half_angles, FingerState& out);

@@ -7,17 +7,23 @@
 #include <ros/ros.h>
 #include <sensor_msgs/FluidPressure.h>
 #include <sensor_msgs/JointState.h>
+#include <tf2_ros/buffer.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <tf2_ros/transform_listener.h>
 
+#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/FingerNodeConfig.h"
+#include "pneumatic_finger/GraspObject.h"
 #include "pneumatic_finger/PressureForTipAngle.h"
+#include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/object_section.hpp"
 #include "pneumatic_finger/core/pressure_input.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
 
@@ -47,7 +53,8 @@ struct NodeSettings {
   SolverKind solver;
   bool publish_tf = true;
   std::string gripper_file;
-  std::string description_param, pressure_topic, joint_states_topic, finger_state_topic;
+  double object_rate_hz = 30.0;
+  std::string description_param, pressure_topic, joint_states_topic, finger_state_topic, grasp_object_topic;
 };
 
 /// Reads and validates every parameter from the private handle.
@@ -68,7 +75,17 @@ class FingerNode {
   FingerNodeConfig currentConfig() const;
   /// Builds the model and publishes the URDF from settings_ (at start-up, and when the actuator is reconfigured).
   void buildModel(ros::NodeHandle& nh);
-  void publish(const FingerState& state, const ros::Time& stamp, bool clamped);
+  /// Publishes the finger at a pressure the input rules accepted: the free model, then the contact rule when an
+  /// object is within reach. False (nothing published) when a solver found no finite answer.
+  bool publishAt(double gauge_pa, const ros::Time& stamp, bool clamped);
+  void publish(const FingerState& state, const ContactState* contact, const ros::Time& stamp, bool clamped);
+
+  // The grasp object (docs/GRASP.md).
+  void onGraspObject(const GraspObject::ConstPtr& msg);
+  /// Looks the object up in the finger's frame; when its pose there changed, cuts it by the bending plane and
+  /// starts a new ContactTracker. Returns whether anything changed.
+  bool updateObject();
+  void onObjectTimer(const ros::TimerEvent&);
 
   NodeSettings settings_;
   std::unique_ptr<FingerModel> model_;
@@ -93,6 +110,26 @@ class FingerNode {
   std::unique_ptr<dynamic_reconfigure::Server<FingerNodeConfig>> reconfigure_;
   bool reconfigure_synced_ = false;
   ros::NodeHandle nh_;
+
+  // The grasp object. Nothing here works without one: the tf listener is made for the first object in another
+  // frame, the timer runs only while there is an object, and an object out of reach costs no contact solve.
+  ros::Subscriber object_sub_;
+  ros::Timer object_timer_;
+  std::unique_ptr<tf2_ros::Buffer> tf_buffer_;
+  std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
+  GraspObject::ConstPtr object_;                  ///< null: no object
+  SolidObject object_in_frame_;                   ///< the object in its message's frame
+  SolidObject object_in_finger_;                  ///< the object in this finger's frame, as last looked up
+  bool object_located_ = false;                   ///< object_in_finger_ is current
+  std::unique_ptr<ContactTracker> tracker_;       ///< the section's touch events; null: no section in reach
+  uint8_t object_status_ = FingerModelState::OBJECT_NONE;
+  double touch_gauge_pa_ = NAN;                   ///< predicted first touch, 0..max_gauge_pa
+  double finger_length_m_ = 0.0;
+  long sections_cut_ = 0, transform_failures_ = 0;
+  std::string object_problem_;
+  // The last accepted pressure: an object that moves re-publishes the finger at it.
+  bool have_pressure_ = false, last_clamped_ = false;
+  double last_gauge_pa_ = 0.0;
 };
 
 }  // namespace pneumatic_finger

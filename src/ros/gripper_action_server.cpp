@@ -1,0 +1,189 @@
+// gripper_action_server: the gripper's actionlib interface (pneumatic_finger/GripperCommand, MoveIt's fields). It
+// gathers each finger's answers (the pressure for the goal's tip angle from its pressure_for_tip_angle service, the
+// predicted first touch of the grasp object from its finger_state), lets the core plan the pressure
+// (planGripperCommand), commands the regulator and follows the fingers until the pressure settles.
+#include <actionlib/server/simple_action_server.h>
+#include <ros/ros.h>
+#include <std_msgs/Float64.h>
+
+#include <cmath>
+#include <map>
+#include <mutex>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/FingerModelState.h"
+#include "pneumatic_finger/GripperCommandAction.h"
+#include "pneumatic_finger/PressureForTipAngle.h"
+#include "pneumatic_finger/core/grasp_plan.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+double readNumber(const ros::NodeHandle& pnh, const std::string& key, double def, double lo, double hi) {
+  double x = def;
+  pnh.param(key, x, def);
+  if (!(x >= lo && x <= hi)) {
+    std::ostringstream s;
+    s << "parameter '" << key << "' = " << x << " is outside its allowed range [" << lo << ", " << hi << "]";
+    throw std::runtime_error(s.str());
+  }
+  return x;
+}
+
+class GripperActionServer {
+ public:
+  GripperActionServer(ros::NodeHandle& nh, ros::NodeHandle& pnh)
+      : server_(nh, "gripper_action", [this](const pf::GripperCommandGoalConstPtr& goal) { execute(goal); }, false) {
+    if (!pnh.getParam("finger_namespaces", fingers_) || fingers_.empty()) {
+      throw std::runtime_error("parameter 'finger_namespaces' must list each finger_node's namespace");
+    }
+    squeeze_margin_pa_ = readNumber(pnh, "squeeze_margin_pa", 9806.65, 0, 1e6);
+    goal_tolerance_rad_ = readNumber(pnh, "goal_tolerance_rad", 0.01, 1e-6, 1.0);
+    settle_tolerance_pa_ = readNumber(pnh, "settle_tolerance_pa", 200.0, 1e-3, 1e5);
+    settle_timeout_s_ = readNumber(pnh, "settle_timeout_s", 10.0, 0.1, 600);
+    max_gauge_pa_ = readNumber(pnh, "max_gauge_pa", 294199.5, 1e-3, 1e7);
+    for (const std::string& ns : fingers_) {
+      subs_.push_back(nh.subscribe<pf::FingerModelState>(
+          ros::names::append(ns, "finger_state"), 1,
+          [this, ns](const pf::FingerModelState::ConstPtr& m) {
+            std::lock_guard<std::mutex> lock(mutex_);
+            states_[ns] = {m, ros::Time::now()};
+          }));
+    }
+    setpoint_pub_ = nh.advertise<std_msgs::Float64>("setpoint", 1, true);
+    server_.start();
+    ROS_INFO("gripper_action_server: %zu fingers, squeeze margin %.0f Pa, action '%s'", fingers_.size(),
+             squeeze_margin_pa_, nh.resolveName("gripper_action").c_str());
+  }
+
+ private:
+  struct Latest {
+    pf::FingerModelState::ConstPtr state;
+    ros::Time received;
+  };
+
+  // Every finger's latest state (received after @p since), or an empty list when one is missing.
+  std::vector<Latest> latest(const ros::Time& since) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    std::vector<Latest> out;
+    for (const std::string& ns : fingers_) {
+      const auto it = states_.find(ns);
+      if (it == states_.end() || it->second.received < since) return {};
+      out.push_back(it->second);
+    }
+    return out;
+  }
+
+  void describe(const std::vector<Latest>& states, double goal_rad, pf::GripperCommandResult& r) const {
+    r.position = r.effort = 0;
+    r.stalled = r.reached_goal = true;
+    for (const Latest& l : states) {
+      r.position += l.state->tip_angle_rad / static_cast<double>(states.size());
+      r.effort += l.state->gauge_pa / static_cast<double>(states.size());
+      r.stalled = r.stalled && l.state->object_status == pf::FingerModelState::OBJECT_TOUCHING;
+      r.reached_goal = r.reached_goal && std::fabs(l.state->tip_angle_rad - goal_rad) <= goal_tolerance_rad_;
+    }
+  }
+
+  void abort(const std::string& why, const pf::GripperCommandResult& result = {}) {
+    ROS_WARN("gripper_action_server: goal aborted: %s", why.c_str());
+    server_.setAborted(result, why);
+  }
+
+  void execute(const pf::GripperCommandGoalConstPtr& goal) {
+    // The fingers' answers: the pressure that brings each free tip to the goal, the predicted touch of the object.
+    const ros::Time start = ros::Time::now();
+    std::vector<Latest> states;
+    for (ros::Rate wait(50); (states = latest(ros::Time(0))).empty(); wait.sleep()) {
+      if (!ros::ok() || (ros::Time::now() - start).toSec() > 2.0) {
+        return abort("no finger_state from every finger in " + std::to_string(fingers_.size()) + " namespaces");
+      }
+    }
+    std::vector<pf::FingerGoalAnswer> answers;
+    bool object = false;
+    for (std::size_t i = 0; i < fingers_.size(); ++i) {
+      pf::PressureForTipAngle srv;
+      srv.request.tip_angle_rad = std::max(goal->position, 0.0);  // below 0: open, as 0
+      const std::string name = ros::names::append(fingers_[i], "pressure_for_tip_angle");
+      if (!ros::service::waitForService(name, ros::Duration(2.0)) || !ros::service::call(name, srv)) {
+        return abort("service '" + name + "' did not answer");
+      }
+      // The finger's range: the service refuses beyond its max_gauge_pa; the touch is predicted up to it.
+      const pf::FingerModelState& s = *states[i].state;
+      object = object || !s.object_id.empty();
+      answers.push_back({fingers_[i], srv.response.success ? srv.response.gauge_pa : NAN, s.touch_gauge_pa});
+      if (!srv.response.success) ROS_INFO("gripper_action_server: %s: %s", name.c_str(), srv.response.message.c_str());
+    }
+    // max_effort, within the fingers' range (their max_gauge_pa, where they clamp).
+    const double limit = goal->max_effort > 0 ? std::min(goal->max_effort, max_gauge_pa_) : max_gauge_pa_;
+    const pf::GripperPlan plan = pf::planGripperCommand(answers, goal->position, limit, squeeze_margin_pa_, object);
+    if (plan.kind == pf::GripperPlan::Kind::kUnreachable) return abort(plan.message);
+    ROS_INFO("gripper_action_server: %s", plan.message.c_str());
+
+    std_msgs::Float64 setpoint;
+    setpoint.data = plan.gauge_pa;
+    setpoint_pub_.publish(setpoint);
+    const ros::Time commanded = ros::Time::now();
+    pf::GripperCommandResult result;
+    pf::GripperCommandFeedback feedback;
+    for (ros::Rate rate(20); ros::ok(); rate.sleep()) {
+      if (server_.isPreemptRequested()) {
+        server_.setPreempted(result, "preempted; the regulator keeps the last setpoint");
+        return;
+      }
+      states = latest(commanded);
+      if (states.empty()) continue;
+      describe(states, goal->position, result);
+      feedback.position = result.position, feedback.effort = result.effort;
+      feedback.stalled = result.stalled, feedback.reached_goal = result.reached_goal;
+      server_.publishFeedback(feedback);
+      bool settled = true;
+      for (const Latest& l : states) settled = settled && std::fabs(l.state->gauge_pa - plan.gauge_pa) <= settle_tolerance_pa_;
+      if (settled) break;
+      if ((ros::Time::now() - commanded).toSec() > settle_timeout_s_) {
+        std::ostringstream s;
+        s << "the fingers did not settle at " << plan.gauge_pa << " Pa within " << settle_timeout_s_
+          << " s (at " << result.effort << " Pa)";
+        return abort(s.str(), result);
+      }
+    }
+    std::ostringstream s;
+    s << "at " << result.effort << " Pa: tip angle " << result.position << " rad";
+    if (plan.kind == pf::GripperPlan::Kind::kGrasp ? result.stalled : (result.reached_goal || result.stalled)) {
+      s << (result.stalled ? ", every finger touches the object" : ", goal reached");
+      ROS_INFO("gripper_action_server: goal succeeded %s", s.str().c_str());
+      server_.setSucceeded(result, s.str());
+    } else {
+      s << (plan.kind == pf::GripperPlan::Kind::kGrasp ? ": not every finger touches the object (did it move?)"
+                                                       : ": the goal is not reached and the object does not stop it");
+      abort(s.str(), result);
+    }
+  }
+
+  actionlib::SimpleActionServer<pf::GripperCommandAction> server_;
+  std::vector<std::string> fingers_;
+  std::vector<ros::Subscriber> subs_;
+  ros::Publisher setpoint_pub_;
+  std::mutex mutex_;
+  std::map<std::string, Latest> states_;
+  double squeeze_margin_pa_ = 0, goal_tolerance_rad_ = 0, settle_tolerance_pa_ = 0, settle_timeout_s_ = 0;
+  double max_gauge_pa_ = 0;
+};
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  ros::init(argc, argv, "gripper_action_server");
+  ros::NodeHandle nh, pnh("~");
+  try {
+    GripperActionServer server(nh, pnh);
+    ros::spin();
+  } catch (const std::exception& e) {
+    ROS_FATAL("gripper_action_server: %s", e.what());
+    return 2;
+  }
+  return 0;
+}
