@@ -15,13 +15,14 @@ const char* cellPhaseName(CellPhase phase) {
     case CellPhase::kMove: return "move";
     case CellPhase::kDescendToPlace: return "descend to place";
     case CellPhase::kPlace: return "place (deflate)";
+    case CellPhase::kRetreat: return "retreat";
     case CellPhase::kReturn: return "return";
   }
   return "?";
 }
 
-CellSchedule::CellSchedule(CellWaypoints waypoints, double cycle_time_s, double grasp_gauge_pa)
-    : waypoints_(std::move(waypoints)), cycle_time_s_(cycle_time_s), grasp_gauge_pa_(grasp_gauge_pa) {
+CellSchedule::CellSchedule(CellWaypoints waypoints, double cycle_time_s)
+    : waypoints_(std::move(waypoints)), cycle_time_s_(cycle_time_s) {
   const auto& w = waypoints_;
   for (const ArmJoints* v : {&w.above_pick, &w.pick, &w.above_place, &w.place}) {
     if (v->size() != w.home.size()) throw std::invalid_argument("every waypoint needs as many joints as 'home'");
@@ -37,7 +38,9 @@ CellSchedule::CellSchedule(CellWaypoints waypoints, double cycle_time_s, double 
       {CellPhase::kMove, 0.14, &w.above_pick, &w.above_place, true},
       {CellPhase::kDescendToPlace, 0.10, &w.above_place, &w.place, true},
       {CellPhase::kPlace, 0.15, &w.place, &w.place, false},
-      {CellPhase::kReturn, 0.12, &w.place, &w.home, false},
+      // Straight up first: a swing from the place pose would sweep the open fingers through the object just left.
+      {CellPhase::kRetreat, 0.06, &w.place, &w.above_place, false},
+      {CellPhase::kReturn, 0.06, &w.above_place, &w.home, false},
   };
 }
 
@@ -55,13 +58,13 @@ CellStep CellSchedule::at(double t_s) const {
   const double smooth = u * u * (3 - 2 * u);  // zero velocity at both ends of every motion
   step.arm.resize(seg.from->size());
   for (std::size_t i = 0; i < step.arm.size(); ++i) step.arm[i] = (*seg.from)[i] + smooth * ((*seg.to)[i] - (*seg.from)[i]);
-  step.setpoint_gauge_pa = seg.pressurised ? grasp_gauge_pa_ : 0.0;
+  step.gripper_closed = seg.closed;
   // Held from the end of the grasp until the release starts; before that on the pick table, after it on the place one.
   const bool held = (seg.phase == CellPhase::kGrasp && u >= 1.0) || seg.phase == CellPhase::kLift ||
                     seg.phase == CellPhase::kMove || seg.phase == CellPhase::kDescendToPlace;
   if (held) {
     step.object = ObjectPlace::kHeld;
-  } else if (seg.phase == CellPhase::kPlace || seg.phase == CellPhase::kReturn) {
+  } else if (seg.phase == CellPhase::kPlace || seg.phase == CellPhase::kRetreat || seg.phase == CellPhase::kReturn) {
     step.object = ObjectPlace::kOnPlaceTable;
   } else {
     step.object = ObjectPlace::kOnPickTable;

@@ -1,6 +1,11 @@
-// cell_sequencer: drives the pick-and-place cell. It forwards the CellSchedule's answers: the arm's joint states,
-// the regulator's setpoint, the phase, and the object and tables as markers. Forward kinematics: KDL on the URDF.
+// cell_sequencer: drives the pick-and-place cell. It forwards the CellSchedule's answers (the arm's joint states,
+// the phase), grasps and releases through the gripper action, and keeps the object: it is carried only when the
+// grasp's result says that every finger touches it; a grasp that misses leaves it on its table and says so. The
+// object is the grasp_object every finger closes on, a marker, and an interactive marker a person can drag.
+// Forward kinematics: KDL on the URDF.
 #include <Eigen/Geometry>
+#include <actionlib/client/simple_action_client.h>
+#include <interactive_markers/interactive_marker_server.h>
 #include <kdl/chainfksolverpos_recursive.hpp>
 #include <kdl/tree.hpp>
 #include <kdl_parser/kdl_parser.hpp>
@@ -13,10 +18,13 @@
 
 #include <algorithm>
 #include <memory>
+#include <mutex>
 #include <stdexcept>
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/GraspObject.h"
+#include "pneumatic_finger/GripperCommandAction.h"
 #include "pneumatic_finger/cell/cell_schedule.hpp"
 
 namespace pf = pneumatic_finger;
@@ -26,10 +34,10 @@ namespace {
 struct Settings {
   std::vector<std::string> joint_names;
   pf::CellWaypoints waypoints;
-  double cycle_time_s = 12.0, grasp_gauge_pa = 147099.75, object_offset_m = 0.075, object_radius_m = 0.016,
-         object_height_m = 0.035, publish_rate_hz = 50.0;
+  double cycle_time_s = 12.0, grasp_position_rad = 3.0, grasp_max_effort_pa = 0.0, object_offset_m = 0.075,
+         object_radius_m = 0.016, object_height_m = 0.035, publish_rate_hz = 50.0;
   int loop_count = 0;
-  std::string base_link = "world", tool_link = "tool0";
+  std::string base_link = "world", tool_link = "tool0", object_id = "cylinder";
 };
 
 pf::ArmJoints readJoints(const ros::NodeHandle& pnh, const std::string& key, std::size_t n) {
@@ -50,14 +58,23 @@ Settings readSettings(const ros::NodeHandle& pnh) {
                  readJoints(pnh, "above_place", n), readJoints(pnh, "place", n)};
   pnh.param("cycle_time_s", s.cycle_time_s, s.cycle_time_s);
   pnh.param("loop_count", s.loop_count, s.loop_count);
-  pnh.param("grasp_gauge_pa", s.grasp_gauge_pa, s.grasp_gauge_pa);
+  pnh.param("grasp_position_rad", s.grasp_position_rad, s.grasp_position_rad);
+  pnh.param("grasp_max_effort_pa", s.grasp_max_effort_pa, s.grasp_max_effort_pa);
+  pnh.param("object_id", s.object_id, s.object_id);
   pnh.param("object_offset_m", s.object_offset_m, s.object_offset_m);
   pnh.param("object_radius_m", s.object_radius_m, s.object_radius_m);
   pnh.param("object_height_m", s.object_height_m, s.object_height_m);
   pnh.param("publish_rate_hz", s.publish_rate_hz, s.publish_rate_hz);
   if (s.loop_count < 0) throw std::runtime_error("parameter 'loop_count' must be >= 0 (0: forever)");
-  if (!(s.grasp_gauge_pa > 0 && s.grasp_gauge_pa <= 1e6)) {
-    throw std::runtime_error("parameter 'grasp_gauge_pa' must be in (0, 1e6]");
+  if (!(s.grasp_position_rad > 0 && s.grasp_position_rad <= 20)) {
+    throw std::runtime_error("parameter 'grasp_position_rad' must be in (0, 20]");
+  }
+  if (!(s.grasp_max_effort_pa >= 0 && s.grasp_max_effort_pa <= 1e7)) {
+    throw std::runtime_error("parameter 'grasp_max_effort_pa' must be in [0, 1e7] (0: the fingers' range)");
+  }
+  if (s.object_id.empty()) throw std::runtime_error("parameter 'object_id' must not be empty");
+  for (double x : {s.object_offset_m, s.object_radius_m, s.object_height_m}) {
+    if (!(x > 0 && x < 1)) throw std::runtime_error("object_offset_m, object_radius_m and object_height_m must be in (0, 1) m");
   }
   if (!(s.publish_rate_hz > 0 && s.publish_rate_hz <= 1000)) {
     throw std::runtime_error("parameter 'publish_rate_hz' must be in (0, 1000]");
@@ -103,20 +120,26 @@ class ArmKinematics {
   std::vector<std::size_t> index_;  // chain joint -> position in arm_joint_names
 };
 
-void setPose(visualization_msgs::Marker& m, const Eigen::Isometry3d& p) {
-  m.pose.position.x = p.translation().x();
-  m.pose.position.y = p.translation().y();
-  m.pose.position.z = p.translation().z();
+void setPose(geometry_msgs::Pose& m, const Eigen::Isometry3d& p) {
+  m.position.x = p.translation().x();
+  m.position.y = p.translation().y();
+  m.position.z = p.translation().z();
   const Eigen::Quaterniond q(p.rotation());
-  m.pose.orientation.x = q.x(), m.pose.orientation.y = q.y(), m.pose.orientation.z = q.z(), m.pose.orientation.w = q.w();
+  m.orientation.x = q.x(), m.orientation.y = q.y(), m.orientation.z = q.z(), m.orientation.w = q.w();
 }
 
-// The object (a cylinder, in tool0 while held, else on its table) and the two tables, as markers.
-class SceneMarkers {
+// The object: on a table (in the base frame) or held (in the tool frame, fixed there from the grasp on).
+struct ObjectState {
+  bool held = false;
+  Eigen::Isometry3d in_base = Eigen::Isometry3d::Identity();  // while on a table
+  Eigen::Isometry3d in_tool = Eigen::Isometry3d::Identity();  // while held
+};
+
+// The object (a cylinder) and the two tables as markers, and the object as the fingers' grasp_object.
+class Scene {
  public:
-  SceneMarkers(const Settings& s, const Eigen::Isometry3d& at_pick, const Eigen::Isometry3d& at_place)
-      : held_(Eigen::Translation3d(0, 0, s.object_offset_m)), at_pick_(at_pick), at_place_(at_place),
-        tool_link_(s.tool_link), base_link_(s.base_link), height_m_(s.object_height_m) {
+  Scene(ros::NodeHandle& nh, const Settings& s, const Eigen::Isometry3d& at_pick, const Eigen::Isometry3d& at_place)
+      : settings_(s), at_pick_(at_pick), at_place_(at_place) {
     object_.ns = "object";
     object_.type = visualization_msgs::Marker::CYLINDER;
     object_.scale.x = object_.scale.y = 2 * s.object_radius_m;
@@ -128,36 +151,87 @@ class SceneMarkers {
     table_.scale.x = table_.scale.y = 0.12;
     table_.scale.z = 0.01;
     table_.color.r = table_.color.g = table_.color.b = 0.55f;
+    grasp_object_.id = s.object_id;
+    grasp_object_.shape.type = shape_msgs::SolidPrimitive::CYLINDER;
+    grasp_object_.shape.dimensions = {s.object_height_m, s.object_radius_m};  // CYLINDER_HEIGHT, CYLINDER_RADIUS
+    markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("cell/markers", 1, true);
+    object_pub_ = nh.advertise<pneumatic_finger::GraspObject>("grasp_object", 1, true);
   }
 
-  visualization_msgs::MarkerArray at(pf::ObjectPlace place, const ros::Time& stamp) {
+  const Eigen::Isometry3d& pickSpot() const { return at_pick_; }
+  void movePickSpot(const Eigen::Isometry3d& spot) { at_pick_ = spot; }
+
+  // The object changed place: the fingers (grasp_object) and rviz (markers) learn it.
+  void publishObject(const ObjectState& o, const ros::Time& stamp) {
+    grasp_object_.header.stamp = stamp;
+    grasp_object_.header.frame_id = o.held ? settings_.tool_link : settings_.base_link;
+    setPose(grasp_object_.pose, o.held ? o.in_tool : o.in_base);
+    object_pub_.publish(grasp_object_);
+    publishMarkers(stamp);
+  }
+
+  void publishMarkers(const ros::Time& stamp) {
     visualization_msgs::MarkerArray markers;
+    object_.header = grasp_object_.header;
     object_.header.stamp = stamp;
-    if (place == pf::ObjectPlace::kHeld) {
-      object_.header.frame_id = tool_link_;
-      setPose(object_, held_);
-    } else {
-      object_.header.frame_id = base_link_;
-      setPose(object_, place == pf::ObjectPlace::kOnPlaceTable ? at_place_ : at_pick_);
-    }
+    object_.pose = grasp_object_.pose;
     markers.markers.push_back(object_);
     table_.header.stamp = stamp;
-    table_.header.frame_id = base_link_;
+    table_.header.frame_id = settings_.base_link;
     for (int i = 0; i < 2; ++i) {
       table_.id = i;
       Eigen::Isometry3d top = i == 0 ? at_pick_ : at_place_;
-      top.translate(Eigen::Vector3d(0, 0, height_m_ / 2 + 0.005));  // tool z points down: +z is below the object
-      setPose(table_, Eigen::Isometry3d(Eigen::Translation3d(top.translation())));
+      top.translate(Eigen::Vector3d(0, 0, settings_.object_height_m / 2 + 0.005));  // tool z points down
+      setPose(table_.pose, Eigen::Isometry3d(Eigen::Translation3d(top.translation())));
       markers.markers.push_back(table_);
     }
-    return markers;
+    markers_pub_.publish(markers);
   }
 
  private:
+  const Settings& settings_;
+  Eigen::Isometry3d at_pick_, at_place_;
   visualization_msgs::Marker object_, table_;
-  Eigen::Isometry3d held_, at_pick_, at_place_;
-  std::string tool_link_, base_link_;
-  double height_m_;
+  pneumatic_finger::GraspObject grasp_object_;
+  ros::Publisher markers_pub_, object_pub_;
+};
+
+
+// Lets a person drag the object on the pick table in rviz (while it is there): the fingers wrap it where it is.
+class ObjectHandle {
+ public:
+  ObjectHandle(const Settings& s, const Eigen::Isometry3d& spot) : server_("cell_object"), name_(s.object_id) {
+    visualization_msgs::InteractiveMarker m;
+    m.header.frame_id = s.base_link;
+    m.name = s.object_id;
+    m.description = "drag the object";
+    m.scale = 0.12f;
+    setPose(m.pose, Eigen::Isometry3d(Eigen::Translation3d(spot.translation())));
+    for (int axis = 0; axis < 3; ++axis) {
+      visualization_msgs::InteractiveMarkerControl c;
+      c.orientation.w = 1;
+      (axis == 0 ? c.orientation.x : axis == 1 ? c.orientation.z : c.orientation.y) = 1;  // x, y, z of the frame
+      c.name = std::string("move_") + "xyz"[axis];
+      c.interaction_mode = visualization_msgs::InteractiveMarkerControl::MOVE_AXIS;
+      c.orientation_mode = visualization_msgs::InteractiveMarkerControl::FIXED;
+      m.controls.push_back(c);
+    }
+    server_.insert(m);
+    server_.applyChanges();
+  }
+
+  template <class Callback>
+  void onMove(Callback cb) {
+    server_.setCallback(name_, [cb](const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f) {
+      if (f->event_type != visualization_msgs::InteractiveMarkerFeedback::POSE_UPDATE) return;
+      cb(Eigen::Vector3d(f->pose.position.x, f->pose.position.y, f->pose.position.z));
+    });
+    server_.applyChanges();
+  }
+
+ private:
+  interactive_markers::InteractiveMarkerServer server_;
+  std::string name_;
 };
 
 }  // namespace
@@ -170,7 +244,7 @@ int main(int argc, char** argv) {
   std::unique_ptr<ArmKinematics> arm;
   try {
     settings = readSettings(pnh);
-    schedule = std::make_unique<pf::CellSchedule>(settings.waypoints, settings.cycle_time_s, settings.grasp_gauge_pa);
+    schedule = std::make_unique<pf::CellSchedule>(settings.waypoints, settings.cycle_time_s);
     std::string xml;
     if (!nh.getParam("robot_description", xml)) throw std::runtime_error("no arm URDF in 'robot_description'");
     arm = std::make_unique<ArmKinematics>(xml, settings.base_link, settings.tool_link, settings.joint_names);
@@ -178,30 +252,57 @@ int main(int argc, char** argv) {
     ROS_FATAL("cell_sequencer: %s", e.what());
     return 2;
   }
-  // The object stands where the gripper will hold it at the pick pose, and is left where the place pose puts it.
+  // The object stands where the gripper will hold it at the pick pose; the place pose puts it on the other table.
   const Eigen::Isometry3d held(Eigen::Translation3d(0, 0, settings.object_offset_m));
-  const Eigen::Isometry3d at_pick = arm->toolPose(settings.waypoints.pick) * held;
-  const Eigen::Isometry3d at_place = arm->toolPose(settings.waypoints.place) * held;
-  SceneMarkers scene(settings, at_pick, at_place);
+  Scene scene(nh, settings, arm->toolPose(settings.waypoints.pick) * held,
+              arm->toolPose(settings.waypoints.place) * held);
+  ObjectState object;
+  object.in_base = scene.pickSpot();
 
   ros::Publisher joints_pub = nh.advertise<sensor_msgs::JointState>("joint_states", 10);
-  ros::Publisher setpoint_pub = nh.advertise<std_msgs::Float64>("gripper/setpoint", 10);
-  ros::Publisher marker_pub = nh.advertise<visualization_msgs::MarkerArray>("cell/markers", 1, true);
   ros::Publisher phase_pub = nh.advertise<std_msgs::String>("cell/phase", 10, true);
+  ros::Publisher events_pub = nh.advertise<std_msgs::String>("cell/events", 10, true);
   ros::Publisher cycles_pub = nh.advertise<std_msgs::UInt32>("cell/cycles", 10, true);
+  actionlib::SimpleActionClient<pf::GripperCommandAction> gripper("gripper/gripper_action", true);
+  ros::AsyncSpinner spinner(1);  // the action client's and the interactive marker's callbacks
+  spinner.start();
 
   sensor_msgs::JointState js;
   js.name = settings.joint_names;
-  std_msgs::Float64 setpoint;
+  std::mutex object_mutex;
+  auto say = [&](const std::string& text) {
+    std_msgs::String msg;
+    msg.data = text;
+    events_pub.publish(msg);
+    ROS_INFO("cell_sequencer: %s", text.c_str());
+  };
+  ObjectHandle handle(settings, scene.pickSpot());
+  handle.onMove([&](const Eigen::Vector3d& p) {
+    std::lock_guard<std::mutex> lock(object_mutex);
+    Eigen::Isometry3d spot = scene.pickSpot();
+    spot.translation() = p;
+    scene.movePickSpot(spot);
+    if (!object.held) {
+      object.in_base = spot;
+      scene.publishObject(object, ros::Time::now());
+    }
+  });
+  scene.publishObject(object, ros::Time::now());
+  if (!gripper.waitForServer(ros::Duration(30.0))) {
+    ROS_FATAL("cell_sequencer: no gripper action server at '%s'", nh.resolveName("gripper/gripper_action").c_str());
+    return 2;
+  }
+
   ros::Rate rate(settings.publish_rate_hz);
   const ros::Time start = ros::Time::now();
   bool first = true;
   pf::CellPhase last_phase = pf::CellPhase::kApproach;
   long last_cycle = 0;
   int tick = 0;
-  ROS_INFO("cell_sequencer: %.1f s cycles, %s; object at (%.3f, %.3f, %.3f) m", settings.cycle_time_s,
+  ROS_INFO("cell_sequencer: %.1f s cycles, %s; object '%s' at (%.3f, %.3f, %.3f) m", settings.cycle_time_s,
            settings.loop_count ? (std::to_string(settings.loop_count) + " loops").c_str() : "looping",
-           at_pick.translation().x(), at_pick.translation().y(), at_pick.translation().z());
+           settings.object_id.c_str(), object.in_base.translation().x(), object.in_base.translation().y(),
+           object.in_base.translation().z());
   while (ros::ok()) {
     const pf::CellStep step = schedule->at((ros::Time::now() - start).toSec());
     if (step.cycle != last_cycle) {
@@ -218,18 +319,51 @@ int main(int argc, char** argv) {
     js.header.stamp = ros::Time::now();
     js.position = step.arm;
     joints_pub.publish(js);
-    setpoint.data = step.setpoint_gauge_pa;
-    setpoint_pub.publish(setpoint);
+    const Eigen::Isometry3d tool = arm->toolPose(step.arm);
     if (first || step.phase != last_phase) {
       std_msgs::String msg;
       msg.data = pf::cellPhaseName(step.phase);
       phase_pub.publish(msg);
-      ROS_INFO("cell_sequencer: cycle %ld: %s (gripper setpoint %.0f Pa gauge)", step.cycle + 1, msg.data.c_str(),
-               step.setpoint_gauge_pa);
+      ROS_INFO("cell_sequencer: cycle %ld: %s", step.cycle + 1, msg.data.c_str());
+      std::lock_guard<std::mutex> lock(object_mutex);
+      if (step.phase == pf::CellPhase::kApproach && !first) {
+        object = ObjectState();  // a new object on the pick table for the next cycle
+        object.in_base = scene.pickSpot();
+        scene.publishObject(object, js.header.stamp);
+      } else if (step.phase == pf::CellPhase::kGrasp) {
+        pf::GripperCommandGoal goal;
+        goal.position = settings.grasp_position_rad;
+        goal.max_effort = settings.grasp_max_effort_pa;
+        gripper.sendGoal(goal);
+      } else if (step.phase == pf::CellPhase::kLift) {
+        // Carried only when the twin says every finger touches the object.
+        const auto state = gripper.getState();
+        const auto result = gripper.getResult();
+        if (state == actionlib::SimpleClientGoalState::SUCCEEDED && result && result->stalled) {
+          object.held = true;
+          object.in_tool = tool.inverse() * object.in_base;
+          scene.publishObject(object, js.header.stamp);
+          say("cycle " + std::to_string(step.cycle + 1) + ": grasped '" + settings.object_id + "' at " +
+              std::to_string(result->effort) + " Pa: every finger touches it");
+        } else {
+          say("cycle " + std::to_string(step.cycle + 1) + ": grasp missed, '" + settings.object_id +
+              "' stays on the pick table: " +
+              (state == actionlib::SimpleClientGoalState::SUCCEEDED
+                   ? std::string("not every finger touches it")
+                   : "the gripper action " + state.toString() + (state.getText().empty() ? "" : ": " + state.getText())));
+        }
+      } else if (step.phase == pf::CellPhase::kPlace) {
+        gripper.sendGoal(pf::GripperCommandGoal());  // position 0: open
+        if (object.held) {
+          object.held = false;
+          object.in_base = tool * object.in_tool;
+          scene.publishObject(object, js.header.stamp);
+        }
+      }
       last_phase = step.phase;
       first = false;
     }
-    if (tick++ % 5 == 0) marker_pub.publish(scene.at(step.object, js.header.stamp));
+    if (tick++ % 5 == 0) scene.publishMarkers(js.header.stamp);
     rate.sleep();
   }
   return 0;

@@ -1,5 +1,5 @@
-// The pick-and-place cell's schedule: which phase the cell is in at a time, where the arm is, what the regulator is
-// asked for and where the object is. ROS-free, so that a unit test drives it with synthetic times; the
+// The pick-and-place cell's schedule: which phase the cell is in at a time, where the arm is, whether the gripper
+// is to be closed and where the object is if the grasp succeeds. ROS-free, so that a unit test drives it with synthetic times; the
 // cell_sequencer node only forwards its answers to topics.
 #pragma once
 
@@ -11,7 +11,7 @@ namespace pneumatic_finger {
 using ArmJoints = std::vector<double>;
 
 /// The phases of one pick-and-place cycle, in order.
-enum class CellPhase { kApproach, kDescendToPick, kGrasp, kLift, kMove, kDescendToPlace, kPlace, kReturn };
+enum class CellPhase { kApproach, kDescendToPick, kGrasp, kLift, kMove, kDescendToPlace, kPlace, kRetreat, kReturn };
 
 /// A phase's human-readable name ("grasp (inflate)", ...).
 const char* cellPhaseName(CellPhase phase);
@@ -30,14 +30,14 @@ struct CellStep {
   CellPhase phase = CellPhase::kApproach;
   double phase_progress = 0.0;    ///< 0..1 within the phase
   ArmJoints arm;                  ///< arm joint positions (rad)
-  double setpoint_gauge_pa = 0.0; ///< what the regulator is asked for (Pa gauge)
-  ObjectPlace object = ObjectPlace::kOnPickTable;  ///< where the object is when every grasp succeeds
+  bool gripper_closed = false;    ///< the gripper is to hold (grasp .. descend to place); the action plans the pressure
+  ObjectPlace object = ObjectPlace::kOnPickTable;  ///< where the object is when the grasp succeeds
 };
 
 class CellSchedule {
  public:
   /// @throws std::invalid_argument when a waypoint's size differs from the others or cycle_time_s is not in [2, 600]
-  CellSchedule(CellWaypoints waypoints, double cycle_time_s, double grasp_gauge_pa);
+  CellSchedule(CellWaypoints waypoints, double cycle_time_s);
 
   /// The step at @p t_s seconds since the start (t >= 0).
   CellStep at(double t_s) const;
@@ -50,10 +50,10 @@ class CellSchedule {
     double fraction;          // of the cycle time
     const ArmJoints* from;    // arm motion (the same waypoint twice: hold)
     const ArmJoints* to;
-    bool pressurised;         // the regulator is asked for the grasp pressure
+    bool closed;              // the gripper holds
   };
   CellWaypoints waypoints_;
-  double cycle_time_s_, grasp_gauge_pa_;
+  double cycle_time_s_;
   std::vector<Segment> segments_;
 };
 

@@ -1,0 +1,93 @@
+// rostest: the gripper action (test/gripper_action.test). It succeeds at the goal's free pressure, stalls on an
+// object at the pressure of the touch plus the squeeze margin (the touch computed here with the core's
+// ContactSolver on the object's section), and aborts goals no pressure in range reaches.
+#include <actionlib/client/simple_action_client.h>
+#include <gtest/gtest.h>
+#include <ros/ros.h>
+
+#include <cmath>
+
+#include "pneumatic_finger/GraspObject.h"
+#include "pneumatic_finger/GripperCommandAction.h"
+#include "pneumatic_finger/core/contact.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
+#include "ros_test_main.hpp"
+
+namespace pf = pneumatic_finger;
+using State = actionlib::SimpleClientGoalState;
+
+namespace {
+
+constexpr double kSqueezeMarginPa = 9806.65;  // the server's default
+constexpr double kSettleTolerancePa = 200.0;  // the server's default
+
+pf::FingerModel model() {
+  std::string config;
+  ros::NodeHandle("~").getParam("config", config);
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(config, raw);
+  return pf::FingerModel(pf::FingerParameters::fromRaw(raw));
+}
+
+State send(actionlib::SimpleActionClient<pf::GripperCommandAction>& client, double position, double max_effort = 0) {
+  pf::GripperCommandGoal goal;
+  goal.position = position;
+  goal.max_effort = max_effort;
+  return client.sendGoalAndWait(goal, ros::Duration(20.0));
+}
+
+}  // namespace
+
+TEST(GripperAction, ClosesStallsOnTheObjectAndAbortsWhatNoPressureReaches) {
+  ros::NodeHandle nh;
+  actionlib::SimpleActionClient<pf::GripperCommandAction> client("/gripper/gripper_action", true);
+  ASSERT_TRUE(client.waitForServer(ros::Duration(30)));
+  const pf::FingerModel finger = model();
+
+  // Free: 0.5 rad at the inverse model's pressure.
+  double free_pa = 0;
+  std::string why;
+  ASSERT_TRUE(finger.gaugeForTipAngle(0.5, 294199.5, free_pa, why)) << why;
+  ASSERT_EQ(send(client, 0.5), State::SUCCEEDED);
+  auto r = client.getResult();
+  EXPECT_TRUE(r->reached_goal);
+  EXPECT_FALSE(r->stalled);
+  EXPECT_NEAR(r->position, 0.5, 0.01);
+  EXPECT_NEAR(r->effort, free_pa, kSettleTolerancePa);
+
+  // Unreachable: refused at once, naming the reason.
+  const State far = send(client, 30.0);
+  EXPECT_EQ(far, State::ABORTED);
+  EXPECT_NE(far.getText().find("no gauge pressure up to"), std::string::npos) << far.getText();
+
+  // A sphere whose section by the finger's plane is a 12 mm disk at (60, 30) mm in the finger's frame.
+  ASSERT_EQ(send(client, 0.0), State::SUCCEEDED);
+  ros::Publisher pub = nh.advertise<pf::GraspObject>("/grasp_object", 1, true);
+  pf::GraspObject object;
+  object.header.frame_id = "f_segment_0";
+  object.id = "ball";
+  object.shape.type = shape_msgs::SolidPrimitive::SPHERE;
+  object.shape.dimensions = {0.012};
+  object.pose.position.x = 0.06;
+  object.pose.position.y = 0.03;
+  object.pose.orientation.w = 1;
+  pub.publish(object);
+  const pf::ContactState touch = pf::ContactSolver(finger).solve(294199.5, pf::Obstacle::disk(0.06, 0.03, 0.012));
+  ASSERT_TRUE(std::isfinite(touch.first_touch_gauge_pa));
+  ros::Duration(1.0).sleep();  // the node's object timer picks it up
+
+  ASSERT_EQ(send(client, 3.0), State::SUCCEEDED) << client.getState().getText();
+  r = client.getResult();
+  EXPECT_TRUE(r->stalled);
+  EXPECT_FALSE(r->reached_goal);
+  EXPECT_NEAR(r->effort, touch.first_touch_gauge_pa + kSqueezeMarginPa, kSettleTolerancePa);
+
+  // The object needs more than max_effort allows, and the goal is beyond it too: aborted.
+  ASSERT_EQ(send(client, 0.0), State::SUCCEEDED);
+  const State capped = send(client, 3.0, 0.5 * touch.first_touch_gauge_pa);
+  EXPECT_EQ(capped, State::ABORTED);
+  EXPECT_NE(capped.getText().find("does not touch the object up to it"), std::string::npos) << capped.getText();
+}
+
+int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "gripper_action_test", 2); }
