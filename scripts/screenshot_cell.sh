@@ -1,10 +1,13 @@
 #!/usr/bin/env bash
 # Renders the pick-and-place cell in rviz under Xvfb mid-grasp (the gripper closed on the object, lifting it) to
-# docs/cell_rviz.png.   usage: bash scripts/screenshot_cell.sh [OUTPUT.png] [PHASE]   (after scripts/build.sh)
+# docs/cell_rviz.png.   usage: bash scripts/screenshot_cell.sh [OUTPUT.png] [PHASE] [RVIZ_CONFIG]   (after
+# scripts/build.sh). The close-up of the grasp: bash scripts/screenshot_cell.sh docs/grasp_closeup.png lift
+# rviz/grasp_closeup.rviz
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 OUT="${1:-$ROOT/docs/cell_rviz.png}"
 PHASE="${2:-lift}"
+CONFIG="${3:-$ROOT/rviz/pick_and_place_cell.rviz}"
 source "$ROOT/scripts/ros_env.sh"
 port=$ROS_PORT
 display=":$((port % 400 + 100))"
@@ -12,7 +15,7 @@ pids=()
 cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }
 trap cleanup EXIT
 Xvfb "$display" -screen 0 1200x800x24 -nolisten tcp >/dev/null 2>&1 & pids+=($!)
-DISPLAY="$display" roslaunch --port "$port" pneumatic_finger pick_and_place_cell.launch rviz:=true \
+DISPLAY="$display" roslaunch --port "$port" pneumatic_finger pick_and_place_cell.launch rviz:=true rviz_config:="$(realpath "$CONFIG")" \
   >"$ROOT/build/screenshot_cell.log" 2>&1 & pids+=($!)
 sleep 8   # rviz start-up
 # Wait for the phase in the next cycle (rviz has then drawn the whole scene at least once).

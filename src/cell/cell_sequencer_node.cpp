@@ -144,13 +144,15 @@ class Scene {
     object_.type = visualization_msgs::Marker::CYLINDER;
     object_.scale.x = object_.scale.y = 2 * s.object_radius_m;
     object_.scale.z = s.object_height_m;
-    object_.color.r = 0.2f, object_.color.g = 0.5f, object_.color.b = 0.95f, object_.color.a = 1.0f;
+    // Translucent: a finger that entered the object would show through it.
+    object_.color.r = 0.2f, object_.color.g = 0.5f, object_.color.b = 0.95f, object_.color.a = 0.6f;
     table_ = object_;
     table_.ns = "tables";
     table_.type = visualization_msgs::Marker::CUBE;
     table_.scale.x = table_.scale.y = 0.12;
     table_.scale.z = 0.01;
     table_.color.r = table_.color.g = table_.color.b = 0.55f;
+    table_.color.a = 1.0f;
     grasp_object_.id = s.object_id;
     grasp_object_.shape.type = shape_msgs::SolidPrimitive::CYLINDER;
     grasp_object_.shape.dimensions = {s.object_height_m, s.object_radius_m};  // CYLINDER_HEIGHT, CYLINDER_RADIUS
@@ -216,22 +218,38 @@ class ObjectHandle {
       c.orientation_mode = visualization_msgs::InteractiveMarkerControl::FIXED;
       m.controls.push_back(c);
     }
+    marker_ = m;
     server_.insert(m);
+    server_.applyChanges();
+  }
+
+  /// The handle is shown only while the object is on the pick table (where dragging moves it), at @p spot.
+  void show(bool on, const Eigen::Isometry3d& spot) {
+    if (on) {
+      setPose(marker_.pose, Eigen::Isometry3d(Eigen::Translation3d(spot.translation())));
+      server_.insert(marker_);
+      server_.setCallback(name_, callback_);
+    } else {
+      server_.erase(name_);
+    }
     server_.applyChanges();
   }
 
   template <class Callback>
   void onMove(Callback cb) {
-    server_.setCallback(name_, [cb](const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f) {
+    callback_ = [cb](const visualization_msgs::InteractiveMarkerFeedbackConstPtr& f) {
       if (f->event_type != visualization_msgs::InteractiveMarkerFeedback::POSE_UPDATE) return;
       cb(Eigen::Vector3d(f->pose.position.x, f->pose.position.y, f->pose.position.z));
-    });
+    };
+    server_.setCallback(name_, callback_);
     server_.applyChanges();
   }
 
  private:
   interactive_markers::InteractiveMarkerServer server_;
   std::string name_;
+  visualization_msgs::InteractiveMarker marker_;
+  interactive_markers::InteractiveMarkerServer::FeedbackCallback callback_;
 };
 
 }  // namespace
@@ -320,6 +338,8 @@ int main(int argc, char** argv) {
     js.position = step.arm;
     joints_pub.publish(js);
     const Eigen::Isometry3d tool = arm->toolPose(step.arm);
+    // The drag handle changes outside the object's lock: the marker server calls back under its own lock.
+    int show_handle = -1;
     if (first || step.phase != last_phase) {
       std_msgs::String msg;
       msg.data = pf::cellPhaseName(step.phase);
@@ -330,6 +350,7 @@ int main(int argc, char** argv) {
         object = ObjectState();  // a new object on the pick table for the next cycle
         object.in_base = scene.pickSpot();
         scene.publishObject(object, js.header.stamp);
+        show_handle = 1;
       } else if (step.phase == pf::CellPhase::kGrasp) {
         pf::GripperCommandGoal goal;
         goal.position = settings.grasp_position_rad;
@@ -343,6 +364,7 @@ int main(int argc, char** argv) {
           object.held = true;
           object.in_tool = tool.inverse() * object.in_base;
           scene.publishObject(object, js.header.stamp);
+          show_handle = 0;
           say("cycle " + std::to_string(step.cycle + 1) + ": grasped '" + settings.object_id + "' at " +
               std::to_string(result->effort) + " Pa: every finger touches it");
         } else {
@@ -363,6 +385,7 @@ int main(int argc, char** argv) {
       last_phase = step.phase;
       first = false;
     }
+    if (show_handle >= 0) handle.show(show_handle == 1, scene.pickSpot());
     if (tick++ % 5 == 0) scene.publishMarkers(js.header.stamp);
     rate.sleep();
   }

@@ -536,7 +536,7 @@ void FingerNode::onGraspObject(const GraspObject::ConstPtr& msg) {
     }
     object_ = msg;
     const std::string finger_frame = segmentLinkName(settings_.urdf.prefix, 0);
-    if (msg->header.frame_id != finger_frame && !tf_buffer_) {
+    if (msg->header.frame_id != finger_frame && msg->header.frame_id != settings_.urdf.parent_frame && !tf_buffer_) {
       tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
       tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_);
     }
@@ -557,23 +557,34 @@ void FingerNode::onObjectTimer(const ros::TimerEvent&) {
 bool FingerNode::updateObject() {
   if (!object_) return false;
   const std::string finger_frame = segmentLinkName(settings_.urdf.prefix, 0);
-  // The object's pose in this finger's frame: the message's pose composed with tf's latest finger <- object frame.
+  const std::string& parent_frame = settings_.urdf.parent_frame;
+  // The object's pose in this finger's frame: the finger's own mount (known here, not looked up: it does not depend
+  // on who publishes the finger's frames) after tf's latest parent_frame <- object frame.
+  const auto& xyz = settings_.urdf.mount_xyz_m;
+  const auto& rpy = settings_.urdf.mount_rpy_rad;
+  const Eigen::Isometry3d parent_from_finger =
+      Eigen::Translation3d(xyz[0], xyz[1], xyz[2]) * Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
+      Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX());
   Eigen::Isometry3d finger_from_frame = Eigen::Isometry3d::Identity();
   if (object_->header.frame_id != finger_frame) {
-    try {
-      const auto t = tf_buffer_->lookupTransform(finger_frame, object_->header.frame_id, ros::Time(0)).transform;
-      finger_from_frame = Eigen::Translation3d(t.translation.x, t.translation.y, t.translation.z) *
-                          Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z);
-    } catch (const tf2::TransformException& e) {
-      ++transform_failures_;
-      object_problem_ = "no transform from '" + object_->header.frame_id + "' to '" + finger_frame + "': " + e.what();
-      ROS_WARN_THROTTLE(5.0, "finger_node: grasp object '%s': %s", object_->id.c_str(), object_problem_.c_str());
-      const bool changed = object_status_ != FingerModelState::OBJECT_NO_TRANSFORM;
-      object_status_ = FingerModelState::OBJECT_NO_TRANSFORM;
-      tracker_.reset();
-      object_located_ = false;
-      return changed;
+    Eigen::Isometry3d parent_from_frame = Eigen::Isometry3d::Identity();
+    if (object_->header.frame_id != parent_frame) {
+      try {
+        const auto t = tf_buffer_->lookupTransform(parent_frame, object_->header.frame_id, ros::Time(0)).transform;
+        parent_from_frame = Eigen::Translation3d(t.translation.x, t.translation.y, t.translation.z) *
+                            Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z);
+      } catch (const tf2::TransformException& e) {
+        ++transform_failures_;
+        object_problem_ = "no transform from '" + object_->header.frame_id + "' to '" + parent_frame + "': " + e.what();
+        ROS_WARN_THROTTLE(5.0, "finger_node: grasp object '%s': %s", object_->id.c_str(), object_problem_.c_str());
+        const bool changed = object_status_ != FingerModelState::OBJECT_NO_TRANSFORM;
+        object_status_ = FingerModelState::OBJECT_NO_TRANSFORM;
+        tracker_.reset();
+        object_located_ = false;
+        return changed;
+      }
     }
+    finger_from_frame = parent_from_finger.inverse() * parent_from_frame;
   }
   SolidObject solid = object_in_frame_;
   solid.pose = finger_from_frame * object_in_frame_.pose;
