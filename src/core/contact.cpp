@@ -135,6 +135,11 @@ double Obstacle::clearance(const Eigen::Vector2d& p, const Eigen::Vector2d& q) c
   return INFINITY;
 }
 
+bool Obstacle::touches(const Eigen::Vector2d& p, const Eigen::Vector2d& q) const {
+  if (kind_ != Kind::kDisk) return clearance(p, q) <= 0;
+  return (p + nearestT(p, q, center_) * (q - p) - center_).squaredNorm() <= radius_ * radius_;
+}
+
 Eigen::Vector2d Obstacle::nearestPoint(const Eigen::Vector2d& p, const Eigen::Vector2d& q) const {
   switch (kind_) {
     case Kind::kDisk:
@@ -197,6 +202,9 @@ ContactSolver::ContactSolver(const FingerModel& model) : model_(model) {
   const FingerParameters& p = model.parameters();
   length_m_ = p.base_segment_length_m;
   for (double z : p.segment_length_m) length_m_ += z;
+  // The half-angle search needs one half angle for every free wall (identical chambers) and a forward model that
+  // is the closed-form inverse's exact counterpart (the robust solver).
+  uniform_ = model.distinctChamberCount() == 1 && model.options().solver == SolverKind::kRobust;
 }
 
 void ContactSolver::backbone(const Eigen::VectorXd& q, Eigen::Matrix2Xd& points) const {
@@ -205,11 +213,19 @@ void ContactSolver::backbone(const Eigen::VectorXd& q, Eigen::Matrix2Xd& points)
   points.resize(2, n + 2);
   points.col(0) = Vec::Zero();
   points.col(1) = Vec(p.base_segment_length_m, 0.0);
-  double direction = 0.0;
+  // The direction turns by q_i at joint i: a rotation, composed; a joint whose angle equals the previous one's (the
+  // free joints of identical chambers, a frozen run) reuses its sine and cosine.
+  double dir_c = 1.0, dir_s = 0.0, rot_c = 1.0, rot_s = 0.0;
   for (int i = 0; i < n; ++i) {
-    direction += q[i];
+    if (i == 0 || q[i] != q[i - 1]) {
+      rot_c = std::cos(q[i]);
+      rot_s = std::sin(q[i]);
+    }
+    const double c = dir_c * rot_c - dir_s * rot_s;
+    dir_s = dir_s * rot_c + dir_c * rot_s;
+    dir_c = c;
     const double z = p.segment_length_m[static_cast<std::size_t>(i)];
-    points.col(i + 2) = points.col(i + 1) + z * Vec(std::cos(direction), std::sin(direction));
+    points.col(i + 2) = points.col(i + 1) + z * Vec(dir_c, dir_s);
   }
 }
 
@@ -302,6 +318,184 @@ ContactSolver::Event ContactSolver::findEvent(const Obstacle& obstacle, double f
   return event;
 }
 
+ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, double from_half_angle_rad, int frozen,
+                                                     const Eigen::VectorXd& frozen_q, double end_half_angle_rad,
+                                                     double& clear_half_angle_rad) const {
+  // Identical chambers: every free joint is a function of the one half angle theta (q_1 = theta, q_n = 2 theta),
+  // and the pressure is theta's closed-form inverse. So the search runs in theta, where the backbone costs one
+  // sincos and no model solve, and where a point of the backbone moves at most V = sum over free joints of
+  // (dq_i/dtheta) x (arc length from joint i to the tip) per radian: a clearance c rules out a touch for the next
+  // c / V radians, so far obstacles are passed in a few long steps.
+  const FingerParameters& par = model_.parameters();
+  const int n = par.chamber_count;
+  Event event;
+  // The fixed part: O_{frozen+1} and the direction after joint `frozen` (no trigonometry for the first touch, where
+  // nothing is frozen). On the stack: kMaxChamberCount bounds N.
+  Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::ColMajor, 2, kMaxChamberCount + 2> points(2, n + 2);
+  points.col(0) = Vec::Zero();
+  points.col(1) = Vec(par.base_segment_length_m, 0.0);
+  double dir0 = 0.0;
+  for (int i = 0; i < frozen; ++i) {
+    dir0 += frozen_q[i];
+    const double z = par.segment_length_m[static_cast<std::size_t>(i)];
+    points.col(i + 2) = points.col(i + 1) + z * Vec(std::cos(dir0), std::sin(dir0));
+  }
+  const double dir0_c = frozen > 0 ? std::cos(dir0) : 1.0, dir0_s = frozen > 0 ? std::sin(dir0) : 0.0;
+  double speed = 0.0;  // V (m/rad)
+  {
+    double rest = length_m_ - par.base_segment_length_m;  // arc length from joint i (at O_i) to the tip
+    for (int i = 1; i <= n; ++i) {
+      if (i > frozen) speed += (i == 1 ? 1.0 : 2.0) * rest;
+      rest -= par.segment_length_m[static_cast<std::size_t>(i - 1)];
+    }
+  }
+  // A disk, the commonest section, is measured in squared distances (one square root per sample, no division:
+  // the segments' lengths are fixed).
+  Vec disk_center;
+  double disk_radius = 0.0;
+  const bool disk = obstacle.asDisk(disk_center, disk_radius);
+  std::array<double, kMaxChamberCount + 1> inv_length2;  // filled for 1..n below
+  for (int k = 1; k <= n; ++k) {
+    const double z = par.segment_length_m[static_cast<std::size_t>(k - 1)];
+    inv_length2[static_cast<std::size_t>(k)] = 1.0 / (z * z);
+  }
+  // Places the free segments frozen+1..last at theta and returns the smallest clearance among first..last.
+  auto clearanceIn = [&](double theta, int first, int last, int& segment) {
+    const double c1 = std::cos(theta), s1 = std::sin(theta);
+    const double c2 = (c1 - s1) * (c1 + s1), s2 = 2.0 * s1 * c1;  // e^(2 i theta)
+    double dc = dir0_c, ds = dir0_s;
+    double c = INFINITY;
+    for (int k = frozen + 1; k <= last; ++k) {
+      const double rc = k == 1 ? c1 : c2, rs = k == 1 ? s1 : s2;
+      const double t = dc * rc - ds * rs;
+      ds = ds * rc + dc * rs;
+      dc = t;
+      const double z = par.segment_length_m[static_cast<std::size_t>(k - 1)];
+      points(0, k + 1) = points(0, k) + z * dc;
+      points(1, k + 1) = points(1, k) + z * ds;
+      if (k < first) continue;
+      if (disk) {
+        const Vec p = points.col(k), d = points.col(k + 1) - p, w = disk_center - p;
+        const double t = std::clamp(w.dot(d) * inv_length2[static_cast<std::size_t>(k)], 0.0, 1.0);
+        const double d2 = (w - t * d).squaredNorm();
+        if (d2 < c) c = d2, segment = k;
+      } else {
+        const double ck = obstacle.clearance(points.col(k), points.col(k + 1));
+        if (ck < c) c = ck, segment = k;
+      }
+    }
+    return disk ? std::sqrt(c) - disk_radius : c;
+  };
+  auto clearanceAt = [&](double theta, int& segment) { return clearanceIn(theta, frozen + 1, n, segment); };
+  constexpr double kGridStep = 2e-3;  // rad of theta: the finest spacing of the bracketing samples
+  constexpr double kTouchM = 1e-12;   // segments this close at the touch are touching it too
+  const double t0 = from_half_angle_rad;
+  int seg = 0;
+  // The samples lie on the grid t0 + j kGridStep; far from the obstacle whole runs of it are skipped, as the bound
+  // allows (never past a point where the clearance could have come within kTouchM). The sequence depends on the
+  // obstacle and the start alone, not on the end asked for: the touch found is the same whatever the end.
+  std::array<double, 3> s{t0, t0, t0};
+  std::array<double, 3> c{INFINITY, INFINITY, clearanceAt(t0, seg)};
+  double lo = -1.0, hi = -1.0;
+  for (long j = 0;;) {
+    // Never beyond theta = 1.5 rad: the model's range ends before pi/2, and the skips must not depend on the end.
+    const double allowed = std::min((c[2] - kTouchM) / speed, 1.5 - (t0 + static_cast<double>(j) * kGridStep));
+    j += std::max(1L, static_cast<long>(std::floor(allowed / kGridStep)));
+    const double t = t0 + static_cast<double>(j) * kGridStep;
+    s = {s[1], s[2], t};
+    c = {c[1], c[2], clearanceAt(t, seg)};
+    if (c[2] <= 0) {
+      lo = s[1];
+      hi = t;
+      break;
+    }
+    // A local minimum between samples: a grazing approach. Golden sections find it, stopping as soon as the bound
+    // proves it stays clear of kTouchM; it counts as a touch when it reaches kTouchM.
+    if (c[1] < c[0] && c[1] < c[2]) {
+      double a = s[0], b = s[2];
+      double m1 = b - 0.6180339887498949 * (b - a), m2 = a + 0.6180339887498949 * (b - a);
+      int s1 = 0, s2 = 0;
+      double f1 = clearanceAt(m1, s1), f2 = clearanceAt(m2, s2);
+      for (int it = 0; it < 200 && b - a > 1e-16 * b && std::min(f1, f2) - speed * (b - a) <= kTouchM; ++it) {
+        if (f1 < f2) {
+          b = m2, m2 = m1, f2 = f1;
+          m1 = b - 0.6180339887498949 * (b - a);
+          f1 = clearanceAt(m1, s1);
+        } else {
+          a = m1, m1 = m2, f1 = f2;
+          m2 = a + 0.6180339887498949 * (b - a);
+          f2 = clearanceAt(m2, s2);
+        }
+      }
+      const double t_min = f1 < f2 ? m1 : m2;
+      if (std::min(f1, f2) <= kTouchM) {
+        lo = hi = t_min;
+        break;
+      }
+    }
+    if (t >= end_half_angle_rad) {  // clear up to (and past) the end asked for
+      clear_half_angle_rad = t;
+      return event;
+    }
+  }
+  // The touch: lo clear, hi touching, to kRelativeHalfAngleTolerance, by regula falsi with the Illinois correction
+  // (the clearance is smooth near a touch, so a few steps do), falling back to bisection when a step leaves the
+  // bracket.
+  if (hi > lo) {
+    // Only the segments that can come within reach inside the bracket (by the bound) are measured there: usually
+    // one or two.
+    int first = n, last = frozen + 1;
+    clearanceAt(lo, seg);
+    for (int k = frozen + 1; k <= n; ++k) {
+      if (obstacle.clearance(points.col(k), points.col(k + 1)) - speed * (hi - lo) <= kTouchM) {
+        first = std::min(first, k);
+        last = std::max(last, k);
+      }
+    }
+    first = std::min(first, last);
+    double f_lo = clearanceIn(lo, first, last, seg), f_hi = clearanceIn(hi, first, last, seg);
+    int side = 0;
+    for (int it = 0; it < 200 && hi - lo > kRelativeHalfAngleTolerance * hi; ++it) {
+      double mid = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
+      if (!(mid > lo && mid < hi)) mid = 0.5 * (lo + hi);
+      const double f = clearanceIn(mid, first, last, seg);
+      if (f <= 0) {
+        hi = mid, f_hi = f;
+        if (side == -1) f_lo *= 0.5;  // the same end kept twice: halve its weight, or the secant crawls
+        side = -1;
+      } else {
+        lo = mid, f_lo = f;
+        if (side == 1) f_hi *= 0.5;
+        side = 1;
+      }
+    }
+  }
+  // Freeze at lo, the last shape clear of the obstacle: no joint passes its free angle, nothing penetrates.
+  const double touch_c = clearanceAt(lo, seg);
+  event.found = true;
+  double gauge = 0.0;
+  if (!std::isfinite(touch_c) || !model_.gaugeForHalfAngle(lo, gauge)) {
+    event.failed = true;
+    return event;
+  }
+  // Segments as close as the touching one (to kTouchM) touch too: a touch at a joint holds both of its segments.
+  int m = seg;
+  for (int k = n; k > seg; --k) {
+    int unused = 0;
+    if (clearanceIn(lo, k, k, unused) <= touch_c + kTouchM) {
+      m = k;
+      break;
+    }
+  }
+  event.gauge_pa = gauge;
+  event.half_angle_rad = lo;
+  event.frozen = m;
+  event.frozen_q = frozen_q;
+  for (int i = frozen; i < m; ++i) event.frozen_q[i] = i == 0 ? lo : 2.0 * lo;
+  event.point_m = obstacle.nearestPoint(points.col(seg), points.col(seg + 1));
+  return event;
+}
+
 ContactState ContactSolver::solve(double gauge_pa, const Obstacle& obstacle) const {
   ContactTracker tracker(model_, obstacle);
   return tracker.solve(gauge_pa);
@@ -314,9 +508,8 @@ ContactTracker::ContactTracker(const FingerModel& model, const Obstacle& obstacl
   // Model only what the scene needs: an obstacle beyond the finger's reach costs one comparison, once.
   out_of_reach_ = obstacle.distanceFromOrigin() > solver_.length_m_;
   if (out_of_reach_) return;
-  Eigen::Matrix2Xd points(2, n + 2);
-  solver_.backbone(Eigen::VectorXd::Zero(n), points);
-  for (int k = 0; k <= n; ++k) overlaps_at_rest_ = overlaps_at_rest_ || obstacle.clearance(points.col(k), points.col(k + 1)) <= 0;
+  // The straight finger's segments lie end to end along x: together, the one segment from the mount to the tip.
+  overlaps_at_rest_ = obstacle.touches(Eigen::Vector2d::Zero(), Eigen::Vector2d(solver_.length_m_, 0.0));
 }
 
 ContactState ContactTracker::solve(double gauge_pa) {
@@ -340,13 +533,24 @@ ContactState ContactTracker::solve(double gauge_pa) {
   }
   // The touch events do not depend on the pressure asked for: they are found once, in order, and kept. A pressure
   // within what is already known costs only the free model and the backbone.
-  const double u_end = std::sqrt(pressure);
-  while (!failed_ && (events_.empty() || events_.back().gauge_pa <= pressure) && frozen_ < n && u_end > u_clear_) {
-    const double from = events_.empty() ? 0.0 : events_.back().gauge_pa;
-    double u_clear = 0.0;
-    const ContactSolver::Event e = solver_.findEvent(obstacle_, from, frozen_, frozen_q_, u_end, u_clear);
+  while (!failed_ && (events_.empty() || events_.back().gauge_pa <= pressure) && frozen_ < n &&
+         pressure > clear_gauge_pa_) {
+    ContactSolver::Event e;
+    double clear_gauge_pa = pressure;
+    if (solver_.uniform_) {
+      // q_1 = theta: the end in half angle is the free first joint's angle at the pressure.
+      const double from = events_.empty() ? 0.0 : events_.back().half_angle_rad;
+      double clear = 0.0, gauge = 0.0;
+      e = solver_.findEventUniform(obstacle_, from, frozen_, frozen_q_, free_q[0], clear);
+      if (!e.found && solver_.model_.gaugeForHalfAngle(clear, gauge)) clear_gauge_pa = std::max(gauge, pressure);
+    } else {
+      const double from = events_.empty() ? 0.0 : events_.back().gauge_pa;
+      double u_clear = 0.0;
+      e = solver_.findEvent(obstacle_, from, frozen_, frozen_q_, std::sqrt(pressure), u_clear);
+      if (!e.found) clear_gauge_pa = std::max(u_clear * u_clear, pressure);
+    }
     if (!e.found) {
-      u_clear_ = u_clear;  // no touch after the last event up to here
+      clear_gauge_pa_ = clear_gauge_pa;  // no touch after the last event up to here
       break;
     }
     if (e.failed) {
@@ -356,7 +560,7 @@ ContactState ContactTracker::solve(double gauge_pa) {
     events_.push_back(e);
     frozen_ = e.frozen;
     frozen_q_ = e.frozen_q;
-    u_clear_ = 0.0;  // a new segment of the search starts at this event
+    clear_gauge_pa_ = 0.0;  // a new segment of the search starts at this event
   }
   if (failed_) {
     out.status = ContactState::Status::kSolverFailure;

@@ -419,10 +419,7 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
   double answer;
   if (groups_.size() == 1) {
     // Identical chambers: Theta_N = (2N - 1) theta, and every stage inverts in closed form.
-    const ChamberGroup& g = groups_[0];
-    const double theta = tip_angle_rad / (2 * n - 1);
-    const double h = bulgeForHalfAngle(theta, g.chamber_gap_m, g.wall_critical_height_m);
-    answer = gaugeForBulge(h, g.chamber_height_m, g.shear_modulus_pa, parameters_.atmospheric_pressure_pa);
+    if (!gaugeForHalfAngle(tip_angle_rad / (2 * n - 1), answer)) answer = std::numeric_limits<double>::infinity();
   } else {
     // Unequal chambers: Theta_N(P) is non-decreasing, so bisect on [0, max].
     if (tipAngleAt(max_gauge_pa) < tip_angle_rad) {
@@ -444,6 +441,16 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
     return false;
   }
   gauge_pa = answer;
+  return true;
+}
+
+bool FingerModel::gaugeForHalfAngle(double half_angle_rad, double& gauge_pa) const {
+  if (groups_.size() != 1 || !(half_angle_rad > 0) || !(half_angle_rad < kPi / 2)) return false;
+  const ChamberGroup& g = groups_[0];
+  const double h = bulgeForHalfAngle(half_angle_rad, g.chamber_gap_m, g.wall_critical_height_m);
+  const double p = gaugeForBulge(h, g.chamber_height_m, g.shear_modulus_pa, parameters_.atmospheric_pressure_pa);
+  if (!std::isfinite(p)) return false;
+  gauge_pa = p;
   return true;
 }
 

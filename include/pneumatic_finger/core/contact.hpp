@@ -43,6 +43,17 @@ class Obstacle {
   /// ellipse), for drawing it.
   std::vector<Eigen::Vector2d> outline(int samples = 64) const;
 
+  /// For a disk: its centre and radius, and true; false for the other shapes.
+  bool asDisk(Eigen::Vector2d& center_m, double& radius_m) const {
+    center_m = center_;
+    radius_m = radius_;
+    return kind_ == Kind::kDisk;
+  }
+
+  /// Whether the segment @p p -> @p q touches or enters the region (clearance <= 0, without the square root for a
+  /// disk).
+  bool touches(const Eigen::Vector2d& p, const Eigen::Vector2d& q) const;
+
   /// Whether @p p lies inside the region or on its boundary.
   bool contains(const Eigen::Vector2d& p) const { return clearance(p, p) <= 0; }
 
@@ -83,6 +94,8 @@ class ContactSolver {
 
   /// The touch pressures are found to this relative precision (angles follow to about 1e-14 rad).
   static constexpr double kRelativePressureTolerance = 1e-15;
+  /// Identical chambers and the robust solver search in the walls' half angle, to this relative precision.
+  static constexpr double kRelativeHalfAngleTolerance = 1e-15;
 
  private:
   friend class ContactTracker;
@@ -90,6 +103,7 @@ class ContactSolver {
   struct Event {
     bool found = false, failed = false;
     double gauge_pa = 0.0;
+    double half_angle_rad = 0.0;  ///< the free walls' half angle at the touch (the uniform search)
     int frozen = 0;
     Eigen::VectorXd frozen_q;
     Eigen::Vector2d point_m = Eigen::Vector2d::Zero();
@@ -98,9 +112,14 @@ class ContactSolver {
   /// past it at most). Not found: @p u_clear is how far the search went clear.
   Event findEvent(const Obstacle& obstacle, double from, int frozen, const Eigen::VectorXd& frozen_q, double u_end,
                   double& u_clear) const;
+  /// The same for identical chambers and the robust solver, searched in the free walls' half angle from
+  /// @p from_half_angle_rad up to @p end_half_angle_rad (clear: @p clear_half_angle_rad is how far).
+  Event findEventUniform(const Obstacle& obstacle, double from_half_angle_rad, int frozen,
+                         const Eigen::VectorXd& frozen_q, double end_half_angle_rad, double& clear_half_angle_rad) const;
   void backbone(const Eigen::VectorXd& q, Eigen::Matrix2Xd& points) const;
   const FingerModel& model_;
   double length_m_ = 0.0;
+  bool uniform_ = false;  ///< findEventUniform applies
 };
 
 /// The contact rule for one obstacle that stays where it is while the pressure changes (a grasp): the touch events
@@ -121,7 +140,7 @@ class ContactTracker {
   std::vector<ContactSolver::Event> events_;
   int frozen_ = 0;
   Eigen::VectorXd frozen_q_;
-  double u_clear_ = 0.0;  // sqrt(p) up to which no touch follows the last event
+  double clear_gauge_pa_ = 0.0;  // the pressure up to which no touch follows the last event
 };
 
 }  // namespace pneumatic_finger

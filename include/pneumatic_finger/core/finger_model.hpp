@@ -116,6 +116,10 @@ class FingerModel {
   /// @return false when the angle is negative, not finite, or beyond what any pressure up to @p max_gauge_pa gives
   bool gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, double& gauge_pa, std::string& message) const;
 
+  /// Identical chambers only: the gauge pressure (Pa) at which every wall's half angle is @p half_angle_rad (> 0),
+  /// in closed form. False for unequal chambers, or an angle no pressure gives.
+  bool gaugeForHalfAngle(double half_angle_rad, double& gauge_pa) const;
+
   /// Tip direction Theta_N at @p gauge_pa without touching the cached state (for inversion and calibration).
   double tipAngleAt(double gauge_pa) const;
 
