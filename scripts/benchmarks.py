@@ -178,8 +178,9 @@ overlap in the CPU's pipeline and the sum is less than a whole evaluation):
 
 `ContactSolver::solve` ([GRASP.md](GRASP.md)) over the same validated pressures, in the same run as the free
 finger above ({robust_ns:.0f} ns): an obstacle out of the finger's reach, a disk the tip reaches (one touch at the
-higher pressures, found by bracketing and bisection), and the same disk through a `ContactTracker`, which finds each
-touch once and keeps it.
+higher pressures, found from scratch: for identical chambers the search runs in the walls' half angle, with long
+steps bounded by the backbone's speed and regula falsi at the touch), and the same disk through a `ContactTracker`,
+which finds each touch once and keeps it.
 
 | case | ns per solve |
 |---|---|
@@ -215,8 +216,11 @@ Each verdict is computed by `scripts/benchmarks.py` from the figures above; the 
   dependent rotations of the backbone (joints + backbone alone: {runs["robust_stage/5"]["real_time"]:.0f} ns above)
   remain.
 - **Contact solve ≤ {TARGET_CONTACT_NS:.0f} ns per finger and obstacle:** {verdict(contact_ns <= TARGET_CONTACT_NS)}:
-  {contact_ns:.0f} ns with one touch found from scratch, {ratio(contact_ns, TARGET_CONTACT_NS)}. Each bisection step
-  evaluates the free model and the backbone with its trigonometric calls. A `ContactTracker`, which keeps the touch
+  {contact_ns:.0f} ns with one touch found from scratch, {ratio(contact_ns, TARGET_CONTACT_NS)}, about
+  {contact_ns / robust_ns:.0f} free evaluations: the free model at the pressure, about seven backbone samples of the
+  half-angle search (one sincos each), the closed-form pressure of the touch, and the output. Unequal chambers, or
+  the paper and table solvers, take the general path (a √P grid and bisection, each step a model solve), several
+  times slower. A `ContactTracker`, which keeps the touch
   events of an object that stays put, {verdict(tracker_ns <= TARGET_CONTACT_NS)} it: {tracker_ns:.0f} ns,
   {ratio(tracker_ns, TARGET_CONTACT_NS)}.
 - **Node p99 latency ≤ {TARGET_P99_US / 1000:.0f} ms at 1 kHz:** {verdict(max(p99_all) <= TARGET_P99_US)} in all

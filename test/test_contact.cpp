@@ -120,6 +120,27 @@ TEST(Contact, MatchesTheIndependentReferenceForDisksAcrossTheFinger) {
   EXPECT_GE(walls_in_contact, 4) << "the cases must exercise the rule";
 }
 
+// The general path (unequal chambers: no single half angle; a grid in sqrt(P) and bisection) against the same
+// reference: the last chamber's wall gap 20 % wider.
+TEST(Contact, UnequalChambersTakeTheGeneralPathAndMatchTheReference) {
+  pf::FingerParameters params = kFinger;
+  params.chamber_gap_m.back() *= 1.2;
+  pf::FingerModel model(params);
+  ASSERT_EQ(model.distinctChamberCount(), 2);
+  const pf::ContactSolver solver(model);
+  int touched = 0;
+  for (const Disk& d : {Disk{0.0567121, 0.0136807, 0.003}, Disk{0.0632674, 0.0211602, 0.006}, Disk{0.075, 0.035, 0.01}}) {
+    const pf::ContactState got = solver.solve(196133.0, pf::Obstacle::disk(d.x, d.y, d.r));
+    const Reference want = reference(params, 196133.0, d);
+    touched += got.status == pf::ContactState::Status::kInContact;
+    for (int i = 0; i < 7; ++i) {
+      EXPECT_NEAR(got.joint_angle_rad[i], want.q[static_cast<std::size_t>(i)], 1e-12) << "disk " << d.x << "," << d.y;
+      EXPECT_EQ(got.held[static_cast<std::size_t>(i)], want.held[static_cast<std::size_t>(i)]) << "joint " << i + 1;
+    }
+  }
+  EXPECT_GE(touched, 2) << "the cases must exercise the rule";
+}
+
 TEST(Contact, NoJointPassesItsFreeAngleNothingPenetratesAndNoJointGoesBack) {
   pf::FingerModel model(kFinger);
   const pf::ContactSolver solver(model);

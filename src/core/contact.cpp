@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 namespace pneumatic_finger {
 
@@ -207,7 +208,7 @@ ContactSolver::ContactSolver(const FingerModel& model) : model_(model) {
   uniform_ = model.distinctChamberCount() == 1 && model.options().solver == SolverKind::kRobust;
 }
 
-void ContactSolver::backbone(const Eigen::VectorXd& q, Eigen::Matrix2Xd& points) const {
+void ContactSolver::backbone(const JointAngles& q, BackbonePoints& points) const {
   const FingerParameters& p = model_.parameters();
   const int n = p.chamber_count;
   points.resize(2, n + 2);
@@ -230,11 +231,11 @@ void ContactSolver::backbone(const Eigen::VectorXd& q, Eigen::Matrix2Xd& points)
 }
 
 ContactSolver::Event ContactSolver::findEvent(const Obstacle& obstacle, double from, int frozen,
-                                              const Eigen::VectorXd& frozen_q, double u_end, double& u_clear) const {
+                                              const JointAngles& frozen_q, double u_end, double& u_clear) const {
   const int n = model_.chamberCount();
   Event event;
-  Eigen::VectorXd q(n);
-  Eigen::Matrix2Xd points(2, n + 2);
+  JointAngles q(n);
+  BackbonePoints points(2, n + 2);
   // Joints 1..frozen are held at frozen_q; the others follow q(p). Segment k (O_k -> O_k+1) moves with joints 1..k,
   // so the segments that can still move are frozen+1..N.
   auto configure = [&](double p) {
@@ -319,7 +320,7 @@ ContactSolver::Event ContactSolver::findEvent(const Obstacle& obstacle, double f
 }
 
 ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, double from_half_angle_rad, int frozen,
-                                                     const Eigen::VectorXd& frozen_q, double end_half_angle_rad,
+                                                     const JointAngles& frozen_q, double end_half_angle_rad,
                                                      double& clear_half_angle_rad) const {
   // Identical chambers: every free joint is a function of the one half angle theta (q_1 = theta, q_n = 2 theta),
   // and the pressure is theta's closed-form inverse. So the search runs in theta, where the backbone costs one
@@ -331,7 +332,7 @@ ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, d
   Event event;
   // The fixed part: O_{frozen+1} and the direction after joint `frozen` (no trigonometry for the first touch, where
   // nothing is frozen). On the stack: kMaxChamberCount bounds N.
-  Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::ColMajor, 2, kMaxChamberCount + 2> points(2, n + 2);
+  BackbonePoints points(2, n + 2);
   points.col(0) = Vec::Zero();
   points.col(1) = Vec(par.base_segment_length_m, 0.0);
   double dir0 = 0.0;
@@ -359,8 +360,10 @@ ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, d
     const double z = par.segment_length_m[static_cast<std::size_t>(k - 1)];
     inv_length2[static_cast<std::size_t>(k)] = 1.0 / (z * z);
   }
-  // Places the free segments frozen+1..last at theta and returns the smallest clearance among first..last.
-  auto clearanceIn = [&](double theta, int first, int last, int& segment) {
+  // Places the free segments frozen+1..last at theta and returns the smallest clearance among first..last (and,
+  // with per_segment, each one's, indexed by segment).
+  std::array<double, kMaxChamberCount + 1> per_segment;
+  auto clearanceIn = [&](double theta, int first, int last, int& segment, bool each = false) {
     const double c1 = std::cos(theta), s1 = std::sin(theta);
     const double c2 = (c1 - s1) * (c1 + s1), s2 = 2.0 * s1 * c1;  // e^(2 i theta)
     double dc = dir0_c, ds = dir0_s;
@@ -379,15 +382,17 @@ ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, d
         const double t = std::clamp(w.dot(d) * inv_length2[static_cast<std::size_t>(k)], 0.0, 1.0);
         const double d2 = (w - t * d).squaredNorm();
         if (d2 < c) c = d2, segment = k;
+        if (each) per_segment[static_cast<std::size_t>(k)] = std::sqrt(d2) - disk_radius;
       } else {
         const double ck = obstacle.clearance(points.col(k), points.col(k + 1));
         if (ck < c) c = ck, segment = k;
+        if (each) per_segment[static_cast<std::size_t>(k)] = ck;
       }
     }
     return disk ? std::sqrt(c) - disk_radius : c;
   };
   auto clearanceAt = [&](double theta, int& segment) { return clearanceIn(theta, frozen + 1, n, segment); };
-  constexpr double kGridStep = 2e-3;  // rad of theta: the finest spacing of the bracketing samples
+  constexpr double kGridStep = 1e-3;  // rad of theta: the finest spacing of the bracketing samples
   constexpr double kTouchM = 1e-12;   // segments this close at the touch are touching it too
   const double t0 = from_half_angle_rad;
   int seg = 0;
@@ -445,15 +450,15 @@ ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, d
     // Only the segments that can come within reach inside the bracket (by the bound) are measured there: usually
     // one or two.
     int first = n, last = frozen + 1;
-    clearanceAt(lo, seg);
+    double f_lo = clearanceIn(lo, frozen + 1, n, seg, true);
     for (int k = frozen + 1; k <= n; ++k) {
-      if (obstacle.clearance(points.col(k), points.col(k + 1)) - speed * (hi - lo) <= kTouchM) {
+      if (per_segment[static_cast<std::size_t>(k)] - speed * (hi - lo) <= kTouchM) {
         first = std::min(first, k);
         last = std::max(last, k);
       }
     }
     first = std::min(first, last);
-    double f_lo = clearanceIn(lo, first, last, seg), f_hi = clearanceIn(hi, first, last, seg);
+    double f_hi = clearanceIn(hi, first, last, seg);
     int side = 0;
     for (int it = 0; it < 200 && hi - lo > kRelativeHalfAngleTolerance * hi; ++it) {
       double mid = (lo * f_hi - hi * f_lo) / (f_hi - f_lo);
@@ -471,7 +476,7 @@ ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, d
     }
   }
   // Freeze at lo, the last shape clear of the obstacle: no joint passes its free angle, nothing penetrates.
-  const double touch_c = clearanceAt(lo, seg);
+  const double touch_c = clearanceIn(lo, frozen + 1, n, seg, true);
   event.found = true;
   double gauge = 0.0;
   if (!std::isfinite(touch_c) || !model_.gaugeForHalfAngle(lo, gauge)) {
@@ -480,12 +485,8 @@ ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, d
   }
   // Segments as close as the touching one (to kTouchM) touch too: a touch at a joint holds both of its segments.
   int m = seg;
-  for (int k = n; k > seg; --k) {
-    int unused = 0;
-    if (clearanceIn(lo, k, k, unused) <= touch_c + kTouchM) {
-      m = k;
-      break;
-    }
+  for (int k = seg + 1; k <= n; ++k) {
+    if (per_segment[static_cast<std::size_t>(k)] <= touch_c + kTouchM) m = k;
   }
   event.gauge_pa = gauge;
   event.half_angle_rad = lo;
@@ -504,7 +505,7 @@ ContactState ContactSolver::solve(double gauge_pa, const Obstacle& obstacle) con
 ContactTracker::ContactTracker(const FingerModel& model, const Obstacle& obstacle)
     : solver_(model), obstacle_(obstacle) {
   const int n = model.chamberCount();
-  frozen_q_ = Eigen::VectorXd::Zero(n);
+  frozen_q_ = JointAngles::Zero(n);
   // Model only what the scene needs: an obstacle beyond the finger's reach costs one comparison, once.
   out_of_reach_ = obstacle.distanceFromOrigin() > solver_.length_m_;
   if (out_of_reach_) return;
@@ -518,14 +519,14 @@ ContactState ContactTracker::solve(double gauge_pa) {
   ContactState out;
   out.held.assign(static_cast<std::size_t>(n), false);
   const double pressure = std::max(gauge_pa, 0.0);
-  Eigen::VectorXd free_q(n);
-  if (!model.jointAnglesAt(pressure, free_q.data())) {
+  out.joint_angle_rad.resize(n);  // the free angles first; the held ones are written over them below
+  if (!model.jointAnglesAt(pressure, out.joint_angle_rad.data())) {
     out.status = ContactState::Status::kSolverFailure;
-    out.joint_angle_rad = Eigen::VectorXd::Zero(n);
+    out.joint_angle_rad.setZero();
     solver_.backbone(out.joint_angle_rad, out.backbone_m);
     return out;
   }
-  out.joint_angle_rad = free_q;
+  const double free_half_angle_rad = out.joint_angle_rad[0];  // q_1 = theta (identical chambers)
   if (!out_of_reach_ && overlaps_at_rest_) out.status = ContactState::Status::kOverlapsAtRest;
   if (out_of_reach_ || overlaps_at_rest_) {
     solver_.backbone(out.joint_angle_rad, out.backbone_m);
@@ -541,7 +542,7 @@ ContactState ContactTracker::solve(double gauge_pa) {
       // q_1 = theta: the end in half angle is the free first joint's angle at the pressure.
       const double from = events_.empty() ? 0.0 : events_.back().half_angle_rad;
       double clear = 0.0, gauge = 0.0;
-      e = solver_.findEventUniform(obstacle_, from, frozen_, frozen_q_, free_q[0], clear);
+      e = solver_.findEventUniform(obstacle_, from, frozen_, frozen_q_, free_half_angle_rad, clear);
       if (!e.found && solver_.model_.gaugeForHalfAngle(clear, gauge)) clear_gauge_pa = std::max(gauge, pressure);
     } else {
       const double from = events_.empty() ? 0.0 : events_.back().gauge_pa;
@@ -557,9 +558,9 @@ ContactState ContactTracker::solve(double gauge_pa) {
       failed_ = true;
       break;
     }
-    events_.push_back(e);
     frozen_ = e.frozen;
-    frozen_q_ = e.frozen_q;
+    frozen_q_ = e.frozen_q;  // same size: no allocation
+    events_.push_back(std::move(e));
     clear_gauge_pa_ = 0.0;  // a new segment of the search starts at this event
   }
   if (failed_) {

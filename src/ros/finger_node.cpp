@@ -453,7 +453,8 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
   // With contact the joints, backbone and tip are the contact rule's; stretch, bulge and half angle stay the free
   // chambers' (they depend on the pressure alone).
   const double* q_rad = contact ? contact->joint_angle_rad.data() : state.joint_angle_rad.data();
-  const Eigen::Matrix2Xd& backbone = contact ? contact->backbone_m : state.backbone_m;
+  const Eigen::Ref<const Eigen::Matrix2Xd> backbone = contact ? Eigen::Ref<const Eigen::Matrix2Xd>(contact->backbone_m)
+                                                               : Eigen::Ref<const Eigen::Matrix2Xd>(state.backbone_m);
   double tip_angle_rad = 0.0;
   joint_states_.header.stamp = stamp;
   for (int i = 0; i < n; ++i) {

@@ -67,6 +67,11 @@ class Obstacle {
   std::vector<Eigen::Vector2d> vertices_;
 };
 
+/// Joint angles and backbone points with their storage inside the object (at most kMaxChamberCount joints): a solve
+/// allocates only its list of contact points and of held joints.
+using JointAngles = Eigen::Matrix<double, Eigen::Dynamic, 1, Eigen::ColMajor, kMaxChamberCount, 1>;
+using BackbonePoints = Eigen::Matrix<double, 2, Eigen::Dynamic, Eigen::ColMajor, 2, kMaxChamberCount + 2>;
+
 /// The finger's shape with an obstacle.
 struct ContactState {
   enum class Status {
@@ -76,8 +81,8 @@ struct ContactState {
     kSolverFailure,   ///< the model found no finite answer
   };
   Status status = Status::kFree;
-  Eigen::VectorXd joint_angle_rad;     ///< q_1..q_N as the contact rule gives them (rad)
-  Eigen::Matrix2Xd backbone_m;         ///< O_0..O_{N+1} (m)
+  JointAngles joint_angle_rad;         ///< q_1..q_N as the contact rule gives them (rad)
+  BackbonePoints backbone_m;           ///< O_0..O_{N+1} (m)
   std::vector<bool> held;              ///< per joint: frozen by contact
   std::vector<Eigen::Vector2d> contact_points_m;  ///< where the backbone touches (one per touch event)
   double first_touch_gauge_pa = std::numeric_limits<double>::quiet_NaN();  ///< p* of the first touch (NaN: none)
@@ -105,18 +110,18 @@ class ContactSolver {
     double gauge_pa = 0.0;
     double half_angle_rad = 0.0;  ///< the free walls' half angle at the touch (the uniform search)
     int frozen = 0;
-    Eigen::VectorXd frozen_q;
+    JointAngles frozen_q;
     Eigen::Vector2d point_m = Eigen::Vector2d::Zero();
   };
   /// The first touch after @p from with joints 1..@p frozen held, searched up to sqrt(p) = @p u_end (one grid step
   /// past it at most). Not found: @p u_clear is how far the search went clear.
-  Event findEvent(const Obstacle& obstacle, double from, int frozen, const Eigen::VectorXd& frozen_q, double u_end,
+  Event findEvent(const Obstacle& obstacle, double from, int frozen, const JointAngles& frozen_q, double u_end,
                   double& u_clear) const;
   /// The same for identical chambers and the robust solver, searched in the free walls' half angle from
   /// @p from_half_angle_rad up to @p end_half_angle_rad (clear: @p clear_half_angle_rad is how far).
   Event findEventUniform(const Obstacle& obstacle, double from_half_angle_rad, int frozen,
-                         const Eigen::VectorXd& frozen_q, double end_half_angle_rad, double& clear_half_angle_rad) const;
-  void backbone(const Eigen::VectorXd& q, Eigen::Matrix2Xd& points) const;
+                         const JointAngles& frozen_q, double end_half_angle_rad, double& clear_half_angle_rad) const;
+  void backbone(const JointAngles& q, BackbonePoints& points) const;
   const FingerModel& model_;
   double length_m_ = 0.0;
   bool uniform_ = false;  ///< findEventUniform applies
@@ -139,7 +144,7 @@ class ContactTracker {
   bool out_of_reach_ = false, overlaps_at_rest_ = false, failed_ = false;
   std::vector<ContactSolver::Event> events_;
   int frozen_ = 0;
-  Eigen::VectorXd frozen_q_;
+  JointAngles frozen_q_;
   double clear_gauge_pa_ = 0.0;  // the pressure up to which no touch follows the last event
 };
 
