@@ -26,12 +26,10 @@ PACKAGES=("$@"
   libnodeletlib-dev libnodelet-dev libnodeletlib-tools pluginlib-dev
   # live parameters (package.xml: dynamic_reconfigure)
   libdynamic-reconfigure-config-init-mutex-dev python3-dynamic-reconfigure
-  # the grasp: the object message, the gripper action, the object's reach and the tests' independent geometry
-  # (package.xml: shape_msgs, actionlib, actionlib_msgs, geometric_shapes, fcl, tf2_geometry_msgs,
-  # interactive_markers)
+  # the grasp: the object message, the gripper action, the drag handle, and the tests' independent 3D geometry
+  # (package.xml: shape_msgs, actionlib, actionlib_msgs, interactive_markers; test_depend geometric_shapes)
   libshape-msgs-dev ros-shape-msgs python3-shape-msgs libactionlib-dev libactionlib-msgs-dev ros-actionlib-msgs
-  python3-actionlib-msgs python3-actionlib libgeometric-shapes-dev libfcl-dev libtf2-geometry-msgs-dev
-  libinteractive-markers-dev
+  python3-actionlib-msgs python3-actionlib libgeometric-shapes-dev libinteractive-markers-dev
   # benchmarks (package.xml: benchmark, gsl)
   libbenchmark-dev libgsl-dev pkg-config
   # tests (package.xml: gtest; test_depend) and the docs' plots

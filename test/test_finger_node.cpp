@@ -1,5 +1,6 @@
 // rostest: the running finger_node against the core model (test/finger_node.test starts it).
 #include <dynamic_reconfigure/Reconfigure.h>
+#include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <sensor_msgs/FluidPressure.h>
@@ -21,6 +22,8 @@
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
+#include "pneumatic_finger/GraspObject.h"
+#include "pneumatic_finger/core/contact.hpp"
 #include "ros_test_main.hpp"
 
 namespace pf = pneumatic_finger;
@@ -314,6 +317,87 @@ TEST_F(FingerNodeTest, InverseServiceRoundTrips) {
   srv.request.tip_angle_rad = -0.1;
   ASSERT_TRUE(client.call(srv));
   EXPECT_FALSE(srv.response.success);
+}
+
+// The grasp object: out of reach it changes nothing (the free finger, bit for bit); in reach the node's joints are
+// the contact rule's (against the core's ContactSolver on the same section); an empty id clears it. The object is
+// given in the mount's parent frame, which the node resolves through its own mount.
+TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing) {
+  const pf::FingerParameters params = packageParameters();
+  pf::FingerModel model(params);
+  ros::Publisher object_pub = nh_->advertise<pf::GraspObject>("grasp_object", 1, true);
+  const Eigen::Isometry3d parent_from_finger =
+      Eigen::Translation3d(kMountXyz[0], kMountXyz[1], kMountXyz[2]) *
+      Eigen::AngleAxisd(kMountRpy[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(kMountRpy[1], Eigen::Vector3d::UnitY()) *
+      Eigen::AngleAxisd(kMountRpy[0], Eigen::Vector3d::UnitX());
+  auto publishSphere = [&](const std::string& id, const Eigen::Vector3d& in_finger, double radius) {
+    pf::GraspObject o;
+    o.header.frame_id = "tool0";
+    o.id = id;
+    o.shape.type = shape_msgs::SolidPrimitive::SPHERE;
+    o.shape.dimensions = {radius};
+    const Eigen::Vector3d c = parent_from_finger * in_finger;
+    o.pose.position.x = c.x(), o.pose.position.y = c.y(), o.pose.position.z = c.z();
+    const Eigen::Quaterniond q(parent_from_finger.rotation());
+    o.pose.orientation.x = q.x(), o.pose.orientation.y = q.y(), o.pose.orientation.z = q.z(), o.pose.orientation.w = q.w();
+    object_pub.publish(o);
+  };
+  auto waitForStatus = [&](uint8_t status, const std::string& id) {
+    const ros::Time deadline = ros::Time::now() + ros::Duration(10);
+    while (ros::Time::now() < deadline) {
+      const ros::Time stamp = publishAndWait(196133.0);
+      std::lock_guard<std::mutex> lock(listener_->mutex);
+      const auto& s = listener_->finger_states[stamp];
+      if (s.object_status == status && s.object_id == id) return stamp;
+      ros::Duration(0.05).sleep();
+    }
+    ADD_FAILURE() << "object status " << int(status) << " for '" << id << "' never seen";
+    return ros::Time();
+  };
+
+  // Half a metre away: out of reach, the free finger.
+  publishSphere("far", Eigen::Vector3d(0.5, 0.0, 0.0), 0.01);
+  ros::Time stamp = waitForStatus(pf::FingerModelState::OBJECT_OUT_OF_REACH, "far");
+  {
+    std::lock_guard<std::mutex> lock(listener_->mutex);
+    const pf::FingerState& free = model.evaluate(196133.0);
+    const auto& s = listener_->finger_states[stamp];
+    for (int i = 0; i < 7; ++i) EXPECT_EQ(listener_->joint_states[stamp].position[static_cast<std::size_t>(i)], free.joint_angle_rad[i]);
+    EXPECT_TRUE(std::isnan(s.touch_gauge_pa));
+    EXPECT_TRUE(s.contact_points.empty());
+  }
+
+  // A 12 mm ball 2 mm off the finger's plane: its section is a disk of radius sqrt(12^2 - 2^2) mm.
+  publishSphere("ball", Eigen::Vector3d(0.06, 0.03, 0.002), 0.012);
+  stamp = waitForStatus(pf::FingerModelState::OBJECT_TOUCHING, "ball");
+  const pf::ContactState want =
+      pf::ContactSolver(model).solve(196133.0, pf::Obstacle::disk(0.06, 0.03, std::sqrt(0.012 * 0.012 - 0.002 * 0.002)));
+  ASSERT_EQ(want.status, pf::ContactState::Status::kInContact);
+  {
+    std::lock_guard<std::mutex> lock(listener_->mutex);
+    const auto& s = listener_->finger_states[stamp];
+    const auto& js = listener_->joint_states[stamp];
+    for (int i = 0; i < 7; ++i) {
+      const auto k = static_cast<std::size_t>(i);
+      // The object's pose goes through the mount and back: equal to rounding, not to the bit.
+      EXPECT_NEAR(js.position[k], want.joint_angle_rad[i], 1e-12) << "joint " << i + 1;
+      EXPECT_EQ(s.joint_angle_rad[k], js.position[k]);
+      EXPECT_EQ(static_cast<bool>(s.held_by_contact[k]), static_cast<bool>(want.held[k])) << "joint " << i + 1;
+    }
+    EXPECT_NEAR(s.first_touch_gauge_pa, want.first_touch_gauge_pa, 1e-9 * want.first_touch_gauge_pa);
+    EXPECT_NEAR(s.touch_gauge_pa, want.first_touch_gauge_pa, 1e-9 * want.first_touch_gauge_pa);
+    ASSERT_EQ(s.contact_points.size(), want.contact_points_m.size());
+    EXPECT_NEAR(s.contact_points[0].x, want.contact_points_m[0].x(), 1e-9);
+    EXPECT_NEAR(s.tip_angle_rad, want.joint_angle_rad.sum(), 1e-12);
+  }
+
+  // Cleared: the free finger again.
+  pf::GraspObject none;
+  object_pub.publish(none);
+  stamp = waitForStatus(pf::FingerModelState::OBJECT_NONE, "");
+  std::lock_guard<std::mutex> lock(listener_->mutex);
+  const pf::FingerState& free = model.evaluate(196133.0);
+  for (int i = 0; i < 7; ++i) EXPECT_EQ(listener_->joint_states[stamp].position[static_cast<std::size_t>(i)], free.joint_angle_rad[i]);
 }
 
 TEST(FingerNodeParameters, EveryBadParameterStopsTheNodeNamingTheKey) {
