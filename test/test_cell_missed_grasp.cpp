@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <std_msgs/String.h>
+#include <visualization_msgs/InteractiveMarkerFeedback.h>
 
 #include <map>
 #include <mutex>
@@ -68,6 +69,52 @@ TEST(CellMissedGrasp, AMissedGraspLeavesTheObjectAndSaysSo) {
   EXPECT_NE(event.find("grasp missed, 'cylinder' stays on the pick table: not every finger touches it"),
             std::string::npos)
       << "cell/events: " << event;
+}
+
+// The drag handle: a pose update from rviz's interactive marker moves the object on the pick table, and the fingers
+// are told (grasp_object).
+TEST(CellMissedGrasp, DraggingTheHandleMovesTheObjectOnThePickTable) {
+  ros::NodeHandle nh;
+  std::mutex mutex;
+  std::string phase;
+  pneumatic_finger::GraspObject::ConstPtr object;
+  auto s1 = nh.subscribe<std_msgs::String>("/cell/phase", 10, [&](const std_msgs::String::ConstPtr& m) {
+    std::lock_guard<std::mutex> lock(mutex);
+    phase = m->data;
+  });
+  auto s2 = nh.subscribe<pneumatic_finger::GraspObject>("/grasp_object", 10,
+                                                        [&](const pneumatic_finger::GraspObject::ConstPtr& m) {
+                                                          std::lock_guard<std::mutex> lock(mutex);
+                                                          object = m;
+                                                        });
+  ros::Publisher feedback = nh.advertise<visualization_msgs::InteractiveMarkerFeedback>("/cell_object/feedback", 10);
+  // Wait for the approach (the object is back on the pick table, the handle shown).
+  const ros::Time deadline = ros::Time::now() + ros::Duration(30);
+  while (ros::Time::now() < deadline) {
+    {
+      std::lock_guard<std::mutex> lock(mutex);
+      if (phase == "approach" && object && object->header.frame_id == "world") break;
+    }
+    ros::Duration(0.02).sleep();
+  }
+  ros::Duration(0.3).sleep();  // the handle is re-inserted at the phase change
+  visualization_msgs::InteractiveMarkerFeedback f;
+  f.client_id = "test";
+  f.marker_name = "cylinder";
+  f.event_type = visualization_msgs::InteractiveMarkerFeedback::POSE_UPDATE;
+  f.pose.position.x = 0.41;
+  f.pose.position.y = -0.23;
+  f.pose.position.z = 0.12;
+  f.pose.orientation.w = 1.0;
+  bool moved = false;
+  for (int i = 0; i < 50 && !moved; ++i) {
+    feedback.publish(f);
+    ros::Duration(0.05).sleep();
+    std::lock_guard<std::mutex> lock(mutex);
+    moved = object && object->pose.position.x == 0.41 && object->pose.position.y == -0.23 &&
+            object->pose.position.z == 0.12 && object->header.frame_id == "world";
+  }
+  EXPECT_TRUE(moved) << "the object did not follow the drag handle";
 }
 
 int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "cell_missed_grasp_test", 2); }
