@@ -6,66 +6,39 @@
 #include <std_msgs/String.h>
 #include <visualization_msgs/InteractiveMarkerFeedback.h>
 
-#include <map>
-#include <mutex>
 
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/GraspObject.h"
+#include "cell_watch.hpp"
 #include "ros_test_main.hpp"
 
 TEST(CellMissedGrasp, AMissedGraspLeavesTheObjectAndSaysSo) {
   ros::NodeHandle nh;
-  std::mutex mutex;
-  std::string phase, event;
-  pneumatic_finger::GraspObject::ConstPtr object;
-  std::map<std::string, pneumatic_finger::FingerModelState::ConstPtr> states;
-  auto s1 = nh.subscribe<std_msgs::String>("/cell/phase", 10, [&](const std_msgs::String::ConstPtr& m) {
-    std::lock_guard<std::mutex> lock(mutex);
-    phase = m->data;
-  });
-  auto s2 = nh.subscribe<std_msgs::String>("/cell/events", 10, [&](const std_msgs::String::ConstPtr& m) {
-    std::lock_guard<std::mutex> lock(mutex);
-    event = m->data;
-  });
-  auto s3 = nh.subscribe<pneumatic_finger::GraspObject>("/grasp_object", 10,
-                                                        [&](const pneumatic_finger::GraspObject::ConstPtr& m) {
-                                                          std::lock_guard<std::mutex> lock(mutex);
-                                                          object = m;
-                                                        });
-  std::vector<ros::Subscriber> subs;
-  for (const std::string f : {"finger_a", "finger_b", "finger_c"}) {
-    subs.push_back(nh.subscribe<pneumatic_finger::FingerModelState>(
-        "/" + f + "/finger_state", 10, [&, f](const pneumatic_finger::FingerModelState::ConstPtr& m) {
-          std::lock_guard<std::mutex> lock(mutex);
-          states[f] = m;
-        }));
-  }
+  pf_test::CellWatch watch(nh);
   int lift_samples = 0;
   double max_gauge = 0;
   const ros::Time deadline = ros::Time::now() + ros::Duration(60);
   bool lifted = false;
   while (ros::Time::now() < deadline) {
-    {
-      std::lock_guard<std::mutex> lock(mutex);
-      for (const auto& s : states) max_gauge = std::max(max_gauge, s.second->gauge_pa);
-      if (phase == "lift") {
-        lifted = true;
-        ASSERT_TRUE(object);
-        EXPECT_EQ(object->header.frame_id, "world") << "the object was carried although the grasp missed";
-        ASSERT_EQ(states.size(), 3u);
-        for (const auto& s : states) {
-          EXPECT_NE(s.second->object_status, pneumatic_finger::FingerModelState::OBJECT_TOUCHING) << s.first;
-        }
-        ++lift_samples;
-      } else if (lifted) {
-        break;
+    const pf_test::CellWatch::Snapshot now = watch.snapshot();
+    for (const auto& s : now.states) max_gauge = std::max(max_gauge, s.second->gauge_pa);
+    if (now.phase == "lift") {
+      lifted = true;
+      ASSERT_TRUE(now.object);
+      EXPECT_EQ(now.object->header.frame_id, "world") << "the object was carried although the grasp missed";
+      ASSERT_EQ(now.states.size(), 3u);
+      for (const auto& s : now.states) {
+        EXPECT_NE(s.second->object_status, pneumatic_finger::FingerModelState::OBJECT_TOUCHING) << s.first;
       }
+      ++lift_samples;
+    } else if (lifted) {
+      break;
     }
     ros::Duration(0.02).sleep();
   }
   EXPECT_GT(lift_samples, 5) << "the lift was not observed";
   EXPECT_GT(max_gauge, 10000.0) << "the fingers never closed";
-  std::lock_guard<std::mutex> lock(mutex);
+  const std::string event = watch.snapshot().event;
   EXPECT_NE(event.find("grasp missed, 'cylinder' stays on the pick table: not every finger touches it"),
             std::string::npos)
       << "cell/events: " << event;
@@ -75,26 +48,13 @@ TEST(CellMissedGrasp, AMissedGraspLeavesTheObjectAndSaysSo) {
 // are told (grasp_object).
 TEST(CellMissedGrasp, DraggingTheHandleMovesTheObjectOnThePickTable) {
   ros::NodeHandle nh;
-  std::mutex mutex;
-  std::string phase;
-  pneumatic_finger::GraspObject::ConstPtr object;
-  auto s1 = nh.subscribe<std_msgs::String>("/cell/phase", 10, [&](const std_msgs::String::ConstPtr& m) {
-    std::lock_guard<std::mutex> lock(mutex);
-    phase = m->data;
-  });
-  auto s2 = nh.subscribe<pneumatic_finger::GraspObject>("/grasp_object", 10,
-                                                        [&](const pneumatic_finger::GraspObject::ConstPtr& m) {
-                                                          std::lock_guard<std::mutex> lock(mutex);
-                                                          object = m;
-                                                        });
+  pf_test::CellWatch watch(nh);
   ros::Publisher feedback = nh.advertise<visualization_msgs::InteractiveMarkerFeedback>("/cell_object/feedback", 10);
   // Wait for the approach (the object is back on the pick table, the handle shown).
   const ros::Time deadline = ros::Time::now() + ros::Duration(30);
   while (ros::Time::now() < deadline) {
-    {
-      std::lock_guard<std::mutex> lock(mutex);
-      if (phase == "approach" && object && object->header.frame_id == "world") break;
-    }
+    const pf_test::CellWatch::Snapshot now = watch.snapshot();
+    if (now.phase == "approach" && now.object && now.object->header.frame_id == "world") break;
     ros::Duration(0.02).sleep();
   }
   ros::Duration(0.3).sleep();  // the handle is re-inserted at the phase change
@@ -110,7 +70,7 @@ TEST(CellMissedGrasp, DraggingTheHandleMovesTheObjectOnThePickTable) {
   for (int i = 0; i < 50 && !moved; ++i) {
     feedback.publish(f);
     ros::Duration(0.05).sleep();
-    std::lock_guard<std::mutex> lock(mutex);
+    const auto object = watch.snapshot().object;
     moved = object && object->pose.position.x == 0.41 && object->pose.position.y == -0.23 &&
             object->pose.position.z == 0.12 && object->header.frame_id == "world";
   }

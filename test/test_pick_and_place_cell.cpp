@@ -19,6 +19,7 @@
 #include <set>
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/GraspObject.h"
+#include "cell_watch.hpp"
 #include "ros_test_main.hpp"
 
 namespace {
@@ -114,38 +115,15 @@ TEST(PickAndPlaceCell, DuringTheLiftEveryFingerTouchesTheObjectAndNoneEntersIt) 
   ros::NodeHandle nh;
   tf2_ros::Buffer buffer(ros::Duration(60));
   tf2_ros::TransformListener listener(buffer);
-  std::mutex mutex;
-  std::string phase;
-  pneumatic_finger::GraspObject::ConstPtr object;
-  std::map<std::string, pneumatic_finger::FingerModelState::ConstPtr> states;
-  auto s1 = nh.subscribe<std_msgs::String>("/cell/phase", 10, [&](const std_msgs::String::ConstPtr& m) {
-    std::lock_guard<std::mutex> lock(mutex);
-    phase = m->data;
-  });
-  auto s2 = nh.subscribe<pneumatic_finger::GraspObject>("/grasp_object", 10,
-                                                        [&](const pneumatic_finger::GraspObject::ConstPtr& m) {
-                                                          std::lock_guard<std::mutex> lock(mutex);
-                                                          object = m;
-                                                        });
-  std::vector<ros::Subscriber> subs;
-  for (const std::string f : {"finger_a", "finger_b", "finger_c"}) {
-    subs.push_back(nh.subscribe<pneumatic_finger::FingerModelState>(
-        "/" + f + "/finger_state", 10, [&, f](const pneumatic_finger::FingerModelState::ConstPtr& m) {
-          std::lock_guard<std::mutex> lock(mutex);
-          states[f] = m;
-        }));
-  }
+  pf_test::CellWatch watch(nh);
   int checked = 0;
   const ros::Time deadline = ros::Time::now() + ros::Duration(60);
   bool lifted = false;
   while (ros::Time::now() < deadline) {
-    std::string now_phase;
-    pneumatic_finger::GraspObject::ConstPtr obj;
-    std::map<std::string, pneumatic_finger::FingerModelState::ConstPtr> now_states;
-    {
-      std::lock_guard<std::mutex> lock(mutex);
-      now_phase = phase, obj = object, now_states = states;
-    }
+    const pf_test::CellWatch::Snapshot now = watch.snapshot();
+    const std::string& now_phase = now.phase;
+    const auto& obj = now.object;
+    const auto& now_states = now.states;
     if (now_phase != "lift") {
       if (lifted && checked > 0) break;  // one whole lift seen
       ros::Duration(0.01).sleep();
