@@ -11,12 +11,13 @@ import sys
 import tempfile
 
 # What a ROS-free layer may include besides the C++ standard library: its own layer and the ones below it, Eigen,
-# yaml-cpp, urdfdom (description only), CLI11 (tools only), POSIX.
+# yaml-cpp, urdfdom (description only), CLI11 (tools only), pybind11 (the Python module only), POSIX.
 ALLOWED = {
     "core": [r"pneumatic_finger/core/", r"Eigen/", r"yaml-cpp/"],
     "description": [r"pneumatic_finger/(core|description)/", r"Eigen/", r"yaml-cpp/", r"urdf_model/", r"urdf_parser/",
                     r"urdf_world/", r"tinyxml\.h"],
     "tools": [r"pneumatic_finger/(core|description|tools)/", r"Eigen/", r"CLI/", r"unistd\.h"],
+    "python": [r"pneumatic_finger/core/", r"Eigen/", r"pybind11/"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]')
 
@@ -61,5 +62,5 @@ if __name__ == "__main__":
     bad = violations(root)
     for b in bad:
         print(b)
-    print(f"check_layers: {len(bad)} violation(s) in core, description and tools")
+    print(f"check_layers: {len(bad)} violation(s) in core, description, tools and python")
     sys.exit(1 if bad else 0)

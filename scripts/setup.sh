@@ -30,6 +30,8 @@ PACKAGES=("$@"
   # (package.xml: shape_msgs, actionlib, actionlib_msgs, interactive_markers; test_depend geometric_shapes)
   libshape-msgs-dev ros-shape-msgs python3-shape-msgs libactionlib-dev libactionlib-msgs-dev ros-actionlib-msgs
   python3-actionlib-msgs python3-actionlib libgeometric-shapes-dev libinteractive-markers-dev
+  # the Python API (package.xml: pybind11-dev, python3-numpy, python3-rospkg; test_depend python3-pytest)
+  pybind11-dev python3-dev python3-numpy python3-rospkg python3-pytest
   # benchmarks (package.xml: benchmark, gsl)
   libbenchmark-dev libgsl-dev pkg-config
   # tests (package.xml: gtest; test_depend) and the docs' plots

@@ -35,6 +35,10 @@ check "finger_model_reads_the_installed_config" in_install "
   joints=\$('$installed_model' --gauge-pa 98066.5 | head -1 | tr ',' '\n' | grep -c '^joint_')
   sed -i 's/^chamber_count: 3\$/chamber_count: 7/' '$PREFIX/share/pneumatic_finger/config/finger.yaml'
   [ \"\$joints\" = 3 ] || { echo \"installed finger_model printed \$joints joints, not the edited file's 3\"; exit 1; }"
+check "python_api_imports_from_install" in_install "
+  python3 -c 'import pneumatic_finger.core as pf, pneumatic_finger.msg, sys
+q = pf.FingerModel().evaluate(98066.5)[\"joint_angle_rad\"][0]
+sys.exit(0 if abs(q - 0.04514271559) < 1e-10 else \"joint 1 at 1 kg/cm^2: %r\" % q)'"
 check "finger_calibrate_finds_the_installed_data" in_install "
   rosrun pneumatic_finger finger_calibrate | grep -q 'largest |error|'"
 check "finger_node_runs_from_install" in_install "

@@ -454,4 +454,21 @@ bool FingerModel::gaugeForHalfAngle(double half_angle_rad, double& gauge_pa) con
   return true;
 }
 
+void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out) {
+  const auto n = static_cast<std::size_t>(parameters_.chamber_count);
+  auto copy = [n](const Eigen::VectorXd& from, double* to, std::size_t row) {
+    if (to) std::copy(from.data(), from.data() + n, to + row * n);
+  };
+  for (std::size_t i = 0; i < count; ++i) {
+    const FingerState& s = evaluate(gauge_pa[i]);
+    copy(s.stretch, out.stretch, i);
+    copy(s.bulge_m, out.bulge_m, i);
+    copy(s.half_angle_rad, out.half_angle_rad, i);
+    copy(s.joint_angle_rad, out.joint_angle_rad, i);
+    if (out.backbone_m) std::copy(s.backbone_m.data(), s.backbone_m.data() + 2 * (n + 2), out.backbone_m + i * 2 * (n + 2));
+    if (out.tip_angle_rad) out.tip_angle_rad[i] = s.tip_angle_rad;
+    if (out.status) out.status[i] = static_cast<int>(s.status);
+  }
+}
+
 }  // namespace pneumatic_finger

@@ -57,7 +57,7 @@ struct FingerState {
   Eigen::VectorXd joint_angle_rad;       ///< q_n = theta_{n-1} + theta_n, n = 1..N (rad)
   Eigen::Matrix2Xd backbone_m;           ///< O_0 .. O_{N+1} as columns (m); O_{N+1} is the tip
   double tip_angle_rad = 0.0;            ///< Theta_N: direction of the last segment = sum of joint angles
-  bool walls_in_contact = false;               ///< some wall pair pushes (theta_n > 0)
+  bool walls_in_contact = false;         ///< some wall pair pushes (theta_n > 0)
   EvaluationStatus status = EvaluationStatus::kOk;
 
   /// Tip position O_{N+1}.
@@ -74,6 +74,18 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
 /// A FingerState sized for @p parameters, at rest (the straight finger).
 FingerState restState(const FingerParameters& parameters);
 
+/// Where FingerModel::evaluateMany writes: row-major arrays the caller owns, for `count` pressures; a null pointer
+/// is not written.
+struct BatchOutputs {
+  double* stretch = nullptr;          ///< count x N
+  double* bulge_m = nullptr;          ///< count x N
+  double* half_angle_rad = nullptr;   ///< count x N
+  double* joint_angle_rad = nullptr;  ///< count x N
+  double* backbone_m = nullptr;       ///< count x (N + 2) x 2: O_0 .. O_{N+1}, each (x, y)
+  double* tip_angle_rad = nullptr;    ///< count
+  int* status = nullptr;              ///< count: EvaluationStatus as an int
+};
+
 /// Threads: tipAngleAt(), gaugeForTipAngle() and the accessors of fixed data (parameters(), contactGaugePa(), ...)
 /// read only what the constructor built, so any number of threads may call them at once, also while another thread
 /// runs evaluate() (test: Property.ConstMethodsAreSafeBesideEvaluate). evaluate() and state() share the cached state:
@@ -87,6 +99,10 @@ class FingerModel {
   /// The same pressure as the previous call returns at once. NaN/inf: status kNotFinite and the previous numbers;
   /// negative: status kVacuum and the rest shape.
   const FingerState& evaluate(double gauge_pa);
+
+  /// Evaluates @p count pressures into @p out: pressure by pressure the numbers of evaluate(), bit for bit. Used by
+  /// the Python API (and the design sweeps) so that a whole array costs one call.
+  void evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out);
 
   /// The state of the last evaluation (the rest shape before any).
   const FingerState& state() const { return state_; }

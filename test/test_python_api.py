@@ -1,0 +1,103 @@
+"""The Python API (pneumatic_finger.core) against the C++ tools: the same numbers bit for bit, the same refusals.
+
+The reference is `finger_model`'s CSV (17 significant digits: a double's exact round trip), run as a separate
+process; the API must print nothing different.
+"""
+import csv
+import io
+import math
+import os
+import subprocess
+
+import numpy
+import pytest
+
+import pneumatic_finger.core as pf
+
+FINGER_MODEL = os.environ.get("FINGER_MODEL_EXE", "finger_model")
+PRESSURES = [0.0, 5000.0, 12000.0, 98066.5, 150000.0, 196133.0, 294199.5]
+
+
+def cli(*args):
+    out = subprocess.run([FINGER_MODEL, *args], check=True, capture_output=True, text=True).stdout
+    return list(csv.DictReader(io.StringIO(out)))
+
+
+def gauge_args(pressures):
+    args = []
+    for p in pressures:
+        args += ["--gauge-pa", repr(p)]
+    return args
+
+
+@pytest.mark.parametrize("solver", ["robust", "table", "paper"])
+def test_evaluate_equals_the_cli_bit_for_bit(solver):
+    model = pf.FingerModel(solver=solver)
+    state = model.evaluate(numpy.array(PRESSURES))
+    rows = cli("--solver", solver, *gauge_args(PRESSURES))
+    assert state["joint_angle_rad"].shape == (len(PRESSURES), 7)
+    assert state["backbone_m"].shape == (len(PRESSURES), 9, 2)
+    for i, row in enumerate(rows):
+        assert float(row["stretch"]) == state["stretch"][i, 0]
+        assert float(row["bulge_m"]) == state["bulge_m"][i, 0]
+        assert float(row["half_angle_rad"]) == state["half_angle_rad"][i, 0]
+        for n in range(7):
+            assert float(row[f"joint_{n + 1}_rad"]) == state["joint_angle_rad"][i, n], (solver, PRESSURES[i], n)
+        assert float(row["tip_x_m"]) == state["backbone_m"][i, -1, 0]
+        assert float(row["tip_y_m"]) == state["backbone_m"][i, -1, 1]
+
+
+def test_a_scalar_gives_one_state_without_the_pressure_axis():
+    model = pf.FingerModel()
+    one = model.evaluate(150000.0)
+    many = model.evaluate([150000.0, 150000.0])
+    assert one["joint_angle_rad"].shape == (7,)
+    assert one["backbone_m"].shape == (9, 2)
+    assert one["status"] == "ok"
+    assert numpy.array_equal(one["joint_angle_rad"], many["joint_angle_rad"][1])
+    assert float(one["tip_angle_rad"]) == pytest.approx(one["joint_angle_rad"].sum(), abs=1e-15)
+    assert model.evaluate(-1000.0)["status"] == "vacuum"
+
+
+def test_overrides_and_the_inverse():
+    stiff = pf.FingerModel(overrides={"shear_modulus_pa": 2.0 * pf.FingerModel().parameters["shear_modulus_pa"]})
+    rows = cli("--set", f"shear_modulus_pa={stiff.parameters['shear_modulus_pa']!r}", "--gauge-pa", "150000")
+    assert float(rows[0]["joint_7_rad"]) == stiff.evaluate(150000.0)["joint_angle_rad"][6]
+    model = pf.FingerModel()
+    tip = float(model.evaluate(123456.0)["tip_angle_rad"])
+    assert model.gauge_for_tip_angle(tip) == pytest.approx(123456.0, rel=1e-12)
+    with pytest.raises(ValueError, match="needs more than the allowed"):
+        model.gauge_for_tip_angle(10.0)
+
+
+def test_contact_equals_the_cli_bit_for_bit():
+    model = pf.FingerModel()
+    disk = (0.075, 0.035, 0.01)
+    got = model.contact(numpy.array(PRESSURES), disk=disk)
+    rows = cli("--obstacle-disk", ",".join(repr(v) for v in disk), *gauge_args(PRESSURES))
+    for i, row in enumerate(rows):
+        for n in range(7):
+            assert float(row[f"joint_{n + 1}_rad"]) == got["joint_angle_rad"][i, n], (PRESSURES[i], n)
+    assert got["status"][-1] == "in contact"
+    assert got["held"][-1].all()
+    assert math.isnan(got["first_touch_gauge_pa"][0])
+
+
+def test_bad_input_raises_value_error_naming_it():
+    with pytest.raises(ValueError, match="no_such_key"):
+        pf.FingerModel(overrides={"no_such_key": 1.0})
+    with pytest.raises(ValueError, match="shear_modulus_pa"):
+        pf.FingerModel(overrides={"shear_modulus_pa": -5.0})
+    with pytest.raises(ValueError, match="solver"):
+        pf.FingerModel(solver="fastest")
+    with pytest.raises(ValueError):
+        pf.FingerModel(config="/nonexistent/finger.yaml")
+    with pytest.raises(ValueError, match="radius"):
+        pf.FingerModel().contact(1e5, disk=(0.05, 0.02, -1.0))
+    with pytest.raises(ValueError, match="1-D"):
+        pf.FingerModel().evaluate(numpy.zeros((2, 2)))
+
+
+def test_the_generated_messages_import_beside_the_api():
+    from pneumatic_finger.msg import FingerModelState, GraspObject  # noqa: F401
+    from pneumatic_finger.srv import PressureForTipAngle  # noqa: F401
