@@ -156,6 +156,35 @@ TEST(Cli, AnObstacleDiskHoldsTheFingerWhereItTouches) {
   EXPECT_NE(short_list.err.find("X,Y,R"), std::string::npos) << short_list.err;
 }
 
+// The time mode (eq 4): a constant flow fills the finger; the pressure of each row is P_o Q t / V_o with V_o the
+// sum of the chambers' L d e, computed here from config/finger.yaml's numbers, and the rest of the row is the
+// pressure mode's row for that pressure.
+TEST(Cli, TimeModeFillsAtTheIdealSpringRate) {
+  const CliRun r = run("--flow-lpm 0.5 --duration-s 1 --step-s 0.25");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto rows = lines(r.out);
+  ASSERT_EQ(rows.size(), 6u);  // header, t = 0, 0.25, 0.5, 0.75, 1
+  EXPECT_EQ(rows[0].rfind("time_s,gauge_pa,stretch,", 0), 0u) << rows[0];
+  const std::string yaml = readFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml");
+  auto value = [&](const std::string& key) {
+    std::smatch m;
+    EXPECT_TRUE(std::regex_search(yaml, m, std::regex("\\n" + key + ": ([0-9.eE+-]+)"))) << key;
+    return std::stod(m[1]);
+  };
+  const double volume = value("chamber_count") * value("chamber_height_m") * value("chamber_thickness_m") * value("chamber_width_m");
+  const double rate = value("atmospheric_pressure_pa") * (0.5e-3 / 60.0) / volume;
+  for (int k = 0; k <= 4; ++k) {
+    const auto f = fields(rows[static_cast<std::size_t>(k + 1)]);
+    EXPECT_EQ(std::stod(f[0]), 0.25 * k);
+    EXPECT_NEAR(std::stod(f[1]), rate * 0.25 * k, 1e-9 * rate) << "t = " << 0.25 * k;
+    const auto same = lines(run("--gauge-pa " + f[1]).out);
+    EXPECT_EQ(rows[static_cast<std::size_t>(k + 1)], f[0] + "," + same[1]) << "t = " << 0.25 * k;
+  }
+  EXPECT_EQ(run("--flow-lpm 0.5 --duration-s 1").status, 2);
+  EXPECT_EQ(run("--flow-lpm -1 --duration-s 1 --step-s 0.1").status, 2);
+  EXPECT_EQ(run("--flow-lpm 1 --duration-s 1 --step-s 0.1 --gauge-pa 5").status, 2);
+}
+
 TEST(Cli, VacuumWarnsAndPrintsTheStraightFinger) {
   const CliRun r = run("--gauge-pa -20000");
   ASSERT_EQ(r.status, 0);

@@ -1,4 +1,5 @@
 // finger_model: the model from the command line, as CSV (one row per pressure). See the README, "Tools".
+#include <cmath>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -6,6 +7,8 @@
 
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/regulator.hpp"
+#include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
 
 namespace pf = pneumatic_finger;
@@ -15,7 +18,9 @@ namespace {
 constexpr const char* kDescription =
     "The finger model from the command line. Prints CSV, one row per pressure:\n"
     "gauge_pa,stretch,bulge_m,half_angle_rad,joint_1_rad..joint_N_rad,tip_x_m,tip_y_m\n"
-    "(stretch, bulge and half angle of chamber 1; 17 significant digits). Exit 2 on bad input.";
+    "(stretch, bulge and half angle of chamber 1; 17 significant digits). Exit 2 on bad input.\n"
+    "Time mode (--flow-lpm Q --duration-s T --step-s DT): a constant flow fills one finger; each row starts with\n"
+    "time_s, at 0, DT, .., T, the gauge pressure P_o Q t / V_o (eq 4, ideal spring; V_o = sum L d e).";
 
 std::vector<double> parseSweep(const std::string& text) {
   const std::vector<std::string> f = pf::splitFields(text, ':');
@@ -43,16 +48,21 @@ void printParameterTable() {
   }
 }
 
-void printCsv(pf::FingerModel& model, const std::vector<double>& pressures, const pf::Obstacle* obstacle) {
+// With @p times, each row starts with its time (s): the time mode.
+void printCsv(pf::FingerModel& model, const std::vector<double>& pressures, const pf::Obstacle* obstacle,
+              const std::vector<double>& times = {}) {
   const pf::ContactSolver contact(model);
   bool warned_overlap = false;
   const int n = model.chamberCount();
   std::ostringstream out;
+  if (!times.empty()) out << "time_s,";
   out << "gauge_pa,stretch,bulge_m,half_angle_rad";
   for (int j = 1; j <= n; ++j) out << ",joint_" << j << "_rad";
   out << ",tip_x_m,tip_y_m\n";
   bool warned = false, warned_failure = false;
-  for (double p : pressures) {
+  for (std::size_t row = 0; row < pressures.size(); ++row) {
+    const double p = pressures[row];
+    if (!times.empty()) out << pf::formatExact(times[row]) << ',';
     const pf::FingerState& s = model.evaluate(p);
     if (s.status == pf::EvaluationStatus::kVacuum && !warned) {
       std::cerr << "finger_model: warning: gauge pressure " << pf::formatExact(p)
@@ -107,6 +117,10 @@ int main(int argc, char** argv) {
   app.add_option("--gauge-pa", gauges, "gauge pressure P (Pa); repeat for several rows")->allow_extra_args(false);
   app.add_option("--sweep-pa", sweep, "FROM:TO:COUNT, evenly spaced gauge pressures (Pa)");
   app.add_flag("--parameters", parameter_table, "print the parameter table (Markdown) and exit");
+  std::string flow_lpm, duration_s, step_s;
+  app.add_option("--flow-lpm", flow_lpm, "time mode: constant air flow Q into the finger (L/min)");
+  app.add_option("--duration-s", duration_s, "time mode: fill duration T (s)");
+  app.add_option("--step-s", step_s, "time mode: time between rows DT (s)");
   std::string disk;
   app.add_option("--obstacle-disk", disk,
                  "X,Y,R: a disk in the finger's plane (m; x along the unbent finger from the mount, y toward the "
@@ -121,10 +135,37 @@ int main(int argc, char** argv) {
     for (const auto& g : gauges) pressures.push_back(pf::parseFiniteOption("--gauge-pa", g));
     if (!gauges.empty() && !sweep.empty()) throw pf::ParameterError("give --gauge-pa or --sweep-pa, not both");
     if (!sweep.empty()) pressures = parseSweep(sweep);
-    if (pressures.empty()) throw pf::ParameterError("no pressure given: use --gauge-pa P or --sweep-pa FROM:TO:COUNT");
+    const bool time_mode = !flow_lpm.empty() || !duration_s.empty() || !step_s.empty();
+    if (time_mode && !pressures.empty()) throw pf::ParameterError("give pressures or the time mode, not both");
+    if (!time_mode && pressures.empty()) {
+      throw pf::ParameterError("no pressure given: use --gauge-pa P, --sweep-pa FROM:TO:COUNT or --flow-lpm Q");
+    }
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);
-    pf::FingerModel model(parameters.load(), options);
+    const pf::FingerParameters finger = parameters.load();
+    std::vector<double> times;
+    if (time_mode) {
+      if (flow_lpm.empty() || duration_s.empty() || step_s.empty()) {
+        throw pf::ParameterError("the time mode needs --flow-lpm, --duration-s and --step-s together");
+      }
+      const double q = pf::parseFiniteOption("--flow-lpm", flow_lpm);
+      const double t_end = pf::parseFiniteOption("--duration-s", duration_s);
+      const double dt = pf::parseFiniteOption("--step-s", step_s);
+      if (!(q > 0)) throw pf::ParameterError("--flow-lpm = " + flow_lpm + " must be > 0");
+      if (!(t_end >= 0)) throw pf::ParameterError("--duration-s = " + duration_s + " must be >= 0");
+      if (!(dt > 0) || t_end / dt > 1e7) {
+        throw pf::ParameterError("--step-s = " + step_s + " must be > 0 and give at most 10000000 rows");
+      }
+      // The regulator's fill law (one definition): dP/dt = P_o Q / V_o for one finger.
+      const double rate = pf::fillRatePaPerS(q * pf::kM3PerSPerLitrePerMinute, pf::restVolumeM3(finger, 1),
+                                             finger.atmospheric_pressure_pa);
+      const long rows = static_cast<long>(std::floor(t_end / dt * (1 + 1e-12))) + 1;  // T itself when DT divides it
+      for (long k = 0; k < rows; ++k) {
+        times.push_back(static_cast<double>(k) * dt);
+        pressures.push_back(rate * times.back());
+      }
+    }
+    pf::FingerModel model(finger, options);
     pf::Obstacle obstacle = pf::Obstacle::disk(0, 0, 1);
     if (!disk.empty()) {
       const std::vector<std::string> f = pf::splitFields(disk);
@@ -134,7 +175,7 @@ int main(int argc, char** argv) {
                                     pf::parseFiniteOption("--obstacle-disk R", f[2]));
       if (!obstacle.problem().empty()) throw pf::ParameterError("--obstacle-disk: " + obstacle.problem());
     }
-    printCsv(model, pressures, disk.empty() ? nullptr : &obstacle);
+    printCsv(model, pressures, disk.empty() ? nullptr : &obstacle, times);
     return 0;
   });
 }

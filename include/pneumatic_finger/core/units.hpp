@@ -13,6 +13,9 @@ constexpr double kDegPerRad = 180.0 / kPi;
 /// its Table 1 give pressures in kg/cm^2 gauge.
 constexpr double kPaPerKgfPerCm2 = 98066.5;
 
+/// One litre per minute in cubic metres per second (flow meters and regulators are rated in L/min).
+constexpr double kM3PerSPerLitrePerMinute = 1e-3 / 60.0;
+
 /// Standard atmosphere (Pa), the default P_o.
 constexpr double kStandardAtmospherePa = 101325.0;
 
