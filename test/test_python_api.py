@@ -101,3 +101,43 @@ def test_bad_input_raises_value_error_naming_it():
 def test_the_generated_messages_import_beside_the_api():
     from pneumatic_finger.msg import FingerModelState, GraspObject  # noqa: F401
     from pneumatic_finger.srv import PressureForTipAngle  # noqa: F401
+
+
+DESIGN = [os.environ.get("PYTHON", "/usr/bin/python3"),
+          os.path.join(os.path.dirname(os.path.dirname(os.path.abspath(__file__))), "scripts", "finger_design")]
+
+
+def test_finger_design_sweeps_equal_the_cli():
+    out = subprocess.run(DESIGN + ["--vary", "chamber_gap_m=20e-6:200e-6:4", "--quantity", "tip_x_m@150000"],
+                         check=True, capture_output=True, text=True).stdout
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert len(rows) == 4
+    for row in rows:
+        ref = cli("--set", f"chamber_gap_m={row['chamber_gap_m']}", "--gauge-pa", "150000")
+        assert float(row["tip_x_m@150000"]) == float(ref[0]["tip_x_m"])
+
+
+def test_finger_design_two_keys_make_a_grid_and_draw_it(tmp_path):
+    png = tmp_path / "map.png"
+    out = subprocess.run(DESIGN + ["--vary", "chamber_height_m=0.009:0.013:3", "--vary", "chamber_gap_m=20e-6:100e-6:2",
+                                   "--quantity", "gauge_for_tip_angle@1.0", "--png", str(png)],
+                         check=True, capture_output=True, text=True).stdout
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert [(r["chamber_height_m"], r["chamber_gap_m"]) for r in rows][:2] == [("0.009", "2e-05"), ("0.009", "0.0001")]
+    assert len(rows) == 6
+    model = pf.FingerModel(overrides={"chamber_height_m": 0.011, "chamber_gap_m": 2e-05})
+    assert float(rows[2]["gauge_for_tip_angle@1.0"]) == model.gauge_for_tip_angle(1.0)
+    assert png.stat().st_size > 10000
+
+
+@pytest.mark.parametrize("args, message", [
+    (["--vary", "no_such_key=1:2:3", "--quantity", "contact_gauge_pa"], "unknown parameter 'no_such_key'"),
+    (["--vary", "chamber_gap_m=1:2", "--quantity", "contact_gauge_pa"], "KEY=FROM:TO:COUNT"),
+    (["--vary", "chamber_gap_m=2e-5:1e-4:3", "--quantity", "tip_angle_rad"], "needs @"),
+    (["--vary", "chamber_gap_m=2e-5:1e-4:3", "--quantity", "speed@1"], "not one of"),
+])
+def test_finger_design_refuses_bad_arguments_naming_them(args, message):
+    r = subprocess.run(DESIGN + args, capture_output=True, text=True)
+    assert r.returncode == 2
+    assert message in r.stderr
+    assert r.stdout == ""
