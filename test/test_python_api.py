@@ -141,3 +141,18 @@ def test_finger_design_refuses_bad_arguments_naming_them(args, message):
     assert r.returncode == 2
     assert message in r.stderr
     assert r.stdout == ""
+
+
+def test_calibrate_reproduces_the_shipped_fit():
+    # config/finger.yaml is finger_calibrate's output; its "# fitted:" line has the fitted values in full.
+    config = pf.default_config()
+    fitted_line = next(line for line in open(config) if line.startswith("# fitted:"))
+    words = fitted_line.split()
+    shipped = {words[i]: float(words[i + 2]) for i in range(2, len(words), 3)}
+    fit = pf.calibrate()
+    assert fit["fitted"] == shipped
+    assert len(fit["residuals"]) == 4
+    worst = max(abs(r["model_avg_rad"] - r["measured_avg_rad"]) for r in fit["residuals"])
+    assert fit["objective_value"] == worst
+    with pytest.raises(ValueError, match="no_such_key"):
+        pf.calibrate(keys=["no_such_key"])

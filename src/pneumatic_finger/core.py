@@ -12,14 +12,33 @@ or a list with one number per chamber). A bad file, key or value raises ValueErr
 import os
 
 from pneumatic_finger._core import FingerModel as _FingerModel
+from pneumatic_finger._core import calibrate as _calibrate
 
-__all__ = ["FingerModel", "default_config"]
+__all__ = ["FingerModel", "calibrate", "default_config", "default_data"]
+
+
+def _share(*parts):
+    import rospkg
+    return os.path.join(rospkg.RosPack().get_path("pneumatic_finger"), *parts)
 
 
 def default_config():
     """The package's config/finger.yaml (found through ROS_PACKAGE_PATH, as roslaunch finds it)."""
-    import rospkg
-    return os.path.join(rospkg.RosPack().get_path("pneumatic_finger"), "config", "finger.yaml")
+    return _share("config", "finger.yaml")
+
+
+def default_data():
+    """The package's measured joint angles, data/sierra2022_table1.csv."""
+    return _share("data", "sierra2022_table1.csv")
+
+
+def calibrate(data=None, keys=("shear_modulus_pa", "chamber_gap_m"), objective="minimax", config=None, overrides=None,
+              average_column=""):
+    """finger_calibrate from Python: fits one or two keys to measured joint angles (a CSV with gauge_pa and
+    joint_1_rad..joint_N_rad; None: the package's data). Returns a dict: fitted (key -> value), objective_value,
+    residuals (per row: gauge_pa, measured/model joints 2..N average and joint 1), model_evaluations."""
+    return _calibrate(data if data is not None else default_data(), list(keys), objective,
+                      config if config is not None else default_config(), dict(overrides or {}), average_column)
 
 
 class FingerModel(_FingerModel):

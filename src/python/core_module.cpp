@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/core/calibration.hpp"
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
@@ -175,6 +176,43 @@ class PyFingerModel {
   std::mutex mutex_;
 };
 
+// The calibration of finger_calibrate: fit keys of a parameter file to measured joint angles.
+py::dict calibrate(const std::string& data, const std::vector<std::string>& keys, const std::string& objective,
+                   const std::string& config, const py::dict& overrides, const std::string& average_column) {
+  pf::RawParameterMap raw;
+  if (!config.empty()) pf::loadRawParametersFromYamlFile(config, raw);
+  for (const auto& item : overrides) {
+    const std::string key = py::str(item.first);
+    raw[key] = rawValue(key, item.second);
+  }
+  const pf::FingerParameters base = pf::FingerParameters::fromRaw(raw);
+  const pf::CalibrationObjective goal = pf::parseObjective(objective);
+  const std::vector<pf::Measurement> rows = pf::readMeasurementsCsv(data, keys.size() + 2, average_column);
+  pf::CalibrationResult fit;
+  {
+    py::gil_scoped_release release;
+    fit = pf::calibrate(base, keys, rows, goal);
+  }
+  py::dict fitted;
+  for (std::size_t i = 0; i < fit.keys.size(); ++i) fitted[py::str(fit.keys[i])] = fit.values[i];
+  py::list residuals;
+  for (const pf::Residual& r : fit.residuals) {
+    py::dict row;
+    row["gauge_pa"] = r.gauge_pa;
+    row["measured_avg_rad"] = r.measured_avg_rad;
+    row["model_avg_rad"] = r.model_avg_rad;
+    row["measured_joint1_rad"] = r.measured_joint1_rad;
+    row["model_joint1_rad"] = r.model_joint1_rad;
+    residuals.append(row);
+  }
+  py::dict d;
+  d["fitted"] = fitted;
+  d["objective_value"] = fit.objective_value;
+  d["residuals"] = residuals;
+  d["model_evaluations"] = fit.model_evaluations;
+  return d;
+}
+
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -187,6 +225,9 @@ PYBIND11_MODULE(_core, m) {
       PyErr_SetString(PyExc_ValueError, error.what());
     }
   });
+  m.def("calibrate", &calibrate, py::arg("data"), py::arg("keys"), py::arg("objective"), py::arg("config"),
+        py::arg("overrides") = py::dict(), py::arg("average_column") = "",
+        "Fits keys of a parameter file to measured joint angles, as finger_calibrate does");
   py::class_<PyFingerModel>(m, "FingerModel")
       .def(py::init<const std::string&, const py::dict&, const std::string&>(), py::arg("config"),
            py::arg("overrides") = py::dict(), py::arg("solver") = "robust")
