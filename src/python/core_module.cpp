@@ -52,26 +52,38 @@ pf::RawParameterValue rawValue(const std::string& key, const py::handle& value) 
   return raw;
 }
 
+// A parameter file with Python overrides on top: the raw map every reader validates the same way.
+pf::RawParameterMap loadRaw(const std::string& config, const py::dict& overrides) {
+  pf::RawParameterMap raw;
+  if (!config.empty()) pf::loadRawParametersFromYamlFile(config, raw);
+  for (const auto& item : overrides) {
+    const std::string key = py::str(item.first);
+    raw[key] = rawValue(key, item.second);
+  }
+  return raw;
+}
+
+// The pressures of a call: a number (scalar: the results drop the pressure axis) or a 1-D sequence.
+Array pressures(const py::object& gauge_pa, bool& scalar) {
+  scalar = !py::isinstance<py::array>(gauge_pa) && !py::isinstance<py::list>(gauge_pa) &&
+           !py::isinstance<py::tuple>(gauge_pa);
+  Array p = Array::ensure(gauge_pa);
+  if (!p || p.ndim() > 1) throw py::value_error("gauge_pa must be a number or a 1-D array of pressures (Pa)");
+  return p;
+}
+
 class PyFingerModel {
  public:
   PyFingerModel(const std::string& config, const py::dict& overrides, const std::string& solver) {
-    pf::RawParameterMap raw;
-    if (!config.empty()) pf::loadRawParametersFromYamlFile(config, raw);
-    for (const auto& item : overrides) {
-      const std::string key = py::str(item.first);
-      raw[key] = rawValue(key, item.second);
-    }
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);
-    model_ = std::make_unique<pf::FingerModel>(pf::FingerParameters::fromRaw(raw), options);
+    model_ = std::make_unique<pf::FingerModel>(pf::FingerParameters::fromRaw(loadRaw(config, overrides)), options);
   }
 
   // A scalar gives arrays without the leading pressure axis; an array of P pressures gives (P, ...).
   py::dict evaluate(const py::object& gauge_pa) {
-    const bool scalar = !py::isinstance<py::array>(gauge_pa) && !py::isinstance<py::list>(gauge_pa) &&
-                        !py::isinstance<py::tuple>(gauge_pa);
-    const Array p = Array::ensure(gauge_pa);
-    if (!p || p.ndim() > 1) throw py::value_error("gauge_pa must be a number or a 1-D array of pressures (Pa)");
+    bool scalar = false;
+    const Array p = pressures(gauge_pa, scalar);
     const auto count = static_cast<py::ssize_t>(p.size());
     const py::ssize_t n = model_->chamberCount();
     Array stretch({count, n}), bulge({count, n}), half({count, n}), joints({count, n}), backbone({count, n + 2, py::ssize_t(2)}),
@@ -85,12 +97,12 @@ class PyFingerModel {
     out.backbone_m = backbone.mutable_data();
     out.tip_angle_rad = tip.mutable_data();
     out.status = status.mutable_data();
-    const double* pressures = p.data();
+    const double* gauges = p.data();
     {
       // The loop runs in C++ without the GIL; evaluate() keeps a cache, so one call at a time per model.
       py::gil_scoped_release release;
       std::lock_guard<std::mutex> lock(mutex_);
-      model_->evaluateMany(pressures, static_cast<std::size_t>(count), out);
+      model_->evaluateMany(gauges, static_cast<std::size_t>(count), out);
     }
     py::list names;
     for (py::ssize_t i = 0; i < count; ++i) names.append(statusName(status.data()[i]));
@@ -122,10 +134,8 @@ class PyFingerModel {
     const pf::Obstacle obstacle = pf::Obstacle::disk(disk[0], disk[1], disk[2]);
     const std::string problem = obstacle.problem();
     if (!problem.empty()) throw py::value_error(problem);
-    const bool scalar = !py::isinstance<py::array>(gauge_pa) && !py::isinstance<py::list>(gauge_pa) &&
-                        !py::isinstance<py::tuple>(gauge_pa);
-    const Array p = Array::ensure(gauge_pa);
-    if (!p || p.ndim() > 1) throw py::value_error("gauge_pa must be a number or a 1-D array of pressures (Pa)");
+    bool scalar = false;
+    const Array p = pressures(gauge_pa, scalar);
     const auto count = static_cast<py::ssize_t>(p.size());
     const py::ssize_t n = model_->chamberCount();
     Array joints({count, n}), backbone({count, n + 2, py::ssize_t(2)}), first({count});
@@ -179,13 +189,7 @@ class PyFingerModel {
 // The calibration of finger_calibrate: fit keys of a parameter file to measured joint angles.
 py::dict calibrate(const std::string& data, const std::vector<std::string>& keys, const std::string& objective,
                    const std::string& config, const py::dict& overrides, const std::string& average_column) {
-  pf::RawParameterMap raw;
-  if (!config.empty()) pf::loadRawParametersFromYamlFile(config, raw);
-  for (const auto& item : overrides) {
-    const std::string key = py::str(item.first);
-    raw[key] = rawValue(key, item.second);
-  }
-  const pf::FingerParameters base = pf::FingerParameters::fromRaw(raw);
+  const pf::FingerParameters base = pf::FingerParameters::fromRaw(loadRaw(config, overrides));
   const pf::CalibrationObjective goal = pf::parseObjective(objective);
   const std::vector<pf::Measurement> rows = pf::readMeasurementsCsv(data, keys.size() + 2, average_column);
   pf::CalibrationResult fit;
