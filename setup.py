@@ -3,4 +3,4 @@ from setuptools import setup
 
 from catkin_pkg.python_setup import generate_distutils_setup
 
-setup(**generate_distutils_setup(packages=["pneumatic_finger"], package_dir={"": "src"}))
+setup(**generate_distutils_setup(packages=["pneumatic_finger"], package_dir={"": "python"}))
