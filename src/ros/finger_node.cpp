@@ -314,9 +314,11 @@ void FingerNode::buildModel(ros::NodeHandle& nh) {
   nh.setParam(settings_.description_param, fingerUrdf(settings_.finger, settings_.urdf));
   finger_length_m_ = settings_.finger.base_segment_length_m;
   for (double z : settings_.finger.segment_length_m) finger_length_m_ += z;
-  // A tracker refers to the model it was made with: the section is cut again for the new one.
+  // A tracker refers to the model it was made with: the section is cut again for the new one, now (not at the next
+  // object tick), so that no pressure in between is published without the object.
   tracker_.reset();
   object_located_ = false;
+  updateObject();
 }
 
 FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
