@@ -10,7 +10,9 @@
 
 #include <unsupported/Eigen/Polynomials>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <functional>
 #include <limits>
 #include <map>
@@ -22,6 +24,7 @@
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/stages.hpp"
 #include "reference_quad.hpp"
+#include "../src/core/simd_math.hpp"  // the arctangent of our own (internal), for its latency
 
 namespace pf = pneumatic_finger;
 
@@ -235,7 +238,7 @@ void benchStages(benchmark::State& state, int stage) {
     if (++i == pressures.size()) i = 0;
   }
   state.SetLabel(stage == 1 ? "energy group g(P)" : stage == 2 ? "stretch delta(g)" : stage == 3 ? "bulge h(delta)"
-                 : stage == 4 ? "half angle theta(h)" : "joints + backbone (N = 7)");
+                 : stage == 4 ? "half angle theta(h)" : "joints + backbone (N = 7, general path)");
 }
 
 // Latency of the primitives the solvers chain together: each result feeds the next call, so this is the
@@ -246,11 +249,12 @@ void benchPrimitive(benchmark::State& state, int which) {
     switch (which) {
       case 0: x = std::sqrt(x) + 0.3; break;
       case 1: x = 1.0 / (x + 0.7); break;
-      default: x = std::atan(x) + 0.3;
+      case 2: x = std::atan(x) + 0.3; break;
+      default: x = pf::atanNonNegative(x) + 0.3;
     }
     benchmark::DoNotOptimize(x);
   }
-  state.SetLabel(which == 0 ? "sqrt" : which == 1 ? "division" : "atan (glibc)");
+  state.SetLabel(which == 0 ? "sqrt" : which == 1 ? "division" : which == 2 ? "atan (glibc)" : "atan (ours)");
 }
 
 // The contact rule's cost beside the free finger's (robust solver, validated range): an obstacle out of reach (the
@@ -273,6 +277,53 @@ void benchContact(benchmark::State& state, int which) {
                               : "contact: the same, ContactTracker (events kept)");
 }
 
+// The batch entry point (FingerModel::evaluateMany) over the validated pressures, every output written to arrays the
+// caller owns: the one-at-a-time path and the SIMD packs side by side, with the error of what they wrote (the tests
+// check that every path writes the bits of evaluate(); the error is measured here anyway, from the batch's rows).
+void benchBatch(benchmark::State& state, pf::BatchPath path, bool backbone_only) {
+  if (!pf::batchPathAvailable(path)) {
+    state.SkipWithError("this CPU lacks the instruction set");
+    return;
+  }
+  const std::vector<double>& pressures = validatedPressures();
+  const std::size_t count = pressures.size();
+  const auto n = static_cast<std::size_t>(kParams.chamber_count);
+  std::vector<double> stretch(count * n), bulge(count * n), half(count * n), joint(count * n),
+      backbone(count * 2 * (n + 2)), tip(count);
+  std::vector<int> status(count);
+  pf::BatchOutputs out;
+  out.stretch = stretch.data();
+  out.bulge_m = bulge.data();
+  out.half_angle_rad = half.data();
+  out.joint_angle_rad = joint.data();
+  out.backbone_m = backbone.data();
+  out.tip_angle_rad = tip.data();
+  out.status = status.data();
+  if (backbone_only) out = pf::BatchOutputs{nullptr, nullptr, nullptr, nullptr, backbone.data(), nullptr, nullptr};
+  pf::FingerModel model(kParams);
+  for (auto _ : state) {
+    model.evaluateMany(pressures.data(), count, out, path);
+    benchmark::DoNotOptimize(backbone.data());
+    benchmark::ClobberMemory();
+  }
+  double theta_error = 0.0, tip_error = 0.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    std::vector<reference::ChamberGeometry> chambers(n, {kParams.chamber_height_m[0], kParams.wall_critical_height_m[0],
+                                                         kParams.chamber_gap_m[0], kParams.shear_modulus_pa[0]});
+    const reference::Finger ref = reference::finger(pressures[i], kParams.atmospheric_pressure_pa, chambers,
+                                                    kParams.segment_length_m, kParams.base_segment_length_m);
+    theta_error = std::max(theta_error, std::fabs(half[i * n] - ref.half_angle_rad[0]));
+    const double* o = &backbone[i * 2 * (n + 2) + 2 * (n + 1)];
+    tip_error = std::max(tip_error, std::hypot(o[0] - ref.x_m.back(), o[1] - ref.y_m.back()));
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(count));
+  state.counters["max_theta_error_rad"] = theta_error;
+  state.counters["max_tip_error_m"] = tip_error;
+  state.counters["pressures"] = static_cast<double>(count);
+  state.SetLabel(std::string("evaluateMany, ") + pf::batchPathName(path) +
+                 (backbone_only ? ", backbone only" : ", every output"));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -286,13 +337,21 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("robust_stage/" + std::to_string(stage)).c_str(),
                                  [stage](benchmark::State& s) { benchStages(s, stage); });
   }
-  for (int which = 0; which < 3; ++which) {
+  for (int which = 0; which < 4; ++which) {
     benchmark::RegisterBenchmark(("latency/" + std::to_string(which)).c_str(),
                                  [which](benchmark::State& s) { benchPrimitive(s, which); });
   }
   for (int which = 0; which < 3; ++which) {
     benchmark::RegisterBenchmark(("contact/" + std::to_string(which)).c_str(),
                                  [which](benchmark::State& s) { benchContact(s, which); });
+  }
+  for (pf::BatchPath path : {pf::BatchPath::kScalar, pf::BatchPath::kGeneric, pf::BatchPath::kAvx2,
+                             pf::BatchPath::kAvx512}) {
+    for (bool backbone_only : {false, true}) {
+      benchmark::RegisterBenchmark(
+          (std::string(backbone_only ? "batch_backbone/" : "batch/") + pf::batchPathName(path)).c_str(),
+          [path, backbone_only](benchmark::State& s) { benchBatch(s, path, backbone_only); });
+    }
   }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

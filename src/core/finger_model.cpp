@@ -5,8 +5,10 @@
 #include <limits>
 #include <cmath>
 #include <sstream>
+#include <stdexcept>
 
 #include "pneumatic_finger/core/units.hpp"
+#include "batch_kernel.hpp"
 
 namespace pneumatic_finger {
 
@@ -284,17 +286,17 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
 
 namespace {
 
-// Stages 5-6 for identical chambers: q_1 = theta, q_n = 2 theta, so the direction turns by the same e^(2 i theta)
-// at every joint and nothing per chamber needs to be looked up or copied.
+// Stages 5-6 for identical chambers: q_1 = theta, q_n = 2 theta, so segment n points along (2n - 1) theta and nothing
+// per chamber needs to be looked up or copied. The directions come from uniformDirections (simd_math.hpp), which the
+// batch kernel shares, so that both round alike.
 void jointsAndBackboneUniform(const FingerParameters& parameters, const HalfAngle& h, FingerState& out) {
   const int n = parameters.chamber_count;
   const double q = 2.0 * h.rad;
-  const double rot_c = (h.cos - h.sin) * (h.cos + h.sin);  // cos 2 theta, no cancellation near pi/4
-  const double rot_s = 2.0 * h.sin * h.cos;
   out.half_angle_rad.setConstant(h.rad);
   out.joint_angle_rad.setConstant(q);
   out.joint_angle_rad[0] = h.rad;
-  double dir_c = h.cos, dir_s = h.sin;
+  std::array<double, kMaxChamberCount> dir_c, dir_s;
+  uniformDirections(h.cos, h.sin, n, dir_c.data(), dir_s.data());
   double x = parameters.base_segment_length_m, y = 0.0;
   double* points = out.backbone_m.data();  // column-major 2 x (N+2)
   points[0] = 0.0;
@@ -303,13 +305,10 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, const HalfAngl
   points[3] = y;
   const double* z = parameters.segment_length_m.data();
   for (int i = 0; i < n; ++i) {
-    x += z[i] * dir_c;
-    y += z[i] * dir_s;
+    x += z[i] * dir_c[static_cast<std::size_t>(i)];
+    y += z[i] * dir_s[static_cast<std::size_t>(i)];
     points[2 * i + 4] = x;
     points[2 * i + 5] = y;
-    const double c_new = dir_c * rot_c - dir_s * rot_s;
-    dir_s = dir_s * rot_c + dir_c * rot_s;
-    dir_c = c_new;
   }
   out.tip_angle_rad = h.rad + (n - 1) * q;
   out.walls_in_contact = h.rad > 0.0;
@@ -454,20 +453,99 @@ bool FingerModel::gaugeForHalfAngle(double half_angle_rad, double& gauge_pa) con
   return true;
 }
 
-void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out) {
+const char* batchPathName(BatchPath path) {
+  switch (path) {
+    case BatchPath::kBest: return "best";
+    case BatchPath::kScalar: return "scalar";
+    case BatchPath::kGeneric: return "generic";
+    case BatchPath::kAvx2: return "avx2";
+    case BatchPath::kAvx512: return "avx512";
+  }
+  return "best";
+}
+
+bool batchPathAvailable(BatchPath path) {
+  switch (path) {
+    case BatchPath::kBest:
+    case BatchPath::kScalar:
+    case BatchPath::kGeneric:
+      return true;
+#if defined(__x86_64__)
+    case BatchPath::kAvx2: return __builtin_cpu_supports("avx2");
+    case BatchPath::kAvx512: return __builtin_cpu_supports("avx512f");
+#else
+    case BatchPath::kAvx2:
+    case BatchPath::kAvx512:
+      return false;
+#endif
+  }
+  return false;
+}
+
+namespace {
+
+static_assert(kMaxChamberCount <= 64, "the batch kernel keeps at most 64 directions per lane");
+
+using BatchKernel = void (*)(const UniformRobustSpec&, const double*, std::size_t, const BatchOutputs&);
+
+BatchKernel batchKernel(BatchPath path) {
+#if defined(__x86_64__)
+  if (path == BatchPath::kBest) {
+    path = batchPathAvailable(BatchPath::kAvx512) ? BatchPath::kAvx512
+           : batchPathAvailable(BatchPath::kAvx2) ? BatchPath::kAvx2
+                                                  : BatchPath::kGeneric;
+  }
+  if (path == BatchPath::kAvx512 && batchPathAvailable(path)) return batchUniformRobustAvx512;
+  if (path == BatchPath::kAvx2 && batchPathAvailable(path)) return batchUniformRobustAvx2;
+#endif
+  if (path == BatchPath::kBest || path == BatchPath::kGeneric) return batchUniformRobustGeneric;
+  return nullptr;
+}
+
+}  // namespace
+
+void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out, BatchPath path) {
+  if (path != BatchPath::kScalar && !batchPathAvailable(path)) {
+    throw std::invalid_argument(std::string("evaluateMany: the batch path '") + batchPathName(path) +
+                                "' is not available on this CPU or build");
+  }
   const auto n = static_cast<std::size_t>(parameters_.chamber_count);
-  auto copy = [n](const Eigen::VectorXd& from, double* to, std::size_t row) {
-    if (to) std::copy(from.data(), from.data() + n, to + row * n);
+  if (path != BatchPath::kScalar && options_.solver == SolverKind::kRobust && groups_.size() == 1) {
+    const ChamberGroup& g = groups_[0];
+    const UniformRobustSpec spec{parameters_.chamber_count, parameters_.atmospheric_pressure_pa, g.shear_modulus_pa,
+                                 g.chamber_height_m, g.chamber_gap_m, g.wall_critical_height_m,
+                                 parameters_.base_segment_length_m, parameters_.segment_length_m.data()};
+    batchKernel(path)(spec, gauge_pa, count, out);
+    return;
+  }
+  if (batch_state_.stretch.size() == 0) batch_state_ = restState(parameters_);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto row = [n](const Eigen::VectorXd& from, double* to, std::size_t i, bool answered) {
+    if (!to) return;
+    if (answered) std::copy(from.data(), from.data() + n, to + i * n);
+    else std::fill(to + i * n, to + (i + 1) * n, std::numeric_limits<double>::quiet_NaN());
   };
   for (std::size_t i = 0; i < count; ++i) {
-    const FingerState& s = evaluate(gauge_pa[i]);
-    copy(s.stretch, out.stretch, i);
-    copy(s.bulge_m, out.bulge_m, i);
-    copy(s.half_angle_rad, out.half_angle_rad, i);
-    copy(s.joint_angle_rad, out.joint_angle_rad, i);
-    if (out.backbone_m) std::copy(s.backbone_m.data(), s.backbone_m.data() + 2 * (n + 2), out.backbone_m + i * 2 * (n + 2));
-    if (out.tip_angle_rad) out.tip_angle_rad[i] = s.tip_angle_rad;
-    if (out.status) out.status[i] = static_cast<int>(s.status);
+    const double p = gauge_pa[i];
+    EvaluationStatus status = !std::isfinite(p) ? EvaluationStatus::kNotFinite
+                              : p < 0.0         ? EvaluationStatus::kVacuum
+                                                : EvaluationStatus::kOk;
+    if (status != EvaluationStatus::kNotFinite && !writeState(p < 0.0 ? 0.0 : p, batch_state_)) {
+      status = EvaluationStatus::kSolverFailure;
+    }
+    const bool answered = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum;
+    const FingerState& s = batch_state_;
+    row(s.stretch, out.stretch, i, answered);
+    row(s.bulge_m, out.bulge_m, i, answered);
+    row(s.half_angle_rad, out.half_angle_rad, i, answered);
+    row(s.joint_angle_rad, out.joint_angle_rad, i, answered);
+    if (out.backbone_m) {
+      double* o = out.backbone_m + i * 2 * (n + 2);
+      if (answered) std::copy(s.backbone_m.data(), s.backbone_m.data() + 2 * (n + 2), o);
+      else std::fill(o, o + 2 * (n + 2), nan);
+    }
+    if (out.tip_angle_rad) out.tip_angle_rad[i] = answered ? s.tip_angle_rad : nan;
+    if (out.status) out.status[i] = static_cast<int>(status);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "pneumatic_finger/core/units.hpp"
+#include "simd_math.hpp"
 
 namespace pneumatic_finger {
 
@@ -155,7 +156,7 @@ double quarterPowerExcessOfTan(double d, double m, int& iterations) {
 HalfAngle halfAngleFromTan(double t, double w, int iterations) {
   HalfAngle out;
   out.iterations = iterations;
-  out.rad = std::atan(t);
+  out.rad = atanNonNegative(t);  // our own atan (simd_math.hpp): the batch kernel rounds it the same way
   if (w > 0.0) {
     // cos(theta) = 1/sqrt(1 + t^2) = 1/w^2, and w is solved to well below an ulp of v: no square root needed.
     out.cos = 1.0 / (w * w);

@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/core/evaluation.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/stages.hpp"
 
@@ -40,14 +41,6 @@ struct ModelOptions {
   bool chamber_detail = true;
 };
 
-/// Outcome of one evaluation.
-enum class EvaluationStatus {
-  kOk,            ///< pressure in the model's domain
-  kVacuum,        ///< gauge < 0: outside the model; the straight (rest) finger is returned
-  kNotFinite,     ///< NaN or infinite pressure: refused, the previous state is kept
-  kSolverFailure, ///< the solver produced no finite answer (the paper's closed forms can): the previous state is kept
-};
-
 /// Everything the model says about the finger at one pressure. Sized once for N chambers.
 struct FingerState {
   double gauge_pa = 0.0;                 ///< pressure the state was computed for (Pa, gauge; 0 for vacuum)
@@ -74,18 +67,6 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
 /// A FingerState sized for @p parameters, at rest (the straight finger).
 FingerState restState(const FingerParameters& parameters);
 
-/// Where FingerModel::evaluateMany writes: row-major arrays the caller owns, for `count` pressures; a null pointer
-/// is not written.
-struct BatchOutputs {
-  double* stretch = nullptr;          ///< count x N
-  double* bulge_m = nullptr;          ///< count x N
-  double* half_angle_rad = nullptr;   ///< count x N
-  double* joint_angle_rad = nullptr;  ///< count x N
-  double* backbone_m = nullptr;       ///< count x (N + 2) x 2: O_0 .. O_{N+1}, each (x, y)
-  double* tip_angle_rad = nullptr;    ///< count
-  int* status = nullptr;              ///< count: EvaluationStatus as an int
-};
-
 /// Threads: tipAngleAt(), gaugeForTipAngle() and the accessors of fixed data (parameters(), contactGaugePa(), ...)
 /// read only what the constructor built, so any number of threads may call them at once, also while another thread
 /// runs evaluate() (test: Property.ConstMethodsAreSafeBesideEvaluate). evaluate() and state() share the cached state:
@@ -100,9 +81,14 @@ class FingerModel {
   /// negative: status kVacuum and the rest shape.
   const FingerState& evaluate(double gauge_pa);
 
-  /// Evaluates @p count pressures into @p out: pressure by pressure the numbers of evaluate(), bit for bit. Used by
-  /// the Python API (and the design sweeps) so that a whole array costs one call.
-  void evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out);
+  /// Evaluates @p count pressures into @p out: for each finite pressure the numbers evaluate() gives, bit for bit;
+  /// for a NaN or infinite one, NaN in every output and status kNotFinite (a batch has no "previous state"). The
+  /// cached state and the unchanged-pressure cache are neither read nor written. With the robust solver and
+  /// identical chambers the pressures go through in packs of 4 or 8 (SIMD across pressures, src/core/batch_kernel.hpp);
+  /// otherwise one at a time. Used by the Python API and the design sweeps, so that a whole array costs one call.
+  /// Call from one thread per model (the one-at-a-time path uses the model's scratch).
+  void evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out,
+                    BatchPath path = BatchPath::kBest);
 
   /// The state of the last evaluation (the rest shape before any).
   const FingerState& state() const { return state_; }
@@ -181,6 +167,7 @@ class FingerModel {
   // per-chamber half angles, sized at construction.
   std::vector<GroupResult> scratch_;
   std::vector<HalfAngle> chamber_half_;
+  FingerState batch_state_;  // evaluateMany's one-at-a-time path
 };
 
 /// Gauge pressure (Pa) at which a chamber's bulge reaches its gap (the contact pressure): the inverse chain

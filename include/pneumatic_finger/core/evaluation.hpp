@@ -1,0 +1,45 @@
+// What one evaluation reports, and where a batch of them is written. Kept apart from finger_model.hpp (and free of
+// Eigen) because the batch kernels, compiled once per instruction set, include it.
+#pragma once
+
+#include <cstddef>
+
+namespace pneumatic_finger {
+
+/// Outcome of one evaluation.
+enum class EvaluationStatus {
+  kOk,            ///< pressure in the model's domain
+  kVacuum,        ///< gauge < 0: outside the model; the straight (rest) finger is returned
+  kNotFinite,     ///< NaN or infinite pressure: refused (evaluate() keeps the previous state; a batch writes NaN)
+  kSolverFailure, ///< the solver produced no finite answer (the paper's closed forms can): nothing is computed
+};
+
+/// Where FingerModel::evaluateMany writes: row-major arrays the caller owns, for `count` pressures; a null pointer
+/// is not written.
+struct BatchOutputs {
+  double* stretch = nullptr;          ///< count x N
+  double* bulge_m = nullptr;          ///< count x N
+  double* half_angle_rad = nullptr;   ///< count x N
+  double* joint_angle_rad = nullptr;  ///< count x N
+  double* backbone_m = nullptr;       ///< count x (N + 2) x 2: O_0 .. O_{N+1}, each (x, y)
+  double* tip_angle_rad = nullptr;    ///< count
+  int* status = nullptr;              ///< count: EvaluationStatus as an int
+};
+
+/// How FingerModel::evaluateMany runs. Every path writes the same bits; they differ only in speed, and exist side by
+/// side so that finger_bench and the tests can compare them in one run.
+enum class BatchPath {
+  kBest,     ///< the widest pack this CPU runs (robust solver, identical chambers), else kScalar
+  kScalar,   ///< one pressure at a time, through the single-evaluation code
+  kGeneric,  ///< packs of 4 pressures in the baseline instruction set (SSE2 on x86-64)
+  kAvx2,     ///< packs of 4 in AVX2 registers
+  kAvx512,   ///< packs of 8 in AVX-512 registers
+};
+
+/// "best", "scalar", "generic", "avx2" or "avx512".
+const char* batchPathName(BatchPath path);
+
+/// True when this build and this CPU can run @p path (kBest and kScalar always can).
+bool batchPathAvailable(BatchPath path);
+
+}  // namespace pneumatic_finger

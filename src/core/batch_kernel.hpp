@@ -1,0 +1,220 @@
+// The batch kernel: the robust solver for a finger of identical chambers, SIMD across pressures (each lane of a pack
+// is one pressure). Internal header of src/core; see simd_math.hpp for why everything here has internal linkage.
+//
+// It is a transcription of the single evaluation (stages.cpp: energyGroup, stretchExcess, bulge, halfAngle; and
+// finger_model.cpp: the uniform joints and backbone), operation for operation and in the same order, so that every
+// lane rounds as the single evaluation does. Where the single evaluation branches, the kernel computes the common
+// branch for every lane and selects; an iteration stops per lane where the single one stops, and the pack goes on
+// until its last lane stops (lanes that stopped keep their value). The rare branches (energy group > 1e30, bulge
+// beyond 1e6 wall heights, a zero gap) are left to the single evaluation, lane by lane.
+// test/test_batch.cpp checks the bits against FingerModel::evaluate over ordinary and hard pressures.
+#pragma once
+
+#include <cstddef>
+
+#include "pneumatic_finger/core/evaluation.hpp"
+#include "pneumatic_finger/core/stages.hpp"
+#include "simd_math.hpp"
+
+namespace pneumatic_finger {
+
+/// What the kernel needs of a finger with identical chambers (plain numbers: no Eigen in the kernels).
+struct UniformRobustSpec {
+  int chamber_count;
+  double atmospheric_pa, shear_modulus_pa, chamber_height_m, gap_m, wall_critical_height_m;
+  double base_segment_length_m;
+  const double* segment_length_m;  ///< chamber_count entries
+};
+
+/// One kernel per instruction set (batch_generic.cpp, batch_avx2.cpp, batch_avx512.cpp).
+void batchUniformRobustGeneric(const UniformRobustSpec& spec, const double* gauge_pa, std::size_t count,
+                               const BatchOutputs& out);
+void batchUniformRobustAvx2(const UniformRobustSpec& spec, const double* gauge_pa, std::size_t count,
+                            const BatchOutputs& out);
+void batchUniformRobustAvx512(const UniformRobustSpec& spec, const double* gauge_pa, std::size_t count,
+                              const BatchOutputs& out);
+
+namespace {  // NOLINT(build/namespaces)
+
+template <class T>
+inline T absOf(T x) {
+  return x < splat<T>(0.0) ? -x : x;
+}
+
+// std::min(a, b) is (b < a) ? b : a; the same selection, lane by lane.
+template <class T>
+inline T minOf(T a, T b) {
+  return b < a ? b : a;
+}
+
+/// One pack of pressures: lanes [0, valid) are gauge_pa[0..valid), written to rows row0.. of @p out.
+template <class T>
+inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa, int valid, std::size_t row0,
+                              const BatchOutputs& out) {
+  constexpr int kLanes = lanesOf<T>();
+  constexpr int kMaxChambers = 64;
+  const int n = s.chamber_count;
+  const T zero = splat<T>(0.0), one = splat<T>(1.0);
+
+  int status[kLanes];
+  T p;
+  for (int i = 0; i < kLanes; ++i) {
+    const double x = i < valid ? gauge_pa[i] : 0.0;
+    status[i] = !__builtin_isfinite(x) ? static_cast<int>(EvaluationStatus::kNotFinite)
+                : x < 0.0              ? static_cast<int>(EvaluationStatus::kVacuum)
+                                       : static_cast<int>(EvaluationStatus::kOk);
+    p[i] = status[i] == static_cast<int>(EvaluationStatus::kOk) ? x : 0.0;  // vacuum: the rest shape (P = 0)
+  }
+
+  // Stage 1, energyGroup.
+  const auto loaded = p > zero;
+  T g = (p / s.atmospheric_pa) * ((2.0 * s.atmospheric_pa + p) / s.shear_modulus_pa);
+  g = loaded ? g : zero;
+  auto rare = g > splat<T>(1e30);
+
+  // Stage 2, stretchExcess: the rational first guess, then Halley until the step is below 4e-6 delta.
+  const T sq = sqrtOf(g * (1.0 / 3.0));
+  T delta = sq * (1.0 + sq * (1.2637079407904241 + sq * 0.602317462994015)) /
+            (1.0 + sq * (0.9303746074570908 + sq * 0.34774814939720705));
+  // stretchExcess returns 0 for g = 0, which also a positive pressure gives where P/P_o underflows.
+  const auto stretched = g > zero;
+  delta = stretched ? delta : zero;
+  auto active = stretched & ~rare;
+  for (int i = 0; i < 16 && anyOf(active); ++i) {
+    const T f = delta * delta * (3.0 + delta) - g * (1.0 + delta);
+    const T fp = delta * (3.0 * delta + 6.0) - g;
+    const T fpp = 6.0 * delta + 6.0;
+    const T step = 2.0 * f * fp / (2.0 * fp * fp - f * fpp);
+    delta = active ? delta - step : delta;
+    active = active & (absOf(step) > 4e-6 * delta);
+  }
+
+  // Stage 3, bulge.
+  const T h = s.chamber_height_m * delta * (2.0 + delta) / (sqrtOf(1.0 + delta * (4.0 + 2.0 * delta)) + 1.0);
+
+  // Stage 4, halfAngle: walls in contact where h > c.
+  const double c = s.gap_m;
+  const auto contact = h > c;
+  const double two_over_b = 2.0 / s.wall_critical_height_m;
+  const T big_h = h * two_over_b;
+  const T m = sqrtOf(h * c) * two_over_b;
+  const T d = big_h * ((h - c) * two_over_b) / (big_h + m);
+  rare = rare | (contact & (~(big_h < 1e200) | ~(m > 0.0) | (d > 1e6)));
+  // quarterPowerExcessOfTan: v = (1 + tan^2)^(1/4) - 1 by safeguarded Halley on Q(v), from v(D).
+  T lo = zero, hi = d / m;
+  const T x = d * d;
+  const T r = sqrtOf(1.0 + d * d);
+  const T w0 = sqrtOf(r);
+  T v = d < 1.0 ? 0.25 * x / (1.0 + 0.375 * x) : d * d / ((r + 1.0) * (w0 + 1.0));
+  v = v < hi ? v : 0.5 * hi;
+  active = contact & ~rare;
+  for (int it = 0; it < 64 && anyOf(active); ++it) {
+    const T w = 1.0 + v;
+    const T tv = d - m * v;
+    const T q = v * (4.0 + v * (6.0 + v * (4.0 + v))) - tv * tv;
+    active = active & (q != 0.0);
+    const auto above = q > 0.0;
+    hi = active & above ? v : hi;
+    lo = active & ~above ? v : lo;
+    const T qp = 4.0 * w * w * w + 2.0 * m * tv;
+    const T qpp = 12.0 * w * w - 2.0 * m * m;
+    const T step = 2.0 * q * qp / (2.0 * qp * qp - q * qpp);
+    T next = v - step;
+    const auto halley = (next >= lo) & (next <= hi);
+    next = halley ? next : 0.5 * (lo + hi);
+    const T moved = absOf(next - v);
+    v = active ? next : v;
+    const auto converged =
+        halley & (moved * moved * moved * (1.0 + m) <= 1e-17 * minOf(d - m * v, one) * minOf(v + 1e-300, one));
+    const auto bracketed = hi - lo <= 4.0 * __DBL_EPSILON__ * hi;
+    active = active & ~converged & ~bracketed;
+  }
+  // halfAngleFromTan: theta = atan(t), cos = 1/w^2, sin = t cos.
+  const T t = d - m * v;
+  const T w = 1.0 + v;
+  T rad = contact ? atanNonNegative(t) : zero;
+  T cos_half = contact ? 1.0 / (w * w) : one;
+  T sin_half = contact ? t * cos_half : zero;
+  T stretch = 1.0 + delta;
+  T bulge_m = h;
+
+  // The rare lanes: the single evaluation's own chain.
+  for (int i = 0; i < kLanes; ++i) {
+    if (!rare[i]) continue;
+    const WallSolution wall = solveWall(p[i], s.atmospheric_pa, s.shear_modulus_pa, s.chamber_height_m, s.gap_m,
+                                        s.wall_critical_height_m);
+    stretch[i] = 1.0 + wall.stretch_excess;
+    bulge_m[i] = wall.bulge_m;
+    rad[i] = wall.half.rad;
+    cos_half[i] = wall.half.cos;
+    sin_half[i] = wall.half.sin;
+  }
+
+  // Stages 5-6 (jointsAndBackboneUniform): q_1 = theta, q_n = 2 theta; the directions from uniformDirections.
+  const T joint = 2.0 * rad;
+  const T tip_angle = rad + static_cast<double>(n - 1) * joint;
+  T dir_c[kMaxChambers], dir_s[kMaxChambers], px[kMaxChambers], py[kMaxChambers];
+  uniformDirections(cos_half, sin_half, n, dir_c, dir_s);
+  T xs = splat<T>(s.base_segment_length_m), ys = zero;
+  for (int i = 0; i < n; ++i) {
+    xs += s.segment_length_m[i] * dir_c[i];
+    ys += s.segment_length_m[i] * dir_s[i];
+    px[i] = xs;
+    py[i] = ys;
+  }
+
+  const std::size_t un = static_cast<std::size_t>(n);
+  for (int i = 0; i < valid; ++i) {
+    const std::size_t row = row0 + static_cast<std::size_t>(i);
+    const bool finite = __builtin_isfinite(stretch[i]) && __builtin_isfinite(bulge_m[i]) &&
+                        __builtin_isfinite(rad[i]) && __builtin_isfinite(cos_half[i]) &&
+                        __builtin_isfinite(sin_half[i]);
+    if (status[i] != static_cast<int>(EvaluationStatus::kNotFinite) && !finite) {
+      status[i] = static_cast<int>(EvaluationStatus::kSolverFailure);
+    }
+    if (out.status) out.status[row] = status[i];
+    // Nothing wrong is written as a number: a refused or failed pressure is NaN throughout.
+    const bool answered = status[i] == static_cast<int>(EvaluationStatus::kOk) ||
+                          status[i] == static_cast<int>(EvaluationStatus::kVacuum);
+    const double nan = __builtin_nan("");
+    if (out.stretch) {
+      for (std::size_t k = 0; k < un; ++k) out.stretch[row * un + k] = answered ? stretch[i] : nan;
+    }
+    if (out.bulge_m) {
+      for (std::size_t k = 0; k < un; ++k) out.bulge_m[row * un + k] = answered ? bulge_m[i] : nan;
+    }
+    if (out.half_angle_rad) {
+      for (std::size_t k = 0; k < un; ++k) out.half_angle_rad[row * un + k] = answered ? rad[i] : nan;
+    }
+    if (out.joint_angle_rad) {
+      out.joint_angle_rad[row * un] = answered ? rad[i] : nan;
+      for (std::size_t k = 1; k < un; ++k) out.joint_angle_rad[row * un + k] = answered ? joint[i] : nan;
+    }
+    if (out.backbone_m) {
+      double* o = out.backbone_m + row * 2 * (un + 2);
+      o[0] = answered ? 0.0 : nan;
+      o[1] = answered ? 0.0 : nan;
+      o[2] = answered ? s.base_segment_length_m : nan;
+      o[3] = answered ? 0.0 : nan;
+      for (std::size_t k = 0; k < un; ++k) {
+        o[2 * k + 4] = answered ? px[k][i] : nan;
+        o[2 * k + 5] = answered ? py[k][i] : nan;
+      }
+    }
+    if (out.tip_angle_rad) out.tip_angle_rad[row] = answered ? tip_angle[i] : nan;
+  }
+}
+
+/// The whole batch in packs of T, the last pack partly filled.
+template <class T>
+inline void uniformRobustBatch(const UniformRobustSpec& spec, const double* gauge_pa, std::size_t count,
+                               const BatchOutputs& out) {
+  constexpr std::size_t kLanes = static_cast<std::size_t>(lanesOf<T>());
+  for (std::size_t row = 0; row < count; row += kLanes) {
+    const std::size_t left = count - row;
+    uniformRobustPack<T>(spec, gauge_pa + row, static_cast<int>(left < kLanes ? left : kLanes), row, out);
+  }
+}
+
+}  // namespace
+}  // namespace pneumatic_finger

@@ -1,0 +1,185 @@
+// FingerModel::evaluateMany: every batch path (scalar, generic packs, AVX2, AVX-512) answers, pressure by pressure,
+// the bits FingerModel::evaluate answers; and the arctangent of our own (which both share) against libquadmath's.
+#include <gtest/gtest.h>
+#include <quadmath.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/stages.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+// Pressures a batch meets: the validated range, docs/MODEL.md's hard cases (near rest, around contact, the
+// resolvent band, theta -> pi/2 up to the rare branches), vacuum and refused values, in an order that puts every kind
+// in every lane of a pack, and a count that leaves the last pack partly filled.
+std::vector<double> batchPressures(const pf::FingerModel& model) {
+  std::vector<double> p;
+  for (int i = 0; i <= 400; ++i) p.push_back(196133.0 * i / 400);
+  for (double x = 1e-12; x < 10; x *= 7) p.push_back(x);
+  const double pc = model.contactGaugePa();
+  for (int k = 1; k <= 16; ++k) {
+    p.push_back(pc * (1 - std::pow(10.0, -k)));
+    p.push_back(pc * (1 + std::pow(10.0, -k)));
+  }
+  p.push_back(pc);
+  p.push_back(std::nextafter(pc, 0.0));
+  p.push_back(std::nextafter(pc, INFINITY));
+  for (double e = 5.0; e <= 300.0; e += 0.37) p.push_back(std::pow(10.0, e));  // through g > 1e30 and the big bulge
+  for (double x : {-1.0, -1e5, -0.0, 0.0, std::numeric_limits<double>::quiet_NaN(), double(INFINITY),
+                   -double(INFINITY), std::numeric_limits<double>::max(), std::numeric_limits<double>::denorm_min()}) {
+    p.push_back(x);
+  }
+  if (p.size() % 8 == 0) p.push_back(12345.0);
+  return p;
+}
+
+struct Rows {
+  explicit Rows(std::size_t count, int n)
+      : stretch(count * n), bulge(count * n), half(count * n), joint(count * n), backbone(count * 2 * (n + 2)),
+        tip(count), status(count) {}
+  pf::BatchOutputs outputs() {
+    pf::BatchOutputs o;
+    o.stretch = stretch.data();
+    o.bulge_m = bulge.data();
+    o.half_angle_rad = half.data();
+    o.joint_angle_rad = joint.data();
+    o.backbone_m = backbone.data();
+    o.tip_angle_rad = tip.data();
+    o.status = status.data();
+    return o;
+  }
+  std::vector<double> stretch, bulge, half, joint, backbone, tip;
+  std::vector<int> status;
+};
+
+bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Compares row i of a batch with evaluate() on a fresh model (no cache in play); returns how many values differ.
+int compareRow(pf::FingerModel& single, const Rows& rows, std::size_t i, double gauge_pa, const std::string& what) {
+  const int n = single.chamberCount();
+  const auto un = static_cast<std::size_t>(n);
+  const pf::FingerState& s = single.evaluate(gauge_pa);
+  int differ = 0;
+  auto check = [&](double got, double want, const char* field, std::size_t k) {
+    if (!sameBits(got, want)) {
+      if (++differ <= 3) {
+        ADD_FAILURE() << what << ": P = " << gauge_pa << " Pa, " << field << "[" << k << "] = " << got
+                      << ", evaluate() gives " << want;
+      }
+    }
+  };
+  const pf::EvaluationStatus want = !std::isfinite(gauge_pa) ? pf::EvaluationStatus::kNotFinite : s.status;
+  if (want == pf::EvaluationStatus::kNotFinite || want == pf::EvaluationStatus::kSolverFailure) {
+    // Refused, or no answer (the paper's solver at some pressures): NaN throughout, where evaluate() keeps its
+    // previous state.
+    EXPECT_EQ(rows.status[i], static_cast<int>(want)) << what;
+    for (std::size_t k = 0; k < un; ++k) EXPECT_TRUE(std::isnan(rows.half[i * un + k])) << what;
+    for (std::size_t k = 0; k < 2 * (un + 2); ++k) EXPECT_TRUE(std::isnan(rows.backbone[i * 2 * (un + 2) + k]));
+    EXPECT_TRUE(std::isnan(rows.tip[i]));
+    return 0;
+  }
+  EXPECT_EQ(rows.status[i], static_cast<int>(s.status)) << what << " at P = " << gauge_pa;
+  for (std::size_t k = 0; k < un; ++k) {
+    const auto e = static_cast<Eigen::Index>(k);
+    check(rows.stretch[i * un + k], s.stretch[e], "stretch", k);
+    check(rows.bulge[i * un + k], s.bulge_m[e], "bulge_m", k);
+    check(rows.half[i * un + k], s.half_angle_rad[e], "half_angle_rad", k);
+    check(rows.joint[i * un + k], s.joint_angle_rad[e], "joint_angle_rad", k);
+  }
+  for (std::size_t k = 0; k < 2 * (un + 2); ++k) {
+    check(rows.backbone[i * 2 * (un + 2) + k], s.backbone_m.data()[k], "backbone_m", k);
+  }
+  check(rows.tip[i], s.tip_angle_rad, "tip_angle_rad", 0);
+  return differ;
+}
+
+void expectEveryPathMatchesEvaluate(const pf::FingerParameters& params, pf::SolverKind solver) {
+  pf::ModelOptions options;
+  options.solver = solver;
+  pf::FingerModel batch(params, options);
+  const std::vector<double> pressures = batchPressures(batch);
+  int paths_run = 0;
+  for (pf::BatchPath path : {pf::BatchPath::kBest, pf::BatchPath::kScalar, pf::BatchPath::kGeneric,
+                             pf::BatchPath::kAvx2, pf::BatchPath::kAvx512}) {
+    if (!pf::batchPathAvailable(path)) continue;  // this CPU lacks it; the generic pack runs the same code
+    ++paths_run;
+    Rows rows(pressures.size(), params.chamber_count);
+    batch.evaluateMany(pressures.data(), pressures.size(), rows.outputs(), path);
+    int differ = 0;
+    for (std::size_t i = 0; i < pressures.size(); ++i) {
+      pf::FingerModel single(params, options);
+      differ += compareRow(single, rows, i, pressures[i], std::string(pf::batchPathName(path)) + "/" +
+                                                          pf::solverName(solver));
+    }
+    EXPECT_EQ(differ, 0) << pf::batchPathName(path) << ": values that differ from evaluate()";
+  }
+  EXPECT_GE(paths_run, 3);
+  // The batch neither reads nor writes the model's cached state.
+  EXPECT_EQ(batch.computationCount(), 0);
+}
+
+}  // namespace
+
+TEST(Batch, EveryPathAnswersTheBitsOfEvaluateForIdenticalChambers) {
+  expectEveryPathMatchesEvaluate(pf::FingerParameters::defaults(), pf::SolverKind::kRobust);
+}
+
+TEST(Batch, OtherChamberCountsAndSegmentLengths) {
+  // 1 chamber (no direction product at all), 3, 9 and 33 (powers r^2..r^32 of the direction tree), unequal lengths.
+  for (int n : {1, 3, 9, 33}) {
+    pf::RawParameterMap raw;
+    pf::parseParameterAssignment("chamber_count=" + std::to_string(n), raw);
+    std::string lengths = "segment_length_m=[";
+    for (int i = 0; i < n; ++i) lengths += (i ? "," : "") + std::to_string(0.01 * (1.0 + 0.1 * i));
+    pf::parseParameterAssignment(lengths + "]", raw);
+    const pf::FingerParameters p = pf::FingerParameters::fromRaw(raw);
+    SCOPED_TRACE("N = " + std::to_string(n));
+    expectEveryPathMatchesEvaluate(p, pf::SolverKind::kRobust);
+  }
+}
+
+TEST(Batch, UnequalChambersAndOtherSolversGoOneAtATime) {
+  pf::FingerParameters unequal = pf::FingerParameters::defaults();
+  unequal.chamber_gap_m[3] *= 1.5;
+  expectEveryPathMatchesEvaluate(unequal, pf::SolverKind::kRobust);
+  expectEveryPathMatchesEvaluate(pf::FingerParameters::defaults(), pf::SolverKind::kTable);
+  expectEveryPathMatchesEvaluate(pf::FingerParameters::defaults(), pf::SolverKind::kPaper);
+}
+
+TEST(Batch, ZeroGapTakesTheSingleEvaluationsRareBranch) {
+  pf::FingerParameters p = pf::FingerParameters::defaults();
+  p.chamber_gap_m.assign(p.chamber_gap_m.size(), 0.0);
+  expectEveryPathMatchesEvaluate(p, pf::SolverKind::kRobust);
+}
+
+// The atan of our own (simd_math.hpp), seen through the public halfAngle: at c = 0, eq 15 is h = (b/2) tan(theta),
+// so theta is our atan of tan(theta) = D, which halfAngle forms as H (H - 0)/(H + 0) with H = 2h/b (= h for b = 2):
+// D = (h h)/h in double. Against atanq (113-bit) over 300 decades, relative error within 1.5 ulp.
+TEST(OwnArctangent, WithinOneAndAHalfUlpOfQuadPrecision) {
+  const double b = 2.0;
+  double worst_ulps = 0.0, worst_at = 0.0;
+  for (double t = 1e-150; t < 1e150; t *= 1.0137) {
+    for (double x : {t, 0.4142135623730950, 2.414213562373095, 1.0}) {
+      const double got = pf::halfAngle(x, 0.0, b).rad;
+      const double arg = (x * x) / x;  // what halfAngle hands to the arctangent
+      const __float128 want = atanq(static_cast<__float128>(arg));
+      const double ulp = std::nextafter(static_cast<double>(want), INFINITY) - static_cast<double>(want);
+      const double ulps = static_cast<double>(fabsq(static_cast<__float128>(got) - want)) / ulp;
+      if (ulps > worst_ulps) {
+        worst_ulps = ulps;
+        worst_at = x;
+      }
+    }
+  }
+  EXPECT_LE(worst_ulps, 1.5) << "at t = " << worst_at;
+  // The ends: atan(t) = t for tiny t, atan(+inf) = pi/2 rounded.
+  EXPECT_EQ(pf::halfAngle(1e-100, 0.0, b).rad, (1e-100 * 1e-100) / 1e-100);
+  EXPECT_EQ(pf::halfAngle(1e199, 0.0, b).rad, static_cast<double>(acosq(-1) / 2));
+}
