@@ -69,7 +69,7 @@ double halfAngleForBulge(double bulge_m, double gap_m, double wall_critical_heig
 }
 
 Finger finger(double gauge_pa, double atmospheric_pa, const std::vector<ChamberGeometry>& chambers,
-              const std::vector<double>& segment_length_m, double base_segment_length_m) {
+              const std::vector<double>& segment_length_m, double base_segment_length_m, double base_wall_share) {
   const std::size_t n = chambers.size();
   std::vector<quad> theta(n);
   for (std::size_t i = 0; i < n; ++i) {
@@ -79,7 +79,9 @@ Finger finger(double gauge_pa, double atmospheric_pa, const std::vector<ChamberG
   }
   Finger out;
   // Stage 5-6, eq 37-38: Theta_n = Theta_{n-1} + theta_{n-1} + theta_n; O_n = O_{n-1} + Z_{n-1}(cos, sin)(Theta_{n-1}).
-  quad big_theta = 0, x = base_segment_length_m, y = 0, prev = 0;
+  // theta_0, the base face's half angle, is s0 theta_1 (docs/MODEL.md stage 5).
+  quad big_theta = 0, x = base_segment_length_m, y = 0;
+  quad prev = n > 0 ? static_cast<quad>(base_wall_share) * theta[0] : 0;
   out.x_m = {0.0, static_cast<double>(x)};
   out.y_m = {0.0, 0.0};
   for (std::size_t i = 0; i < n; ++i) {

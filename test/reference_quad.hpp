@@ -34,8 +34,9 @@ struct Finger {
   double tip_angle_rad;
 };
 
-/// The whole finger (stages 1-6) in quad precision.
+/// The whole finger (stages 1-6) in quad precision. @p base_wall_share: theta_0 = s0 theta_1 (joint 1).
 Finger finger(double gauge_pa, double atmospheric_pa, const std::vector<ChamberGeometry>& chambers,
-              const std::vector<double>& segment_length_m, double base_segment_length_m);
+              const std::vector<double>& segment_length_m, double base_segment_length_m,
+              double base_wall_share = 0.0);
 
 }  // namespace reference

@@ -145,6 +145,14 @@ TEST(Batch, OtherChamberCountsAndSegmentLengths) {
   }
 }
 
+TEST(Batch, TurningBaseFace) {
+  pf::RawParameterMap raw;
+  raw["base_wall_share"] = {{0.3}, false};
+  expectEveryPathMatchesEvaluate(pf::FingerParameters::fromRaw(raw), pf::SolverKind::kRobust);
+  raw["base_wall_share"] = {{1.0}, false};
+  expectEveryPathMatchesEvaluate(pf::FingerParameters::fromRaw(raw), pf::SolverKind::kRobust);
+}
+
 TEST(Batch, UnequalChambersAndOtherSolversGoOneAtATime) {
   pf::FingerParameters unequal = pf::FingerParameters::defaults();
   unequal.chamber_gap_m[3] *= 1.5;

@@ -106,7 +106,7 @@ TEST(Calibration, PaperAverageColumnGivesTheReferenceOptimum) {
 TEST(Calibration, MalformedCsvIsRefusedNamingTheLine) {
   EXPECT_NE(refusal("# c\npressure,joint_1_rad,joint_2_rad\n1,2,3\n").find("m.csv:2: header has no 'gauge_pa'"),
             std::string::npos);
-  EXPECT_NE(refusal("gauge_pa,joint_1_rad\n1,2\n").find("m.csv:1: header needs columns"), std::string::npos);
+  EXPECT_NE(refusal("gauge_pa,joint_1_rad\n1,2\n").find("m.csv:1: header has joint_1_rad alone"), std::string::npos);
   const std::string bad_number = std::string(kHeader) + "1e5,0.1,0.1,0.1,0.1,0.1,0.1,0.1\n2e5,0.1,0.1,x,0.1,0.1,0.1,0.1\n";
   EXPECT_NE(refusal(bad_number).find("m.csv:3: 'x' in column joint_3_rad is not a finite number"), std::string::npos)
       << refusal(bad_number);
@@ -127,13 +127,123 @@ TEST(Calibration, RefusesWhatItCannotFit) {
                pf::ParameterError);
   EXPECT_THROW(pf::calibrate(base, {"chamber_gap_m", "chamber_gap_m"}, data, pf::CalibrationObjective::kMinimax),
                pf::ParameterError);
-  EXPECT_THROW(pf::calibrate(base, {"chamber_gap_m", "shear_modulus_pa", "chamber_height_m"}, data,
-                             pf::CalibrationObjective::kMinimax),
-               pf::ParameterError);
+  EXPECT_THROW(pf::calibrate(base, {"chamber_gap_m", "shear_modulus_pa", "chamber_height_m", "wall_critical_height_m"},
+                             data, pf::CalibrationObjective::kMinimax),
+               pf::ParameterError);  // four keys
   pf::RawParameterMap raw;
   raw["chamber_count"] = {{5}, false};
   EXPECT_THROW(pf::calibrate(pf::FingerParameters::fromRaw(raw), {"chamber_gap_m"}, data,
                              pf::CalibrationObjective::kMinimax),
                pf::ParameterError);  // 7 measured joints, 5 chambers
   EXPECT_THROW(pf::parseObjective("median"), pf::ParameterError);
+}
+
+namespace {
+
+// What a researcher with a camera has: the tip angle or the tip position at each pressure, here made by the model
+// itself at known parameters, written as the CSV the tools read and parsed back.
+std::vector<pf::Measurement> syntheticTipCsv(const pf::FingerParameters& truth, const std::vector<double>& pressures,
+                                             bool position) {
+  pf::FingerModel model(truth);
+  std::string csv = position ? "# tip in the finger's frame\ngauge_pa,tip_x_m,tip_y_m\n" : "gauge_pa,tip_angle_rad\n";
+  for (double p : pressures) {
+    const pf::FingerState& s = model.evaluate(p);
+    csv += pf::formatExact(p) + "," +
+           (position ? pf::formatExact(s.tip().x()) + "," + pf::formatExact(s.tip().y()) : pf::formatExact(s.tip_angle_rad)) +
+           "\n";
+  }
+  return pf::parseMeasurementsCsv(csv, "tip.csv", pressures.size());
+}
+
+pf::FingerParameters truthWith(double mu, double gap, double share) {
+  pf::RawParameterMap raw;
+  raw["shear_modulus_pa"] = {{mu}, false};
+  raw["chamber_gap_m"] = {{gap}, false};
+  raw["base_wall_share"] = {{share}, false};
+  return pf::FingerParameters::fromRaw(raw);
+}
+
+const std::vector<double> kPressures = {49033.25, 98066.5, 147099.75, 196133.0};
+
+}  // namespace
+
+TEST(Calibration, RecoversMuGapAndBaseShareFromEveryJoint) {
+  const pf::FingerParameters truth = truthWith(3.7e8, 8.5e-5, 0.42);
+  const auto data = synthetic(truth, kPressures);
+  for (auto objective : {pf::CalibrationObjective::kMinimax, pf::CalibrationObjective::kLeastSquares}) {
+    // Start from the shipped parameters, far from the truth: the search is global over its brackets.
+    const auto fit = pf::calibrate(pf::FingerParameters::defaults(),
+                                   pf::defaultFitKeys(pf::CalibrationQuantity::kEveryJoint), data, objective,
+                                   pf::CalibrationQuantity::kEveryJoint);
+    ASSERT_EQ(fit.keys, (std::vector<std::string>{"shear_modulus_pa", "chamber_gap_m", "base_wall_share"}));
+    EXPECT_NEAR(fit.values[0], 3.7e8, 3.7e8 * 1e-6) << pf::objectiveName(objective);
+    EXPECT_NEAR(fit.values[1], 8.5e-5, 8.5e-5 * 1e-6);
+    EXPECT_NEAR(fit.values[2], 0.42, 1e-6);
+    EXPECT_EQ(fit.parameters.base_wall_share, fit.values[2]);
+    for (const auto& r : fit.residuals) {
+      for (double e : r.terms(pf::CalibrationQuantity::kEveryJoint)) EXPECT_LT(std::fabs(e), 1e-9);
+    }
+  }
+}
+
+TEST(Calibration, RecoversMuAndGapFromTipAnglesOrTipPositionsAlone) {
+  const pf::FingerParameters truth = truthWith(3.7e8, 8.5e-5, pf::FingerParameters::defaults().base_wall_share);
+  for (bool position : {false, true}) {
+    const auto data = syntheticTipCsv(truth, kPressures, position);
+    ASSERT_FALSE(data[0].hasJoints());
+    ASSERT_EQ(data[0].hasTipPosition(), position);
+    const pf::CalibrationQuantity quantity = pf::defaultQuantity(data);
+    EXPECT_EQ(quantity, position ? pf::CalibrationQuantity::kTipPosition : pf::CalibrationQuantity::kTipAngle);
+    for (auto objective : {pf::CalibrationObjective::kMinimax, pf::CalibrationObjective::kLeastSquares}) {
+      SCOPED_TRACE(std::string(pf::quantityName(quantity)) + ", " + pf::objectiveName(objective));
+      const auto fit = pf::calibrate(pf::FingerParameters::defaults(), pf::defaultFitKeys(quantity), data, objective,
+                                     quantity);
+      EXPECT_NEAR(fit.values[0], 3.7e8, 3.7e8 * 1e-6);
+      EXPECT_NEAR(fit.values[1], 8.5e-5, 8.5e-5 * 1e-6);
+      for (const auto& r : fit.residuals) {
+        EXPECT_LT(std::fabs(position ? r.tip_position_error_m() : r.tip_angle_error_rad()), 1e-10);
+        EXPECT_TRUE(std::isnan(r.measured_joint1_rad));  // nothing invented where the file has no joints
+      }
+    }
+  }
+  // The base face's share alone is determined by tip data (the chambers held at the truth).
+  pf::FingerParameters base = truth;
+  base.base_wall_share = 0.0;
+  const auto fit = pf::calibrate(base, {"base_wall_share"}, syntheticTipCsv(truth, kPressures, false),
+                                 pf::CalibrationObjective::kMinimax, pf::CalibrationQuantity::kTipAngle);
+  EXPECT_NEAR(fit.values[0], truth.base_wall_share, 1e-6);
+}
+
+TEST(Calibration, RefusesKeysTheDataCannotDetermine) {
+  const pf::FingerParameters base = pf::FingerParameters::defaults();
+  const auto joints = pf::readMeasurementsCsv(kTable1, 4);
+  const auto tips = syntheticTipCsv(base, kPressures, false);
+  auto message = [&](const std::vector<std::string>& keys, const std::vector<pf::Measurement>& data,
+                     pf::CalibrationQuantity quantity) {
+    try {
+      pf::calibrate(base, keys, data, pf::CalibrationObjective::kMinimax, quantity);
+    } catch (const pf::ParameterError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(accepted)");
+  };
+  using Q = pf::CalibrationQuantity;
+  EXPECT_NE(message({"base_wall_share"}, joints, Q::kOuterAverage).find("moves joint 1 alone"), std::string::npos);
+  EXPECT_NE(message({"shear_modulus_pa", "base_wall_share"}, tips, Q::kTipAngle).find("tip data alone"),
+            std::string::npos);
+  EXPECT_NE(message({"chamber_gap_m"}, joints, Q::kFirstJoint).find("joint 1 alone cannot fit chamber keys"),
+            std::string::npos);
+  const std::vector<pf::Measurement> two(joints.begin(), joints.begin() + 2);
+  EXPECT_NE(message({"shear_modulus_pa", "chamber_gap_m"}, two, Q::kEveryJoint).find("more pressures than"),
+            std::string::npos);
+  EXPECT_NE(message({"shear_modulus_pa"}, tips, Q::kTipPosition).find("no measurement for 'tip_position'"),
+            std::string::npos);
+  EXPECT_NE(message({"shear_modulus_pa"}, tips, Q::kEveryJoint).find("no measurement for 'joints'"), std::string::npos);
+  EXPECT_NE(message({"shear_modulus_pa", "chamber_gap_m", "base_wall_share", "chamber_height_m"}, joints,
+                    Q::kEveryJoint).find("one to three"), std::string::npos);
+  // What the file's header lacks or half-gives is refused when it is read, naming the line.
+  EXPECT_NE(refusal("gauge_pa,tip_x_m\n1e5,0.01\n", 1).find("m.csv:1: header has tip_x_m without tip_y_m"),
+            std::string::npos);
+  EXPECT_NE(refusal("gauge_pa,pressure_kgcm2\n1e5,1\n", 1).find("header has nothing measured"), std::string::npos);
+  EXPECT_NE(refusal("gauge_pa,joint_1_rad\n1e5,0.1\n", 1).find("joint_1_rad alone"), std::string::npos);
 }

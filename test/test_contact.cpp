@@ -98,6 +98,31 @@ const pf::FingerParameters kFinger = pf::FingerParameters::defaults();
 
 }  // namespace
 
+// Joint 1 with a turning base face (theta_0 = s0 theta_1): the half-angle search turns segment 1 by (1 + s0) theta,
+// and a touch on segment 1 holds q_1 at the model's own value. Disks touched first by segments 1, 3 and 6 and the tip.
+TEST(Contact, TurningBaseFaceMatchesTheReference) {
+  pf::RawParameterMap raw;
+  raw["base_wall_share"] = {{0.3}, false};
+  const pf::FingerParameters finger = pf::FingerParameters::fromRaw(raw);
+  pf::FingerModel model(finger);
+  const pf::ContactSolver solver(model);
+  const std::vector<Disk> disks = {{0.02, 0.0035, 0.003}, {0.0388324, 0.00650505, 0.003},
+                                   {0.0632674, 0.0211602, 0.006}, {0.075, 0.035, 0.01}};
+  int held_first = 0;
+  for (const Disk& d : disks) {
+    const pf::ContactState got = solver.solve(196133.0, pf::Obstacle::disk(d.x, d.y, d.r));
+    const Reference want = reference(finger, 196133.0, d);
+    held_first += got.held[0];
+    for (int i = 0; i < 7; ++i) {
+      EXPECT_NEAR(got.joint_angle_rad[i], want.q[static_cast<std::size_t>(i)], 1e-12) << "disk " << d.x << "," << d.y;
+      EXPECT_EQ(got.held[static_cast<std::size_t>(i)], want.held[static_cast<std::size_t>(i)]) << "joint " << i + 1;
+    }
+    ASSERT_FALSE(std::isnan(want.first_touch)) << "every disk here is reached";
+    EXPECT_NEAR(got.first_touch_gauge_pa, want.first_touch, 1e-9 * want.first_touch);
+  }
+  EXPECT_EQ(held_first, 4) << "every disk holds joint 1";
+}
+
 TEST(Contact, MatchesTheIndependentReferenceForDisksAcrossTheFinger) {
   pf::FingerModel model(kFinger);
   const pf::ContactSolver solver(model);

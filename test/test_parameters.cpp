@@ -30,8 +30,8 @@ pf::RawParameterMap one(const std::string& key, std::vector<double> v, bool list
 TEST(Parameters, EveryKeyOfModelMdIsDefinedOnce) {
   const std::vector<std::string> model_md = {
       "chamber_count", "chamber_height_m", "wall_critical_height_m", "chamber_gap_m", "chamber_thickness_m",
-      "chamber_width_m", "segment_length_m", "base_segment_length_m", "shear_modulus_pa", "atmospheric_pressure_pa",
-      "elastomer_density_kg_m3"};
+      "chamber_width_m", "segment_length_m", "base_segment_length_m", "base_wall_share", "shear_modulus_pa",
+      "atmospheric_pressure_pa", "elastomer_density_kg_m3"};
   ASSERT_EQ(pf::parameterSpecs().size(), model_md.size());
   for (const auto& key : model_md) EXPECT_NE(pf::findParameterSpec(key), nullptr) << key;
   for (const auto& spec : pf::parameterSpecs()) {

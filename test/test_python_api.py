@@ -151,8 +151,10 @@ def test_calibrate_reproduces_the_shipped_fit():
     shipped = {words[i]: float(words[i + 2]) for i in range(2, len(words), 3)}
     fit = pf.calibrate()
     assert fit["fitted"] == shipped
+    assert fit["compared"] == "joints"
     assert len(fit["residuals"]) == 4
-    worst = max(abs(r["model_avg_rad"] - r["measured_avg_rad"]) for r in fit["residuals"])
+    # The objective over every joint: the largest |model - measured| of any joint in any row.
+    worst = max(abs(m - d) for r in fit["residuals"] for m, d in zip(r["model_joint_rad"], r["measured_joint_rad"]))
     assert fit["objective_value"] == worst
     with pytest.raises(ValueError, match="no_such_key"):
         pf.calibrate(keys=["no_such_key"])

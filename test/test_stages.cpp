@@ -90,7 +90,10 @@ TEST(Stage5JointAngles, AreSumsOfNeighbouringHalfAngles) {
   raw["chamber_gap_m"] = {{0.0, 2e-5, 5e-5, 1e-4}, true};
   pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
   const pf::FingerState& s = model.evaluate(150000);
-  EXPECT_EQ(s.joint_angle_rad[0], s.half_angle_rad[0]);
+  // Joint 1: the base face's half angle theta_0 = s0 theta_1 (docs/MODEL.md stage 5) and chamber 1's.
+  const double s0 = model.parameters().base_wall_share;
+  ASSERT_GT(s0, 0.0);
+  EXPECT_EQ(s.joint_angle_rad[0], s0 * s.half_angle_rad[0] + s.half_angle_rad[0]);
   for (int n = 1; n < 4; ++n) EXPECT_EQ(s.joint_angle_rad[n], s.half_angle_rad[n - 1] + s.half_angle_rad[n]);
   EXPECT_GT(s.half_angle_rad[0], s.half_angle_rad[3]);  // a smaller gap bends more
 }
@@ -123,4 +126,45 @@ TEST(Stage6Backbone, UnequalChambersMatchReference) {
   EXPECT_LE(worst.half_angle_rad, pf_test::kAngleTolerance);
   EXPECT_LE(worst.joint_angle_rad, pf_test::kAngleTolerance);
   EXPECT_LE(worst.point_m, pf_test::kPointTolerance);
+}
+
+// Joint 1 with a turning base face (docs/MODEL.md stage 5: theta_0 = s0 theta_1), identical and unequal chambers,
+// against the reference, which adds theta_0 to q_1 in quad precision.
+TEST(Stage5Joints, BaseWallShareMatchesReference) {
+  for (double share : {0.28, 1.0}) {
+    for (bool unequal : {false, true}) {
+      pf::RawParameterMap raw;
+      raw["base_wall_share"] = {{share}, false};
+      if (unequal) raw["chamber_gap_m"] = {{3e-5, 1e-5, 3e-5, 5.2e-5, 8e-5, 1.2e-4, 2e-4}, true};
+      const pf::FingerParameters params = pf::FingerParameters::fromRaw(raw);
+      pf::FingerModel model(params);
+      pf_test::FingerError worst;
+      double ratio = 0.0;
+      for (double p : pf_test::pressureSweep(3e5, 60, 4)) {
+        const pf::FingerState& s = model.evaluate(p);
+        worst.merge(pf_test::fingerError(s, pf_test::referenceFinger(params, p)));
+        if (!unequal && s.half_angle_rad[0] > 0) ratio = s.joint_angle_rad[0] / s.half_angle_rad[0];
+      }
+      SCOPED_TRACE("s0 = " + std::to_string(share) + (unequal ? ", unequal chambers" : ", identical chambers"));
+      EXPECT_LE(worst.half_angle_rad, pf_test::kAngleTolerance);
+      EXPECT_LE(worst.joint_angle_rad, pf_test::kAngleTolerance);
+      EXPECT_LE(worst.tip_angle_rad, pf_test::kAngleTolerance);
+      EXPECT_LE(worst.point_m, pf_test::kPointTolerance);
+      if (!unequal) {
+        EXPECT_NEAR(ratio, 1.0 + share, 1e-15);
+      }
+      // The thread-safe forms agree with the state.
+      const double p = 1.5e5;
+      const pf::FingerState& s = model.evaluate(p);
+      std::vector<double> q(static_cast<std::size_t>(params.chamber_count));
+      ASSERT_TRUE(model.jointAnglesAt(p, q.data()));
+      for (int i = 0; i < params.chamber_count; ++i) EXPECT_EQ(q[static_cast<std::size_t>(i)], s.joint_angle_rad[i]);
+      EXPECT_NEAR(model.tipAngleAt(p), s.tip_angle_rad, 1e-15);
+      // The inverse: the pressure for the tip angle reached at p gives p back.
+      double gauge = 0.0;
+      std::string why;
+      ASSERT_TRUE(model.gaugeForTipAngle(s.tip_angle_rad, 1e6, gauge, why)) << why;
+      EXPECT_NEAR(gauge, p, 1e-9 * p);
+    }
+  }
 }

@@ -21,7 +21,7 @@ inline std::vector<reference::ChamberGeometry> chambersOf(const pneumatic_finger
 
 inline reference::Finger referenceFinger(const pneumatic_finger::FingerParameters& p, double gauge_pa) {
   return reference::finger(gauge_pa, p.atmospheric_pressure_pa, chambersOf(p), p.segment_length_m,
-                           p.base_segment_length_m);
+                           p.base_segment_length_m, p.base_wall_share);
 }
 
 /// Largest errors of one evaluation against the reference.

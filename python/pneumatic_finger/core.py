@@ -32,13 +32,16 @@ def default_data():
     return _share("data", "sierra2022_table1.csv")
 
 
-def calibrate(data=None, keys=("shear_modulus_pa", "chamber_gap_m"), objective="minimax", config=None, overrides=None,
-              average_column=""):
-    """finger_calibrate from Python: fits one or two keys to measured joint angles (a CSV with gauge_pa and
-    joint_1_rad..joint_N_rad; None: the package's data). Returns a dict: fitted (key -> value), objective_value,
-    residuals (per row: gauge_pa, measured/model joints 2..N average and joint 1), model_evaluations."""
-    return _calibrate(data if data is not None else default_data(), list(keys), objective,
-                      config if config is not None else default_config(), dict(overrides or {}), average_column)
+def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=None, average_column="",
+              compare=None):
+    """finger_calibrate from Python: fits one to three keys to what a CSV measured (gauge_pa and any of
+    joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m; None: the package's data). compare: "joints",
+    "average", "joint_1", "tip_angle" or "tip_position" (None: what the file has, as the tool decides); keys None: the
+    tool's default for it. Returns a dict: fitted (key -> value), compared, objective_value, residuals (per row:
+    gauge_pa, measured/model joints, joints 2..N average, joint 1, tip angle and tip position), model_evaluations."""
+    return _calibrate(data if data is not None else default_data(), list(keys or []), objective,
+                      config if config is not None else default_config(), dict(overrides or {}), average_column,
+                      compare or "")
 
 
 class FingerModel(_FingerModel):

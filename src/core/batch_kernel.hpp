@@ -24,6 +24,7 @@ struct UniformRobustSpec {
   double atmospheric_pa, shear_modulus_pa, chamber_height_m, gap_m, wall_critical_height_m;
   double base_segment_length_m;
   const double* segment_length_m;  ///< chamber_count entries
+  double base_wall_share;          ///< s0: theta_0 = s0 theta
 };
 
 /// One kernel per instruction set (batch_generic.cpp, batch_avx2.cpp, batch_avx512.cpp).
@@ -150,11 +151,14 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
     sin_half[i] = wall.half.sin;
   }
 
-  // Stages 5-6 (jointsAndBackboneUniform): q_1 = theta, q_n = 2 theta; the directions from uniformDirections.
+  // Stages 5-6 (jointsAndBackboneUniform): q_1 = theta_0 + theta, q_n = 2 theta; the directions from
+  // uniformDirections.
   const T joint = 2.0 * rad;
-  const T tip_angle = rad + static_cast<double>(n - 1) * joint;
+  T first_c, first_s;
+  const T joint1 = firstJoint(s.base_wall_share, rad, cos_half, sin_half, first_c, first_s);
+  const T tip_angle = joint1 + static_cast<double>(n - 1) * joint;
   T dir_c[kMaxChambers], dir_s[kMaxChambers], px[kMaxChambers], py[kMaxChambers];
-  uniformDirections(cos_half, sin_half, n, dir_c, dir_s);
+  uniformDirections(first_c, first_s, cos_half, sin_half, n, dir_c, dir_s);
   T xs = splat<T>(s.base_segment_length_m), ys = zero;
   for (int i = 0; i < n; ++i) {
     xs += s.segment_length_m[i] * dir_c[i];
@@ -187,7 +191,7 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
       for (std::size_t k = 0; k < un; ++k) out.half_angle_rad[row * un + k] = answered ? rad[i] : nan;
     }
     if (out.joint_angle_rad) {
-      out.joint_angle_rad[row * un] = answered ? rad[i] : nan;
+      out.joint_angle_rad[row * un] = answered ? joint1[i] : nan;
       for (std::size_t k = 1; k < un; ++k) out.joint_angle_rad[row * un + k] = answered ? joint[i] : nan;
     }
     if (out.backbone_m) {

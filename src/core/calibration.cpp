@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <functional>
 #include <limits>
 #include <sstream>
 
@@ -43,6 +44,7 @@ std::vector<Measurement> parseMeasurementsCsv(const std::string& text, const std
   int gauge_column = -1;
   int average_index = -1;
   std::vector<int> joint_columns;
+  int tip_angle_index = -1, tip_x_index = -1, tip_y_index = -1;
   std::vector<Measurement> rows;
   while (std::getline(in, line)) {
     ++number;
@@ -53,6 +55,9 @@ std::vector<Measurement> parseMeasurementsCsv(const std::string& text, const std
       header = fields;
       for (std::size_t i = 0; i < header.size(); ++i) {
         if (header[i] == "gauge_pa") gauge_column = static_cast<int>(i);
+        if (header[i] == "tip_angle_rad") tip_angle_index = static_cast<int>(i);
+        if (header[i] == "tip_x_m") tip_x_index = static_cast<int>(i);
+        if (header[i] == "tip_y_m") tip_y_index = static_cast<int>(i);
         if (!average_column.empty() && header[i] == average_column) average_index = static_cast<int>(i);
       }
       if (!average_column.empty() && average_index < 0) {
@@ -64,9 +69,21 @@ std::vector<Measurement> parseMeasurementsCsv(const std::string& text, const std
         if (it == header.end()) break;
         joint_columns.push_back(static_cast<int>(it - header.begin()));
       }
-      if (joint_columns.size() < 2) {
-        throw ParameterError(where(origin, number) +
-                             "header needs columns joint_1_rad, joint_2_rad, ... (at least two joints)");
+      if (joint_columns.size() == 1) {
+        throw ParameterError(where(origin, number) + "header has joint_1_rad alone; give joint_1_rad, joint_2_rad, "
+                             "... (at least two joints), or none");
+      }
+      if ((tip_x_index < 0) != (tip_y_index < 0)) {
+        throw ParameterError(where(origin, number) + "header has " + (tip_x_index < 0 ? "tip_y_m" : "tip_x_m") +
+                             " without " + (tip_x_index < 0 ? "tip_x_m" : "tip_y_m") + "; a tip position needs both");
+      }
+      if (joint_columns.empty() && tip_angle_index < 0 && tip_x_index < 0) {
+        throw ParameterError(where(origin, number) + "header has nothing measured: give joint_1_rad, joint_2_rad, ..."
+                             " (joint angles), tip_angle_rad, or tip_x_m,tip_y_m (the tip in the finger's frame)");
+      }
+      if (average_index >= 0 && joint_columns.empty()) {
+        throw ParameterError(where(origin, number) + "column '" + average_column +
+                             "' is an average of joints 2..N, but the header has no joint columns");
       }
       continue;
     }
@@ -90,6 +107,11 @@ std::vector<Measurement> parseMeasurementsCsv(const std::string& text, const std
     if (m.gauge_pa < 0) throw ParameterError(where(origin, number) + "gauge_pa is negative");
     for (int c : joint_columns) m.joint_rad.push_back(number_at(c));
     if (average_index >= 0) m.given_average_rad = number_at(average_index);
+    if (tip_angle_index >= 0) m.tip_angle_rad = number_at(tip_angle_index);
+    if (tip_x_index >= 0) {
+      m.tip_x_m = number_at(tip_x_index);
+      m.tip_y_m = number_at(tip_y_index);
+    }
     rows.push_back(m);
   }
   if (header.empty()) throw ParameterError(origin + ": no header line");
@@ -119,6 +141,54 @@ const char* objectiveName(CalibrationObjective objective) {
   return objective == CalibrationObjective::kMinimax ? "minimax" : "least_squares";
 }
 
+CalibrationQuantity parseQuantity(const std::string& name) {
+  for (CalibrationQuantity q : {CalibrationQuantity::kOuterAverage, CalibrationQuantity::kEveryJoint,
+                                CalibrationQuantity::kFirstJoint, CalibrationQuantity::kTipAngle,
+                                CalibrationQuantity::kTipPosition}) {
+    if (name == quantityName(q)) return q;
+  }
+  throw ParameterError("unknown quantity '" + name + "'; known: average, joints, joint_1, tip_angle, tip_position");
+}
+
+const char* quantityName(CalibrationQuantity quantity) {
+  switch (quantity) {
+    case CalibrationQuantity::kOuterAverage: return "average";
+    case CalibrationQuantity::kEveryJoint: return "joints";
+    case CalibrationQuantity::kFirstJoint: return "joint_1";
+    case CalibrationQuantity::kTipAngle: return "tip_angle";
+    case CalibrationQuantity::kTipPosition: return "tip_position";
+  }
+  return "average";
+}
+
+CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data) {
+  if (data.empty()) throw ParameterError("no measurements");
+  if (data.front().hasJoints()) return CalibrationQuantity::kEveryJoint;
+  if (data.front().hasTipPosition()) return CalibrationQuantity::kTipPosition;
+  return CalibrationQuantity::kTipAngle;
+}
+
+std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity) {
+  if (quantity == CalibrationQuantity::kEveryJoint) return {"shear_modulus_pa", "chamber_gap_m", "base_wall_share"};
+  if (quantity == CalibrationQuantity::kFirstJoint) return {"base_wall_share"};
+  return {"shear_modulus_pa", "chamber_gap_m"};
+}
+
+std::vector<double> Residual::terms(CalibrationQuantity quantity) const {
+  switch (quantity) {
+    case CalibrationQuantity::kOuterAverage: return {error_rad()};
+    case CalibrationQuantity::kEveryJoint: {
+      std::vector<double> e(model_joint_rad.size());
+      for (std::size_t k = 0; k < e.size(); ++k) e[k] = model_joint_rad[k] - measured_joint_rad[k];
+      return e;
+    }
+    case CalibrationQuantity::kFirstJoint: return {joint1_error_rad()};
+    case CalibrationQuantity::kTipAngle: return {tip_angle_error_rad()};
+    case CalibrationQuantity::kTipPosition: return {tip_position_error_m()};
+  }
+  return {};
+}
+
 namespace {
 
 struct SearchAxis {
@@ -128,16 +198,22 @@ struct SearchAxis {
   double toValue(double x) const { return logarithmic ? std::pow(10.0, x) : x; }
 };
 
-const char* const kFittable[] = {"shear_modulus_pa", "chamber_gap_m", "wall_critical_height_m", "chamber_height_m"};
+const char* const kFittable[] = {"shear_modulus_pa", "chamber_gap_m", "wall_critical_height_m", "chamber_height_m",
+                                 "base_wall_share"};
 
 SearchAxis axisFor(const std::string& key, const FingerParameters& base) {
   if (key == "shear_modulus_pa") return {key, true, 5.0, 12.0};
+  if (key == "base_wall_share") return {key, false, 0.0, 1.0};
   const double l = *std::max_element(base.chamber_height_m.begin(), base.chamber_height_m.end());
   if (key == "chamber_gap_m") return {key, false, 0.0, l};
   return {key, false, 1e-3 * l, (key == "chamber_height_m" ? 4.0 : 1.0) * l};
 }
 
 void setKey(FingerParameters& p, const std::string& key, double value) {
+  if (key == "base_wall_share") {
+    p.base_wall_share = value;
+    return;
+  }
   std::vector<double>* target = key == "shear_modulus_pa"       ? &p.shear_modulus_pa
                                 : key == "chamber_gap_m"          ? &p.chamber_gap_m
                                 : key == "wall_critical_height_m" ? &p.wall_critical_height_m
@@ -192,31 +268,126 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
   FingerModel model(parameters);
   std::vector<Residual> out;
   const int n = parameters.chamber_count;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const Measurement& m : data) {
     const FingerState& s = model.evaluate(m.gauge_pa);
-    const double avg = s.joint_angle_rad.tail(n - 1).mean();
-    out.push_back({m.gauge_pa, m.averageOuterJoints(), avg, m.joint_rad[0], s.joint_angle_rad[0]});
+    Residual r;
+    r.gauge_pa = m.gauge_pa;
+    r.model_joint_rad.assign(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n);
+    r.model_avg_rad = n > 1 ? s.joint_angle_rad.tail(n - 1).mean() : nan;
+    r.model_joint1_rad = s.joint_angle_rad[0];
+    r.model_tip_angle_rad = s.tip_angle_rad;
+    r.model_tip_x_m = s.tip().x();
+    r.model_tip_y_m = s.tip().y();
+    r.measured_avg_rad = r.measured_joint1_rad = r.measured_tip_angle_rad = nan;
+    r.measured_tip_x_m = r.measured_tip_y_m = nan;
+    if (m.hasJoints()) {
+      r.measured_joint_rad = m.joint_rad;
+      r.measured_avg_rad = m.averageOuterJoints();
+      r.measured_joint1_rad = m.joint_rad[0];
+      // The measured finger's tip: its joints along the model's segments (eq 38).
+      double angle = 0.0, x = parameters.base_segment_length_m, y = 0.0;
+      for (std::size_t k = 0; k < m.joint_rad.size() && k < parameters.segment_length_m.size(); ++k) {
+        angle += m.joint_rad[k];
+        x += parameters.segment_length_m[k] * std::cos(angle);
+        y += parameters.segment_length_m[k] * std::sin(angle);
+      }
+      r.measured_tip_angle_rad = angle;
+      r.measured_tip_x_m = x;
+      r.measured_tip_y_m = y;
+    }
+    if (m.hasTipAngle()) r.measured_tip_angle_rad = m.tip_angle_rad;
+    if (m.hasTipPosition()) {
+      r.measured_tip_x_m = m.tip_x_m;
+      r.measured_tip_y_m = m.tip_y_m;
+    }
+    out.push_back(std::move(r));
   }
   return out;
 }
 
 CalibrationResult calibrate(const FingerParameters& base, const std::vector<std::string>& keys,
-                            const std::vector<Measurement>& data, CalibrationObjective objective) {
-  if (keys.empty() || keys.size() > 2) throw ParameterError("calibration fits one or two parameters");
+                            const std::vector<Measurement>& data, CalibrationObjective objective,
+                            CalibrationQuantity quantity) {
+  if (keys.empty() || keys.size() > 3) throw ParameterError("calibration fits one to three parameters");
   for (const auto& k : keys) {
     if (!isFittableKey(k)) {
       throw ParameterError("parameter '" + k +
                            "' cannot be fitted; fittable: shear_modulus_pa, chamber_gap_m, wall_critical_height_m, "
-                           "chamber_height_m");
+                           "chamber_height_m, base_wall_share");
     }
+    if (std::count(keys.begin(), keys.end(), k) > 1) throw ParameterError("parameter '" + k + "' given twice");
   }
-  if (keys.size() == 2 && keys[0] == keys[1]) throw ParameterError("parameter '" + keys[0] + "' given twice");
-  if (base.chamber_count < 2) throw ParameterError("calibration compares joints 2..N: chamber_count must be >= 2");
+  const bool uses_joints = quantity == CalibrationQuantity::kOuterAverage ||
+                           quantity == CalibrationQuantity::kEveryJoint || quantity == CalibrationQuantity::kFirstJoint;
+  const std::string what = quantityName(quantity);
   for (const auto& m : data) {
-    if (m.joint_rad.size() != static_cast<std::size_t>(base.chamber_count)) {
+    const bool has = uses_joints ? m.hasJoints()
+                     : quantity == CalibrationQuantity::kTipAngle ? m.hasTipAngle() || m.hasJoints()
+                                                                   : m.hasTipPosition() || m.hasJoints();
+    if (!has) {
+      throw ParameterError("line " + std::to_string(m.line) + ": no measurement for '" + what + "' (columns " +
+                           (uses_joints ? "joint_1_rad..joint_N_rad" : quantity == CalibrationQuantity::kTipAngle
+                                                                         ? "tip_angle_rad or the joints"
+                                                                         : "tip_x_m,tip_y_m or the joints") +
+                           ")");
+    }
+    if (m.hasJoints() && m.joint_rad.size() != static_cast<std::size_t>(base.chamber_count)) {
       throw ParameterError("line " + std::to_string(m.line) + ": " + std::to_string(m.joint_rad.size()) +
                            " measured joints, but chamber_count is " + std::to_string(base.chamber_count));
     }
+  }
+  if (quantity == CalibrationQuantity::kOuterAverage && base.chamber_count < 2) {
+    throw ParameterError("the average compares joints 2..N: chamber_count must be >= 2");
+  }
+  // What the data cannot determine is refused, not fitted to an arbitrary value. The chamber keys shape theta(P),
+  // which each pressure measures once (in the model all of a row's joints 2..N are one number): they need more rows
+  // than keys. base_wall_share scales joint 1 alone, which every row measures besides.
+  const bool share = std::count(keys.begin(), keys.end(), "base_wall_share") > 0;
+  const std::size_t chamber_keys = keys.size() - (share ? 1 : 0);
+  if (chamber_keys >= data.size()) {
+    throw ParameterError(std::to_string(chamber_keys) + " chamber keys from " + std::to_string(data.size()) +
+                         " pressures: a fit needs more pressures than the keys that shape the half angle");
+  }
+  if (share && quantity == CalibrationQuantity::kOuterAverage) {
+    throw ParameterError("base_wall_share cannot be fitted to the joints 2..N average: it moves joint 1 alone, which "
+                         "the average leaves out (compare 'joints' instead)");
+  }
+  if (quantity == CalibrationQuantity::kFirstJoint && chamber_keys > 0) {
+    throw ParameterError("joint 1 alone cannot fit chamber keys apart from base_wall_share: both scale it (compare "
+                         "'joints' instead)");
+  }
+  if (share && keys.size() > 1 &&
+      (quantity == CalibrationQuantity::kTipAngle || quantity == CalibrationQuantity::kTipPosition)) {
+    throw ParameterError("base_wall_share cannot be fitted with other keys to tip data alone: the tip cannot tell "
+                         "the base face's share of the bending from the chambers' (measure the joints, or fit it "
+                         "alone)");
+  }
+  if (share && chamber_keys > 0 && quantity == CalibrationQuantity::kEveryJoint) {
+    std::vector<std::string> chamber;
+    for (const auto& k : keys) {
+      if (k != "base_wall_share") chamber.push_back(k);
+    }
+    const CalibrationResult outer = calibrate(base, chamber, data, objective, CalibrationQuantity::kOuterAverage);
+    CalibrationResult both = calibrate(outer.parameters, {"base_wall_share"}, data, objective,
+                                       CalibrationQuantity::kFirstJoint);
+    both.model_evaluations += outer.model_evaluations;
+    both.keys = keys;
+    both.values.clear();
+    for (const auto& k : keys) {
+      both.values.push_back(k == "base_wall_share" ? both.parameters.base_wall_share
+                                                   : outer.values[static_cast<std::size_t>(
+                                                         std::find(chamber.begin(), chamber.end(), k) - chamber.begin())]);
+    }
+    // The objective over every joint, as reported for any other fit.
+    both.objective_value = 0.0;
+    for (const Residual& r : both.residuals) {
+      for (double e : r.terms(quantity)) {
+        both.objective_value = objective == CalibrationObjective::kMinimax ? std::max(both.objective_value, std::fabs(e))
+                                                                          : both.objective_value + e * e;
+      }
+    }
+    return both;
   }
   // mu goes innermost: every residual is monotone in mu, so for fixed other keys the largest |error| is
   // quasi-convex in log mu and the inner search is exact.
@@ -237,23 +408,28 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
     double value = 0.0;
     for (const Residual& r : residuals(trial, data)) {
       ++result.model_evaluations;
-      const double e = r.error_rad();
-      value = objective == CalibrationObjective::kMinimax ? std::max(value, std::fabs(e)) : value + e * e;
+      for (double e : r.terms(quantity)) {
+        value = objective == CalibrationObjective::kMinimax ? std::max(value, std::fabs(e)) : value + e * e;
+      }
     }
     return value;
   };
+  // Nested searches: axis `level` is searched with the outer ones fixed in x[0..level-1], each trial point of it
+  // solved for the inner axes first. Returns the best objective value, leaving the best inner point in x.
   std::vector<double> x(axes.size());
-  double best = 0.0;
-  if (axes.size() == 1) {
-    x[0] = minimize1d([&](double v) { x[0] = v; return objectiveAt(x); }, axes[0].lo, axes[0].hi, best);
-  } else {
-    auto inner = [&](double outer, double& value) {
-      std::vector<double> y = {outer, 0.0};
-      return minimize1d([&](double v) { y[1] = v; return objectiveAt(y); }, axes[1].lo, axes[1].hi, value);
-    };
-    x[0] = minimize1d([&](double v) { double value; inner(v, value); return value; }, axes[0].lo, axes[0].hi, best);
-    x[1] = inner(x[0], best);
-  }
+  std::function<double(std::size_t)> searchFrom = [&](std::size_t level) -> double {
+    double best_here = 0.0;
+    const double at = minimize1d(
+        [&](double v) {
+          x[level] = v;
+          return level + 1 == axes.size() ? objectiveAt(x) : searchFrom(level + 1);
+        },
+        axes[level].lo, axes[level].hi, best_here);
+    x[level] = at;
+    if (level + 1 < axes.size()) best_here = searchFrom(level + 1);  // the inner axes at the chosen point
+    return best_here;
+  };
+  const double best = searchFrom(0);
   for (std::size_t i = 0; i < axes.size(); ++i) setKey(trial, axes[i].key, axes[i].toValue(x[i]));
   // Report in the caller's key order.
   result.parameters = trial;

@@ -322,13 +322,14 @@ ContactSolver::Event ContactSolver::findEvent(const Obstacle& obstacle, double f
 ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, double from_half_angle_rad, int frozen,
                                                      const JointAngles& frozen_q, double end_half_angle_rad,
                                                      double& clear_half_angle_rad) const {
-  // Identical chambers: every free joint is a function of the one half angle theta (q_1 = theta, q_n = 2 theta),
+  // Identical chambers: every free joint is a function of the one half angle theta (q_1 = (1 + s0) theta, q_n = 2 theta),
   // and the pressure is theta's closed-form inverse. So the search runs in theta, where the backbone costs one
   // sincos and no model solve, and where a point of the backbone moves at most V = sum over free joints of
   // (dq_i/dtheta) x (arc length from joint i to the tip) per radian: a clearance c rules out a touch for the next
   // c / V radians, so far obstacles are passed in a few long steps.
   const FingerParameters& par = model_.parameters();
   const int n = par.chamber_count;
+  const double share = par.base_wall_share;  // theta_0 = s0 theta (joint 1)
   Event event;
   // The fixed part: O_{frozen+1} and the direction after joint `frozen` (no trigonometry for the first touch, where
   // nothing is frozen). On the stack: kMaxChamberCount bounds N.
@@ -346,7 +347,7 @@ ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, d
   {
     double rest = length_m_ - par.base_segment_length_m;  // arc length from joint i (at O_i) to the tip
     for (int i = 1; i <= n; ++i) {
-      if (i > frozen) speed += (i == 1 ? 1.0 : 2.0) * rest;
+      if (i > frozen) speed += (i == 1 ? 1.0 + share : 2.0) * rest;
       rest -= par.segment_length_m[static_cast<std::size_t>(i - 1)];
     }
   }
@@ -366,10 +367,17 @@ ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, d
   auto clearanceIn = [&](double theta, int first, int last, int& segment, bool each = false) {
     const double c1 = std::cos(theta), s1 = std::sin(theta);
     const double c2 = (c1 - s1) * (c1 + s1), s2 = 2.0 * s1 * c1;  // e^(2 i theta)
+    // e^(i q_1), q_1 = theta_0 + theta; needed only while joint 1 is free.
+    double q1_c = c1, q1_s = s1;
+    if (share != 0.0 && frozen == 0) {
+      const double q1 = share * theta + theta;
+      q1_c = std::cos(q1);
+      q1_s = std::sin(q1);
+    }
     double dc = dir0_c, ds = dir0_s;
     double c = INFINITY;
     for (int k = frozen + 1; k <= last; ++k) {
-      const double rc = k == 1 ? c1 : c2, rs = k == 1 ? s1 : s2;
+      const double rc = k == 1 ? q1_c : c2, rs = k == 1 ? q1_s : s2;
       const double t = dc * rc - ds * rs;
       ds = ds * rc + dc * rs;
       dc = t;
@@ -492,7 +500,8 @@ ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, d
   event.half_angle_rad = lo;
   event.frozen = m;
   event.frozen_q = frozen_q;
-  for (int i = frozen; i < m; ++i) event.frozen_q[i] = i == 0 ? lo : 2.0 * lo;
+  // The held angles, as the model writes them: q_1 = theta_0 + theta (jointAnglesAt), q_n = 2 theta.
+  for (int i = frozen; i < m; ++i) event.frozen_q[i] = i == 0 ? share * lo + lo : 2.0 * lo;
   event.point_m = obstacle.nearestPoint(points.col(seg), points.col(seg + 1));
   return event;
 }
@@ -520,13 +529,15 @@ ContactState ContactTracker::solve(double gauge_pa) {
   out.held.assign(static_cast<std::size_t>(n), false);
   const double pressure = std::max(gauge_pa, 0.0);
   out.joint_angle_rad.resize(n);  // the free angles first; the held ones are written over them below
-  if (!model.jointAnglesAt(pressure, out.joint_angle_rad.data())) {
+  double free_half_angle_rad = 0.0;  // theta_1, the half angle of chamber 1's walls (all of them, identical chambers)
+  std::array<double, kMaxChamberCount> half;
+  if (!model.jointAnglesAt(pressure, out.joint_angle_rad.data(), half.data())) {
     out.status = ContactState::Status::kSolverFailure;
     out.joint_angle_rad.setZero();
     solver_.backbone(out.joint_angle_rad, out.backbone_m);
     return out;
   }
-  const double free_half_angle_rad = out.joint_angle_rad[0];  // q_1 = theta (identical chambers)
+  free_half_angle_rad = half[0];
   if (!out_of_reach_ && overlaps_at_rest_) out.status = ContactState::Status::kOverlapsAtRest;
   if (out_of_reach_ || overlaps_at_rest_) {
     solver_.backbone(out.joint_angle_rad, out.backbone_m);
@@ -539,7 +550,7 @@ ContactState ContactTracker::solve(double gauge_pa) {
     ContactSolver::Event e;
     double clear_gauge_pa = pressure;
     if (solver_.uniform_) {
-      // q_1 = theta: the end in half angle is the free first joint's angle at the pressure.
+      // The end in half angle: the free walls' half angle at the pressure.
       const double from = events_.empty() ? 0.0 : events_.back().half_angle_rad;
       double clear = 0.0, gauge = 0.0;
       e = solver_.findEventUniform(obstacle_, from, frozen_, frozen_q_, free_half_angle_rad, clear);

@@ -250,7 +250,12 @@ FingerState restState(const FingerParameters& parameters) {
 
 void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half, FingerState& out) {
   const int n = parameters.chamber_count;
+  // theta_0: the passive base segment's face turns by a share of chamber 1's half angle (0 for an inert face).
   double theta_prev = 0.0, cos_prev = 1.0, sin_prev = 0.0;
+  if (n > 0 && parameters.base_wall_share != 0.0) {
+    theta_prev = parameters.base_wall_share * half[0].rad;
+    sinCosSmall(theta_prev, cos_prev, sin_prev);
+  }
   double dir_c = 1.0, dir_s = 0.0, tip_angle = 0.0;
   double x = parameters.base_segment_length_m, y = 0.0;
   bool contact = false;
@@ -286,17 +291,19 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
 
 namespace {
 
-// Stages 5-6 for identical chambers: q_1 = theta, q_n = 2 theta, so segment n points along (2n - 1) theta and nothing
-// per chamber needs to be looked up or copied. The directions come from uniformDirections (simd_math.hpp), which the
-// batch kernel shares, so that both round alike.
+// Stages 5-6 for identical chambers: q_1 = theta_0 + theta, q_n = 2 theta, so segment n points along q_1 + 2 (n - 1)
+// theta and nothing per chamber needs to be looked up or copied. The directions come from uniformDirections
+// (simd_math.hpp), which the batch kernel shares, so that both round alike.
 void jointsAndBackboneUniform(const FingerParameters& parameters, const HalfAngle& h, FingerState& out) {
   const int n = parameters.chamber_count;
   const double q = 2.0 * h.rad;
+  double first_c, first_s;
+  const double q1 = firstJoint(parameters.base_wall_share, h.rad, h.cos, h.sin, first_c, first_s);
   out.half_angle_rad.setConstant(h.rad);
   out.joint_angle_rad.setConstant(q);
-  out.joint_angle_rad[0] = h.rad;
+  out.joint_angle_rad[0] = q1;
   std::array<double, kMaxChamberCount> dir_c, dir_s;
-  uniformDirections(h.cos, h.sin, n, dir_c.data(), dir_s.data());
+  uniformDirections(first_c, first_s, h.cos, h.sin, n, dir_c.data(), dir_s.data());
   double x = parameters.base_segment_length_m, y = 0.0;
   double* points = out.backbone_m.data();  // column-major 2 x (N+2)
   points[0] = 0.0;
@@ -310,7 +317,7 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, const HalfAngl
     points[2 * i + 4] = x;
     points[2 * i + 5] = y;
   }
-  out.tip_angle_rad = h.rad + (n - 1) * q;
+  out.tip_angle_rad = q1 + (n - 1) * q;
   out.walls_in_contact = h.rad > 0.0;
 }
 
@@ -369,21 +376,23 @@ const FingerState& FingerModel::evaluate(double gauge_pa) {
   return state_;
 }
 
-bool FingerModel::jointAnglesAt(double gauge_pa, double* q) const {
+bool FingerModel::jointAnglesAt(double gauge_pa, double* q, double* half_angle_rad) const {
   std::array<double, kMaxChamberCount> theta;
   for (std::size_t g = 0; g < groups_.size(); ++g) theta[g] = solveGroup(groups_[g], gauge_pa, false).half.rad;
-  double previous = 0.0;  // eq 37: q_n = theta_{n-1} + theta_n, theta_0 = 0 (the passive base segment)
+  // eq 37: q_n = theta_{n-1} + theta_n; theta_0 = s0 theta_1, the passive base segment's face.
+  double previous = parameters_.base_wall_share * theta[static_cast<std::size_t>(group_of_chamber_[0])];
   for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
     const double t = theta[static_cast<std::size_t>(group_of_chamber_[k])];
     if (!std::isfinite(t)) return false;
     q[k] = previous + t;
+    if (half_angle_rad) half_angle_rad[k] = t;
     previous = t;
   }
   return true;
 }
 
 double FingerModel::tipAngleAt(double gauge_pa) const {
-  // Theta_N = sum_n q_n = 2 sum_n theta_n - theta_N. The half angles live on the stack (at most the largest
+  // Theta_N = sum_n q_n = theta_0 + 2 sum_n theta_n - theta_N. The half angles live on the stack (at most the largest
   // chamber_count), not in the model's scratch, so that const methods are safe to call from several threads.
   std::array<double, kMaxChamberCount> theta;
   for (std::size_t g = 0; g < groups_.size(); ++g) theta[g] = solveGroup(groups_[g], gauge_pa, false).half.rad;
@@ -392,7 +401,7 @@ double FingerModel::tipAngleAt(double gauge_pa) const {
     last = theta[static_cast<std::size_t>(group_of_chamber_[k])];
     sum += last;
   }
-  return 2.0 * sum - last;
+  return parameters_.base_wall_share * theta[static_cast<std::size_t>(group_of_chamber_[0])] + (2.0 * sum - last);
 }
 
 bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, double& gauge_pa,
@@ -404,9 +413,11 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
     return false;
   }
   const int n = parameters_.chamber_count;
-  const double limit = (2 * n - 1) * kPi / 2;
+  // Every half angle stays below pi/2, so Theta_N < (2N - 1 + s0) pi/2.
+  const double turns = 2 * n - 1 + parameters_.base_wall_share;
+  const double limit = turns * kPi / 2;
   if (tip_angle_rad >= limit) {
-    why << "tip angle " << formatExact(tip_angle_rad) << " rad is beyond the model's limit (2N-1) pi/2 = "
+    why << "tip angle " << formatExact(tip_angle_rad) << " rad is beyond the model's limit (2N-1+s0) pi/2 = "
         << formatExact(limit) << " rad, which no finite pressure reaches";
     message = why.str();
     return false;
@@ -417,8 +428,8 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
   }
   double answer;
   if (groups_.size() == 1) {
-    // Identical chambers: Theta_N = (2N - 1) theta, and every stage inverts in closed form.
-    if (!gaugeForHalfAngle(tip_angle_rad / (2 * n - 1), answer)) answer = std::numeric_limits<double>::infinity();
+    // Identical chambers: Theta_N = (2N - 1 + s0) theta, and every stage inverts in closed form.
+    if (!gaugeForHalfAngle(tip_angle_rad / turns, answer)) answer = std::numeric_limits<double>::infinity();
   } else {
     // Unequal chambers: Theta_N(P) is non-decreasing, so bisect on [0, max].
     if (tipAngleAt(max_gauge_pa) < tip_angle_rad) {
@@ -514,7 +525,8 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
     const ChamberGroup& g = groups_[0];
     const UniformRobustSpec spec{parameters_.chamber_count, parameters_.atmospheric_pressure_pa, g.shear_modulus_pa,
                                  g.chamber_height_m, g.chamber_gap_m, g.wall_critical_height_m,
-                                 parameters_.base_segment_length_m, parameters_.segment_length_m.data()};
+                                 parameters_.base_segment_length_m, parameters_.segment_length_m.data(),
+                                 parameters_.base_wall_share};
     batchKernel(path)(spec, gauge_pa, count, out);
     return;
   }

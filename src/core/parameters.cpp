@@ -15,8 +15,8 @@ namespace {
 
 // The single table of keys. Ranges are physical plausibility bounds for a finger-sized actuator: wide enough for
 // any design a researcher might try, narrow enough that a unit mistake (mm for m, kPa for Pa) is refused.
-// shear_modulus_pa and chamber_gap_m are effective values: the calibrated minimax fit to the paper's Table 1
-// (docs/ACCURACY.md, reproduced by `finger_calibrate`).
+// shear_modulus_pa, chamber_gap_m and base_wall_share are effective values: the calibrated minimax fit to the paper's
+// Table 1 (docs/ACCURACY.md, reproduced by `finger_calibrate`).
 const std::vector<ParameterSpec> kSpecs = {
     {"chamber_count", "N", "-", 7, 1, true, kMaxChamberCount, ParameterShape::kScalarInteger,
      "number of pneumatic chambers after the passive base segment"},
@@ -34,6 +34,9 @@ const std::vector<ParameterSpec> kSpecs = {
      "joint-to-joint pitch of the segment that carries each chamber"},
     {"base_segment_length_m", "Z0", "m", 0.015, 0, false, 1.0, ParameterShape::kScalar,
      "length of the passive base segment, mount to joint 1"},
+    {"base_wall_share", "s0", "-", 0.31406024809341682, 0, true, 1.0, ParameterShape::kScalar,
+     "half angle the passive base segment's face adds to joint 1, as a share of chamber 1's: theta_0 = s0 theta_1 "
+     "(0: an inert face; 1: a face that turns as a chamber wall does; effective, calibrated)"},
     {"shear_modulus_pa", "mu", "Pa", 223531464.01998678, 0, false, 1e12, ParameterShape::kPerChamber,
      "effective Neo-Hookean shear modulus of the elastomer (calibrated)"},
     {"atmospheric_pressure_pa", "P_o", "Pa", kStandardAtmospherePa, 1e3, true, 1e6, ParameterShape::kScalar,
@@ -147,6 +150,7 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& raw) {
   p.chamber_width_m = perChamber(spec("chamber_width_m"), raw, n);
   p.segment_length_m = perChamber(spec("segment_length_m"), raw, n);
   p.base_segment_length_m = scalar(spec("base_segment_length_m"), raw);
+  p.base_wall_share = scalar(spec("base_wall_share"), raw);
   p.shear_modulus_pa = perChamber(spec("shear_modulus_pa"), raw, n);
   p.atmospheric_pressure_pa = scalar(spec("atmospheric_pressure_pa"), raw);
   p.elastomer_density_kg_m3 = scalar(spec("elastomer_density_kg_m3"), raw);
@@ -178,6 +182,7 @@ RawParameterMap FingerParameters::toRaw() const {
   put_list("chamber_width_m", chamber_width_m);
   put_list("segment_length_m", segment_length_m);
   raw["base_segment_length_m"] = {{base_segment_length_m}, false};
+  raw["base_wall_share"] = {{base_wall_share}, false};
   put_list("shear_modulus_pa", shear_modulus_pa);
   raw["atmospheric_pressure_pa"] = {{atmospheric_pressure_pa}, false};
   raw["elastomer_density_kg_m3"] = {{elastomer_density_kg_m3}, false};

@@ -105,18 +105,51 @@ inline T atanNonNegative(T t) {
   return base_hi + (x + (x * z * (p / q) + base_lo));
 }
 
-/// The directions of the N segments of a finger whose chambers are identical (docs/MODEL.md stage 6): segment n
-/// (n = 1..N) points along Theta_n = (2n - 1) theta, i.e. e^(i theta) r^(n-1) with r = e^(2 i theta). r^(2^k) come
-/// from squaring and every direction from one product with a power already there, so the longest chain of dependent
-/// complex products is log2(N) + 1 long instead of N - 1 (a chain of rotations is what limited the latency).
+/// cos(x) and sin(x) for 0 <= x <= pi/2 by their Taylor series to x^22 and x^23 (the first term left out is below
+/// 2e-18 there), in Horner form in x^2; absolute error about one ulp. Shared by the single evaluation and the batch
+/// kernel for joint 1's base half angle (docs/MODEL.md stage 5), so that both round it alike.
+template <class T>
+inline void sinCosSmall(T x, T& cos_x, T& sin_x) {
+  const T z = x * x;
+  // sin x / x = sum_k (-z)^k / (2k+1)!, cos x = sum_k (-z)^k / (2k)!, k = 0..11. With b_k = (-1)^k times the Horner
+  // partial sum, b_k = 1/(2k+1)! - z b_{k+1}: every coefficient positive, b_0 the sum.
+  T s = splat<T>(1.0 / 25852016738884976640000.0);  // 1/23!
+  T c = splat<T>(1.0 / 1124000727777607680000.0);   // 1/22!
+  const double sin_coefficients[11] = {1.0 / 51090942171709440000.0, 1.0 / 121645100408832000.0,
+                                       1.0 / 355687428096000.0,      1.0 / 1307674368000.0,
+                                       1.0 / 6227020800.0,           1.0 / 39916800.0,
+                                       1.0 / 362880.0,               1.0 / 5040.0,
+                                       1.0 / 120.0,                  1.0 / 6.0,
+                                       1.0};
+  const double cos_coefficients[11] = {1.0 / 2432902008176640000.0, 1.0 / 6402373705728000.0,
+                                       1.0 / 20922789888000.0,      1.0 / 87178291200.0,
+                                       1.0 / 479001600.0,           1.0 / 3628800.0,
+                                       1.0 / 40320.0,               1.0 / 720.0,
+                                       1.0 / 24.0,                  1.0 / 2.0,
+                                       1.0};
+  for (int k = 0; k < 11; ++k) {
+    s = splat<T>(sin_coefficients[k]) - z * s;
+    c = splat<T>(cos_coefficients[k]) - z * c;
+  }
+  sin_x = x * s;
+  cos_x = c;
+}
+
+/// The directions of the N segments of a finger whose chambers are identical (docs/MODEL.md stage 6): segment 1
+/// points along Theta_1 = theta_0 + theta, and each later one turns by r = e^(2 i theta) more: segment n along
+/// Theta_1 + 2 (n - 1) theta. r^(2^k) come from squaring and every direction from one product with a power already
+/// there, so the longest chain of dependent complex products is log2(N) + 1 long instead of N - 1 (a chain of
+/// rotations is what limited the latency).
+/// @param first_c, first_s cos and sin of Theta_1
+/// @param cos_half, sin_half cos and sin of theta
 /// @param[out] dir_c, dir_s cos and sin of Theta_1..Theta_N (N entries each)
 template <class T>
-inline void uniformDirections(T cos_half, T sin_half, int chamber_count, T* dir_c, T* dir_s) {
+inline void uniformDirections(T first_c, T first_s, T cos_half, T sin_half, int chamber_count, T* dir_c, T* dir_s) {
   // r = e^(2 i theta): cos 2 theta as a product, which does not cancel near pi/4.
   T pow_c = (cos_half - sin_half) * (cos_half + sin_half);
   T pow_s = splat<T>(2.0) * sin_half * cos_half;
-  dir_c[0] = cos_half;
-  dir_s[0] = sin_half;
+  dir_c[0] = first_c;
+  dir_s[0] = first_s;
   for (int done = 1; done < chamber_count; done *= 2) {
     // Directions done..2 done - 1 are directions 0..done - 1 turned by r^done.
     for (int j = done; j < 2 * done && j < chamber_count; ++j) {
@@ -127,6 +160,24 @@ inline void uniformDirections(T cos_half, T sin_half, int chamber_count, T* dir_
     pow_s = splat<T>(2.0) * pow_s * pow_c;
     pow_c = c2;
   }
+}
+
+/// Joint 1 of identical chambers (docs/MODEL.md stage 5): q_1 = theta_0 + theta with theta_0 = s0 theta, and the
+/// direction of segment 1, e^(i q_1) = e^(i theta_0) e^(i theta). With s0 = 0 (an inert base face) nothing is
+/// computed: q_1 = theta and the direction is theta's own, exactly.
+template <class T>
+inline T firstJoint(double base_wall_share, T theta, T cos_half, T sin_half, T& first_c, T& first_s) {
+  if (base_wall_share == 0.0) {
+    first_c = cos_half;
+    first_s = sin_half;
+    return theta;
+  }
+  const T theta0 = base_wall_share * theta;
+  T c0, s0;
+  sinCosSmall(theta0, c0, s0);
+  first_c = c0 * cos_half - s0 * sin_half;
+  first_s = s0 * cos_half + c0 * sin_half;
+  return theta0 + theta;
 }
 
 }  // namespace

@@ -186,16 +186,22 @@ class PyFingerModel {
   std::mutex mutex_;
 };
 
-// The calibration of finger_calibrate: fit keys of a parameter file to measured joint angles.
+// The calibration of finger_calibrate: fit keys of a parameter file to measured joint angles, tip angles or tip
+// positions; the same defaults (what to compare, which keys) as the tool.
 py::dict calibrate(const std::string& data, const std::vector<std::string>& keys, const std::string& objective,
-                   const std::string& config, const py::dict& overrides, const std::string& average_column) {
+                   const std::string& config, const py::dict& overrides, const std::string& average_column,
+                   const std::string& compare) {
   const pf::FingerParameters base = pf::FingerParameters::fromRaw(loadRaw(config, overrides));
   const pf::CalibrationObjective goal = pf::parseObjective(objective);
-  const std::vector<pf::Measurement> rows = pf::readMeasurementsCsv(data, keys.size() + 2, average_column);
+  const std::vector<pf::Measurement> rows = pf::readMeasurementsCsv(data, 1, average_column);
+  const pf::CalibrationQuantity quantity = !compare.empty()          ? pf::parseQuantity(compare)
+                                           : !average_column.empty() ? pf::CalibrationQuantity::kOuterAverage
+                                                                     : pf::defaultQuantity(rows);
+  const std::vector<std::string> fit_keys = keys.empty() ? pf::defaultFitKeys(quantity) : keys;
   pf::CalibrationResult fit;
   {
     py::gil_scoped_release release;
-    fit = pf::calibrate(base, keys, rows, goal);
+    fit = pf::calibrate(base, fit_keys, rows, goal, quantity);
   }
   py::dict fitted;
   for (std::size_t i = 0; i < fit.keys.size(); ++i) fitted[py::str(fit.keys[i])] = fit.values[i];
@@ -207,10 +213,17 @@ py::dict calibrate(const std::string& data, const std::vector<std::string>& keys
     row["model_avg_rad"] = r.model_avg_rad;
     row["measured_joint1_rad"] = r.measured_joint1_rad;
     row["model_joint1_rad"] = r.model_joint1_rad;
+    row["measured_joint_rad"] = r.measured_joint_rad;
+    row["model_joint_rad"] = r.model_joint_rad;
+    row["measured_tip_angle_rad"] = r.measured_tip_angle_rad;
+    row["model_tip_angle_rad"] = r.model_tip_angle_rad;
+    row["measured_tip_m"] = py::make_tuple(r.measured_tip_x_m, r.measured_tip_y_m);
+    row["model_tip_m"] = py::make_tuple(r.model_tip_x_m, r.model_tip_y_m);
     residuals.append(row);
   }
   py::dict d;
   d["fitted"] = fitted;
+  d["compared"] = pf::quantityName(quantity);
   d["objective_value"] = fit.objective_value;
   d["residuals"] = residuals;
   d["model_evaluations"] = fit.model_evaluations;
@@ -230,8 +243,9 @@ PYBIND11_MODULE(_core, m) {
     }
   });
   m.def("calibrate", &calibrate, py::arg("data"), py::arg("keys"), py::arg("objective"), py::arg("config"),
-        py::arg("overrides") = py::dict(), py::arg("average_column") = "",
-        "Fits keys of a parameter file to measured joint angles, as finger_calibrate does");
+        py::arg("overrides") = py::dict(), py::arg("average_column") = "", py::arg("compare") = "",
+        "Fits keys of a parameter file to measured joint angles, tip angles or tip positions, as finger_calibrate "
+        "does");
   py::class_<PyFingerModel>(m, "FingerModel")
       .def(py::init<const std::string&, const py::dict&, const std::string&>(), py::arg("config"),
            py::arg("overrides") = py::dict(), py::arg("solver") = "robust")

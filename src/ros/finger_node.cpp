@@ -636,6 +636,7 @@ FingerNodeConfig FingerNode::currentConfig() const {
   FingerNodeConfig c;
   c.shear_modulus_pa = settings_.finger.shear_modulus_pa[0];
   c.chamber_gap_m = settings_.finger.chamber_gap_m[0];
+  c.base_wall_share = settings_.finger.base_wall_share;
   c.max_rate_hz = settings_.input.max_rate_hz;
   c.stale_timeout_s = settings_.input.stale_timeout_s;
   return c;
@@ -652,12 +653,14 @@ void FingerNode::onReconfigure(FingerNodeConfig& config, uint32_t /*level*/) {
   }
   try {
     NodeSettings next = settings_;
-    const bool actuator = config.shear_modulus_pa != now.shear_modulus_pa || config.chamber_gap_m != now.chamber_gap_m;
+    const bool actuator = config.shear_modulus_pa != now.shear_modulus_pa ||
+                          config.chamber_gap_m != now.chamber_gap_m || config.base_wall_share != now.base_wall_share;
     if (actuator) {
       // The same validation as a parameter file or a rosparam: fromRaw refuses, naming the key and the range.
       RawParameterMap raw = settings_.finger.toRaw();
       if (config.shear_modulus_pa != now.shear_modulus_pa) raw["shear_modulus_pa"] = {{config.shear_modulus_pa}, false};
       if (config.chamber_gap_m != now.chamber_gap_m) raw["chamber_gap_m"] = {{config.chamber_gap_m}, false};
+      if (config.base_wall_share != now.base_wall_share) raw["base_wall_share"] = {{config.base_wall_share}, false};
       next.finger = FingerParameters::fromRaw(raw);
     }
     next.input.max_rate_hz = checkNumber("max_rate_hz", config.max_rate_hz);
@@ -666,8 +669,9 @@ void FingerNode::onReconfigure(FingerNodeConfig& config, uint32_t /*level*/) {
     input_.updateSettings(settings_.input);
     if (actuator) {
       buildModel(nh_);
-      ROS_INFO("finger_node: reconfigured: shear_modulus_pa %s Pa, chamber_gap_m %s m; URDF republished",
-               formatExact(config.shear_modulus_pa).c_str(), formatExact(config.chamber_gap_m).c_str());
+      ROS_INFO("finger_node: reconfigured: shear_modulus_pa %s Pa, chamber_gap_m %s m, base_wall_share %s; URDF "
+               "republished", formatExact(config.shear_modulus_pa).c_str(), formatExact(config.chamber_gap_m).c_str(),
+               formatExact(config.base_wall_share).c_str());
     }
   } catch (const ParameterError& e) {
     ROS_ERROR("finger_node: reconfigure refused: %s; keeping the previous values", e.what());

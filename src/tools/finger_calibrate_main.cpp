@@ -1,4 +1,6 @@
-// finger_calibrate: fit the model's effective parameters to measured joint angles. See the README, "Tools".
+// finger_calibrate: fit the model's effective parameters to measured joint angles, tip angles or tip positions. See the README, "Tools".
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -17,9 +19,10 @@ namespace pf = pneumatic_finger;
 namespace {
 
 constexpr const char* kDescription =
-    "Fits the model's effective parameters (default shear_modulus_pa,chamber_gap_m) to the measured average of\n"
-    "joints 2..N, prints the paper's Table 2 layout in degrees with joint 1 and leave-one-out errors, and writes the\n"
-    "calibrated parameter file when --output is given.";
+    "Fits the model's effective parameters to what was measured: joint angles (the default data, the paper's\n"
+    "Table 1), tip angles or tip positions. Prints, per row, the error of every joint, of the joints 2..N average\n"
+    "(the paper's measure), of the tip angle (deg) and of the tip position (mm), for the fit and leave-one-out, and\n"
+    "writes the calibrated parameter file when --output is given.";
 
 constexpr double kDeg = pf::kDegPerRad;
 
@@ -29,55 +32,129 @@ std::string fmt(const char* format, double v) {
   return b;
 }
 
+std::string pad(const std::string& text, int width) {
+  return std::string(static_cast<std::size_t>(std::max(0, width - static_cast<int>(text.size()))), ' ') + text;
+}
+
+// A table cell: the value, or "-" where the data has nothing to compare.
+std::string cell(double v, double scale, int width) {
+  char b[64];
+  if (std::isnan(v)) std::snprintf(b, sizeof b, "%*s", width, "-");
+  else std::snprintf(b, sizeof b, "%*.3f", width, v * scale);
+  return b;
+}
+
+// One table of errors (model - measured): every joint, the joints 2..N average, the tip angle (deg), the tip
+// position (mm). Also returns the largest |error| of each kind in @p worst (joint, average, tip angle, tip mm).
+std::string errorTable(const std::vector<pf::Residual>& rows, int n, std::array<double, 4>& worst) {
+  std::ostringstream t;
+  t << "# pressure_kgcm2";
+  for (int k = 1; k <= n; ++k) t << pad("joint_" + std::to_string(k), 9);
+  t << pad("avg_2.." + std::to_string(n), 11) << pad("tip_angle", 11) << pad("tip_mm", 9) << "\n";
+  worst = {0, 0, 0, 0};
+  auto keep = [](double& w, double e) {
+    if (!std::isnan(e)) w = std::max(w, std::fabs(e));
+  };
+  for (const pf::Residual& r : rows) {
+    t << "# " << fmt("%14.3f", r.gauge_pa / pf::kPaPerKgfPerCm2);
+    for (int k = 0; k < n; ++k) {
+      const auto i = static_cast<std::size_t>(k);
+      const double e = r.measured_joint_rad.empty() ? NAN : r.model_joint_rad[i] - r.measured_joint_rad[i];
+      keep(worst[0], e);
+      t << cell(e, kDeg, 9);
+    }
+    keep(worst[1], r.error_rad());
+    keep(worst[2], r.tip_angle_error_rad());
+    keep(worst[3], r.tip_position_error_m());
+    t << cell(r.error_rad(), kDeg, 11) << cell(r.tip_angle_error_rad(), kDeg, 11)
+      << cell(r.tip_position_error_m(), 1e3, 9) << "\n";
+  }
+  return t.str();
+}
+
+std::string largest(const std::array<double, 4>& w, int n, bool paper) {
+  std::ostringstream t;
+  auto put = [&t](const char* what, double v, double scale, const char* unit) {
+    if (v > 0) t << " " << what << " " << fmt("%.3f", v * scale) << " " << unit << ",";
+  };
+  put("joints", w[0], kDeg, "deg");
+  if (w[1] > 0) {
+    t << " joints 2.." << n << " average " << fmt("%.3f", w[1] * kDeg) << " deg" << (paper ? " (the paper: 0.647 deg)" : "")
+      << ",";
+  }
+  put("tip angle", w[2], kDeg, "deg");
+  put("tip position", w[3], 1e3, "mm");
+  std::string s = t.str();
+  if (!s.empty()) s.pop_back();
+  return s;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app(kDescription, "finger_calibrate");
   pf::ParameterOptions parameters;
   parameters.addTo(app);
-  std::string data_path, output, objective_name = "minimax", average_column, fit_keys = "shear_modulus_pa,chamber_gap_m";
-  app.add_option("--data", data_path, "measured CSV (gauge_pa, joint_n_rad); default: the package's data/sierra2022_table1.csv");
-  app.add_option("--fit", fit_keys, "one or two parameter keys to fit, comma-separated")->capture_default_str();
+  std::string data_path, output, objective_name = "minimax", average_column, fit_keys, compare;
+  app.add_option("--data", data_path,
+                 "measured CSV: gauge_pa and any of joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m (the "
+                 "tip in the finger's frame); default: the package's data/sierra2022_table1.csv");
+  app.add_option("--compare", compare,
+                 "what the fit compares: joints (with base_wall_share: the chamber keys to the joints 2..N average, "
+                 "then base_wall_share to joint 1), average (of joints 2..N, the paper's measure), joint_1, tip_angle "
+                 "or tip_position; default: joints if the file has them, else tip_position, else tip_angle");
+  app.add_option("--fit", fit_keys,
+                 "one to three parameter keys to fit, comma-separated; default: shear_modulus_pa,chamber_gap_m and, "
+                 "when every joint is compared, base_wall_share (joint_1: base_wall_share alone)");
   app.add_option("--objective", objective_name, "minimax or least_squares")->capture_default_str();
   app.add_option("--output", output, "write the calibrated parameter file (YAML) here");
   app.add_option("--average-column", average_column,
-                 "take the joints 2..N average from this column (e.g. paper_avg_rad) instead of the joints");
+                 "take the joints 2..N average from this column (e.g. paper_avg_rad) instead of the joints; implies "
+                 "--compare average");
   return pf::runTool("finger_calibrate", app, argc, argv, [&] {
-    const std::vector<std::string> keys = pf::splitFields(fit_keys);
     const bool default_data = data_path.empty();
     if (default_data) data_path = pf::packageShareDirectory() + "/data/sierra2022_table1.csv";
     const pf::CalibrationObjective objective = pf::parseObjective(objective_name);
     const pf::FingerParameters base = parameters.load();
-    // A fit of k parameters needs more than k rows; leave-one-out needs one more.
-    const std::vector<pf::Measurement> data = pf::readMeasurementsCsv(data_path, keys.size() + 2, average_column);
-    const pf::CalibrationResult fit = pf::calibrate(base, keys, data, objective);
-
-    std::ostringstream table;
-    table << "# data: " << (default_data ? "the package's data/sierra2022_table1.csv" : data_path) << " (" << data.size() << " rows)\n"
-          << "# objective: " << objective_name << " over the average of joints 2.." << base.chamber_count
-          << (average_column.empty() ? " (mean of the measured joints)" : " (column " + average_column + ")")
-          << "; error = model - measured\n# fitted:";
-    for (std::size_t i = 0; i < fit.keys.size(); ++i) table << " " << fit.keys[i] << " = " << pf::formatExact(fit.values[i]);
-    table << "\n#\n# pressure_kgcm2  measured_avg_deg  model_avg_deg  error_deg  joint1_measured_deg  "
-             "joint1_model_deg  joint1_error_deg  leave_one_out_error_deg\n";
-    double worst = 0, worst_loo = 0, sum_sq = 0;
+    const std::vector<pf::Measurement> data = pf::readMeasurementsCsv(data_path, 1, average_column);
+    const pf::CalibrationQuantity quantity = !compare.empty()          ? pf::parseQuantity(compare)
+                                             : !average_column.empty() ? pf::CalibrationQuantity::kOuterAverage
+                                                                       : pf::defaultQuantity(data);
+    const std::vector<std::string> keys = fit_keys.empty() ? pf::defaultFitKeys(quantity) : pf::splitFields(fit_keys);
+    // Leave-one-out fits the keys to one row fewer, so the data needs two rows more than the chamber keys (the
+    // rule of pf::calibrate, one row up).
+    const std::size_t chamber_keys = keys.size() - static_cast<std::size_t>(
+        std::count(keys.begin(), keys.end(), std::string("base_wall_share")));
+    if (data.size() < chamber_keys + 2) {
+      throw pf::ParameterError(data_path + ": " + std::to_string(data.size()) + " rows; fitting " +
+                               std::to_string(chamber_keys) +
+                               " chamber keys with leave-one-out needs at least " + std::to_string(chamber_keys + 2));
+    }
+    const pf::CalibrationResult fit = pf::calibrate(base, keys, data, objective, quantity);
+    std::vector<pf::Residual> loo;
     for (std::size_t i = 0; i < data.size(); ++i) {
       std::vector<pf::Measurement> others = data;
       others.erase(others.begin() + static_cast<long>(i));
-      const pf::CalibrationResult loo = pf::calibrate(base, keys, others, objective);
-      const double loo_error = pf::residuals(loo.parameters, {data[i]})[0].error_rad();
-      const pf::Residual& r = fit.residuals[i];
-      worst = std::max(worst, std::fabs(r.error_rad()));
-      worst_loo = std::max(worst_loo, std::fabs(loo_error));
-      sum_sq += r.error_rad() * r.error_rad();
-      table << "# " << fmt("%14.3f", r.gauge_pa / pf::kPaPerKgfPerCm2) << fmt("%18.3f", r.measured_avg_rad * kDeg)
-            << fmt("%15.3f", r.model_avg_rad * kDeg) << fmt("%11.3f", r.error_rad() * kDeg)
-            << fmt("%21.3f", r.measured_joint1_rad * kDeg) << fmt("%18.3f", r.model_joint1_rad * kDeg)
-            << fmt("%18.3f", r.joint1_error_rad() * kDeg) << fmt("%25.3f", loo_error * kDeg) << "\n";
+      const pf::CalibrationResult without = pf::calibrate(base, keys, others, objective, quantity);
+      loo.push_back(pf::residuals(without.parameters, {data[i]})[0]);
     }
-    table << "#\n# largest |error| " << fmt("%.3f", worst * kDeg) << " deg (the paper: 0.647 deg), rms "
-          << fmt("%.3f", std::sqrt(sum_sq / static_cast<double>(data.size())) * kDeg)
-          << " deg; largest leave-one-out |error| " << fmt("%.3f", worst_loo * kDeg) << " deg\n";
+    const int n = base.chamber_count;
+    std::ostringstream table;
+    table << "# data: " << (default_data ? "the package's data/sierra2022_table1.csv" : data_path) << " ("
+          << data.size() << " rows)\n# compared: " << pf::quantityName(quantity)
+          << (quantity == pf::CalibrationQuantity::kOuterAverage
+                  ? std::string(" (joints 2..") + std::to_string(n) + ", " +
+                        (average_column.empty() ? "mean of the measured joints" : "column " + average_column) + ")"
+                  : "")
+          << "; objective: " << objective_name << "; error = model - measured\n# fitted:";
+    for (std::size_t i = 0; i < fit.keys.size(); ++i) table << " " << fit.keys[i] << " = " << pf::formatExact(fit.values[i]);
+    std::array<double, 4> worst{}, worst_loo{};
+    const std::string fit_table = errorTable(fit.residuals, n, worst);
+    const std::string loo_table = errorTable(loo, n, worst_loo);
+    table << "\n#\n# error of the fit (deg; tip_mm in mm)\n" << fit_table
+          << "# leave-one-out error: each row predicted by a fit to the others\n" << loo_table
+          << "#\n# largest |error|:" << largest(worst, n, true) << "\n# largest leave-one-out |error|:"
+          << largest(worst_loo, n, false) << "\n";
     std::cout << table.str();
     if (!output.empty()) {
       std::ofstream out(output);

@@ -1,8 +1,10 @@
-// Calibration: fit the model's effective parameters (by default mu and c) to measured joint angles.
+// Calibration: fit the model's effective parameters (mu, c, the base face's share s0, ...) to what was measured:
+// joint angles (the paper's Table 1), tip angles, or tip positions.
 //
 // The paper compares the average of joints 2..N with its model and calls the model "tuned"; docs/MODEL.md shows its
 // published numbers do not come from its own equations. This is the honest version: a documented objective over
-// the measured averages of joints 2..N, a global search (no start point to get wrong), and residuals reported.
+// what the data has, a global search (no start point to get wrong), keys the data cannot determine refused, and
+// residuals reported.
 #pragma once
 
 #include <cmath>
@@ -14,23 +16,31 @@
 
 namespace pneumatic_finger {
 
-/// One row of measured angles (layout of data/sierra2022_table1.csv: gauge_pa and joint_1_rad..joint_N_rad).
+/// One row of measurements. A file gives joint angles, a tip angle, a tip position, or several of them; what a
+/// file lacks is empty (joints) or NaN.
 struct Measurement {
   int line = 0;                    ///< line number in the file, for messages
   double gauge_pa = 0.0;           ///< gauge pressure (Pa)
-  std::vector<double> joint_rad;   ///< measured joint angles q_1..q_N (rad)
+  std::vector<double> joint_rad;   ///< measured joint angles q_1..q_N (rad), columns joint_1_rad..joint_N_rad
   double given_average_rad = NAN;  ///< average of joints 2..N read from a column instead (NaN: compute it)
+  double tip_angle_rad = NAN;      ///< measured tip direction Theta_N (rad), column tip_angle_rad
+  double tip_x_m = NAN, tip_y_m = NAN;  ///< measured tip O_{N+1} in the finger's frame (m), columns tip_x_m, tip_y_m
 
-  /// Average of joints 2..N, the quantity the paper (and the fit) compares with the model: the mean of the
-  /// measured joints, or the value of the average column when one was named.
+  bool hasJoints() const { return !joint_rad.empty(); }
+  bool hasTipAngle() const { return !std::isnan(tip_angle_rad); }
+  bool hasTipPosition() const { return !std::isnan(tip_x_m); }
+
+  /// Average of joints 2..N, the quantity the paper compares with the model: the mean of the measured joints, or the
+  /// value of the average column when one was named.
   double averageOuterJoints() const;
 };
 
-/// Reads measured angles. Lines starting with '#' and blank lines are skipped; the first other line is the header.
-/// When @p average_column is not empty, that column gives the joints 2..N average (e.g. the paper's printed
+/// Reads measurements. Lines starting with '#' and blank lines are skipped; the first other line is the header:
+/// gauge_pa and any of joint_1_rad..joint_N_rad (without a gap, at least two), tip_angle_rad, tip_x_m and tip_y_m
+/// (both). When @p average_column is not empty, that column gives the joints 2..N average (e.g. the paper's printed
 /// paper_avg_rad, which differs from the mean of its printed joints by up to 0.001 rad).
-/// @throws ParameterError naming the file and line: missing gauge_pa or joint_k_rad columns (k = 1..N without a
-///         gap), a field that is not a finite number, a row with the wrong number of fields, or fewer than
+/// @throws ParameterError naming the file and line: no gauge_pa, none of the measured columns, tip_x_m without
+///         tip_y_m, a field that is not a finite number, a row with the wrong number of fields, or fewer than
 ///         @p min_rows rows
 std::vector<Measurement> readMeasurementsCsv(const std::string& path, std::size_t min_rows,
                                              const std::string& average_column = "");
@@ -44,6 +54,27 @@ enum class CalibrationObjective {
   kLeastSquares,  ///< minimise the sum of squared errors of the same averages
 };
 
+/// What the fit compares, model against measured.
+enum class CalibrationQuantity {
+  kOuterAverage,  ///< "average": the average of joints 2..N, one number per row (the paper's measure)
+  kEveryJoint,    ///< "joints": every joint angle, N numbers per row (rad); see calibrate() for base_wall_share
+  kFirstJoint,    ///< "joint_1": joint 1 alone, between the passive base segment and chamber 1 (rad)
+  kTipAngle,      ///< "tip_angle": the tip direction Theta_N (rad)
+  kTipPosition,   ///< "tip_position": the distance of the model's tip from the measured one (m)
+};
+
+/// "average", "joints", "joint_1", "tip_angle" or "tip_position". @throws ParameterError for anything else.
+CalibrationQuantity parseQuantity(const std::string& name);
+const char* quantityName(CalibrationQuantity quantity);
+
+/// What a file's rows have, in this order of preference: every joint, the tip position, the tip angle.
+/// @throws ParameterError when @p data is empty
+CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data);
+
+/// The keys a fit over @p quantity takes when none are named: shear_modulus_pa and chamber_gap_m, and base_wall_share
+/// too when every joint is compared.
+std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity);
+
 /// "minimax" or "least_squares". @throws ParameterError for anything else.
 CalibrationObjective parseObjective(const std::string& name);
 const char* objectiveName(CalibrationObjective objective);
@@ -51,13 +82,23 @@ const char* objectiveName(CalibrationObjective objective);
 /// The keys that may be fitted (scalar over all chambers), and how each is searched.
 bool isFittableKey(const std::string& key);
 
-/// Model against one measurement.
+/// Model against one measurement. "Measured" tip angle and position come from the file when it has them, else from
+/// the measured joints (their sum, and the backbone of eq 38 with the model's segment lengths), else NaN.
 struct Residual {
   double gauge_pa;
-  double measured_avg_rad, model_avg_rad;        ///< joints 2..N
+  double measured_avg_rad, model_avg_rad;        ///< joints 2..N (measured NaN without joints)
   double measured_joint1_rad, model_joint1_rad;  ///< joint 1 (the paper left it out)
+  std::vector<double> measured_joint_rad, model_joint_rad;  ///< q_1..q_N (measured empty without joints)
+  double measured_tip_angle_rad, model_tip_angle_rad;       ///< Theta_N
+  double measured_tip_x_m, measured_tip_y_m, model_tip_x_m, model_tip_y_m;  ///< O_{N+1}
   double error_rad() const { return model_avg_rad - measured_avg_rad; }
   double joint1_error_rad() const { return model_joint1_rad - measured_joint1_rad; }
+  double tip_angle_error_rad() const { return model_tip_angle_rad - measured_tip_angle_rad; }
+  double tip_position_error_m() const {
+    return std::hypot(model_tip_x_m - measured_tip_x_m, model_tip_y_m - measured_tip_y_m);
+  }
+  /// The numbers a fit over @p quantity compares for this row (rad, or m for the tip position).
+  std::vector<double> terms(CalibrationQuantity quantity) const;
 };
 
 struct CalibrationResult {
@@ -72,11 +113,21 @@ struct CalibrationResult {
 /// Residuals of @p parameters against @p data.
 std::vector<Residual> residuals(const FingerParameters& parameters, const std::vector<Measurement>& data);
 
-/// Fits @p keys (one or two of isFittableKey) of @p base to @p data.
-/// Search: each key over a fixed bracket (mu logarithmically over [1e5, 1e12] Pa; lengths linearly from 0 to
-/// the chamber height), a scan followed by golden-section refinement, nested for two keys.
-/// @throws ParameterError for an unknown, repeated or non-fittable key, or more than two keys
+/// Fits @p keys (one to three of isFittableKey) of @p base to @p data over @p quantity.
+/// Every joint with base_wall_share and chamber keys is fitted in two stages, each key to the joints it moves: the
+/// chamber keys to the joints 2..N average (in the model those joints are all 2 theta, so their average is what the
+/// chambers can match), then base_wall_share, which moves joint 1 alone, to joint 1. One search over every joint at
+/// once would let the chamber keys trade the outer joints' fit for joint 1's, and under minimax it leaves
+/// base_wall_share undetermined wherever joint 1 is not the worst joint.
+/// Search: each key over a fixed bracket (mu logarithmically over [1e5, 1e12] Pa; lengths linearly from 0 to the
+/// chamber height; base_wall_share over [0, 1]), a scan followed by golden-section refinement, nested per key.
+/// @throws ParameterError for an unknown, repeated or non-fittable key, more than three keys, a quantity the data
+///         lacks, or keys the data cannot determine: as many chamber keys (all but base_wall_share) as rows or
+///         more; base_wall_share from the joints
+///         2..N average (it moves only joint 1); base_wall_share with another key from tip data alone (the tip
+///         angle cannot tell the base face's share from the chambers')
 CalibrationResult calibrate(const FingerParameters& base, const std::vector<std::string>& keys,
-                            const std::vector<Measurement>& data, CalibrationObjective objective);
+                            const std::vector<Measurement>& data, CalibrationObjective objective,
+                            CalibrationQuantity quantity = CalibrationQuantity::kOuterAverage);
 
 }  // namespace pneumatic_finger

@@ -125,9 +125,10 @@ class FingerModel {
   /// Tip direction Theta_N at @p gauge_pa without touching the cached state (for inversion and calibration).
   double tipAngleAt(double gauge_pa) const;
 
-  /// The free joint angles q_1..q_N at @p gauge_pa (>= 0) into @p joint_angle_rad (N entries), without touching the
-  /// cached state (thread-safe like tipAngleAt). @return false when the solver found no finite answer.
-  bool jointAnglesAt(double gauge_pa, double* joint_angle_rad) const;
+  /// The free joint angles q_1..q_N at @p gauge_pa (>= 0) into @p joint_angle_rad (N entries), and, when not null,
+  /// the half angles theta_1..theta_N into @p half_angle_rad, without touching the cached state (thread-safe like
+  /// tipAngleAt). @return false when the solver found no finite answer.
+  bool jointAnglesAt(double gauge_pa, double* joint_angle_rad, double* half_angle_rad = nullptr) const;
 
  private:
   struct ChamberGroup {

@@ -70,6 +70,7 @@ struct FingerParameters {
   std::vector<double> chamber_width_m;           ///< e_n
   std::vector<double> segment_length_m;          ///< Z_n, n = 1..N (segment n carries chamber n)
   double base_segment_length_m = 0.0;            ///< Z0
+  double base_wall_share = 0.0;                  ///< s0: joint 1's half angle from the base face, theta_0 = s0 theta_1
   std::vector<double> shear_modulus_pa;          ///< mu_n
   double atmospheric_pressure_pa = 0.0;          ///< P_o
   double elastomer_density_kg_m3 = 0.0;          ///< rho (URDF masses only; not in the model)
