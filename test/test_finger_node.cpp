@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <ros/topic.h>
 #include <sensor_msgs/FluidPressure.h>
 #include <sensor_msgs/JointState.h>
 #include <tf2/LinearMath/Transform.h>
@@ -10,6 +11,7 @@
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/transform_listener.h>
 #include <urdf_parser/urdf_parser.h>
+#include <visualization_msgs/Marker.h>
 
 #include <sys/wait.h>
 
@@ -21,6 +23,7 @@
 #include "pneumatic_finger/PressureForTipAngle.h"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
+#include "pneumatic_finger/core/tip_uncertainty.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "pneumatic_finger/GraspObject.h"
 #include "pneumatic_finger/core/contact.hpp"
@@ -166,6 +169,9 @@ TEST_F(FingerNodeTest, TipFrameResolvesFromTheParentAndEqualsTheModel) {
 
 TEST_F(FingerNodeTest, FingerStateCarriesTheModel) {
   pf::FingerModel model(packageParameters());
+  const pf::TipUncertainty bars =
+      pf::tipUncertaintyFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml");
+  ASSERT_EQ(bars.gauge_pa.size(), 4u);
   for (double p : {5e4, 250000.0}) {
     const ros::Time stamp = publishAndWait(p);
     std::lock_guard<std::mutex> lock(listener_->mutex);
@@ -191,7 +197,26 @@ TEST_F(FingerNodeTest, FingerStateCarriesTheModel) {
     EXPECT_TRUE(s.walls_in_contact);
     EXPECT_EQ(s.in_validated_range, p <= 196133.0);
     EXPECT_EQ(s.status, pf::FingerModelState::STATUS_OK);
+    // The calibration's error bar, as the parameter file's tip_uncertainty gives it at this pressure (the core's
+    // interpolation on the file the node loaded); 250 kPa lies above the calibrated pressures: extrapolated.
+    const pf::TipUncertainty::At bar = bars.at(p);
+    EXPECT_EQ(s.tip_angle_uncertainty_rad, bar.tip_angle_rad);
+    EXPECT_EQ(s.tip_position_uncertainty_m, bar.tip_position_m);
+    EXPECT_EQ(s.tip_uncertainty_extrapolated, p > bars.gauge_pa.back());
+    EXPECT_EQ(s.tip_uncertainty_extrapolated, p == 250000.0);
+    EXPECT_GT(bar.tip_position_m, 1e-3);  // the file has a real bar: millimetres, not zero
+    EXPECT_EQ(s.tip_position_covariance[0], bar.tip_position_m * bar.tip_position_m);
+    EXPECT_EQ(s.tip_position_covariance[4], bar.tip_position_m * bar.tip_position_m);
+    EXPECT_EQ(s.tip_position_covariance[8], 0.0);
   }
+  // The sphere at the tip (latched): the last bar, as a diameter, orange above the calibrated range.
+  visualization_msgs::Marker::ConstPtr marker =
+      ros::topic::waitForMessage<visualization_msgs::Marker>("tip_uncertainty_marker", *nh_, ros::Duration(10));
+  ASSERT_TRUE(marker);
+  EXPECT_EQ(marker->header.frame_id, kPrefix + "tip");
+  EXPECT_EQ(marker->type, visualization_msgs::Marker::SPHERE);
+  EXPECT_EQ(marker->scale.x, 2.0 * bars.at(250000.0).tip_position_m);
+  EXPECT_EQ(marker->color.r, 1.0f);
 }
 
 TEST_F(FingerNodeTest, UrdfParameterParsesAndNamesTheJointStatesJoints) {
@@ -264,6 +289,7 @@ TEST_F(FingerNodeTest, ReconfigureAppliesLiveValidatesAndRepublishesTheUrdf) {
   auto now = reconfigure(*nh_, {});
   EXPECT_EQ(now["shear_modulus_pa"], package.shear_modulus_pa[0]);
   EXPECT_EQ(now["chamber_gap_m"], package.chamber_gap_m[0]);
+  EXPECT_EQ(now["base_wall_share"], package.base_wall_share);
   // A new shear modulus: the next pressure is modelled with it, bit for bit, and the URDF's limits follow.
   now = reconfigure(*nh_, {{"shear_modulus_pa", 2.0e8}});
   EXPECT_EQ(now["shear_modulus_pa"], 2.0e8);
@@ -279,6 +305,10 @@ TEST_F(FingerNodeTest, ReconfigureAppliesLiveValidatesAndRepublishesTheUrdf) {
       EXPECT_EQ(listener_->joint_states[stamp].position[static_cast<std::size_t>(i)],
                 model.evaluate(150000.0).joint_angle_rad[i]);
     }
+    // The calibration's error bar belonged to the calibrated actuator: no longer published as if it applied.
+    ASSERT_TRUE(listener_->finger_states.count(stamp));
+    EXPECT_TRUE(std::isnan(listener_->finger_states[stamp].tip_angle_uncertainty_rad));
+    EXPECT_TRUE(std::isnan(listener_->finger_states[stamp].tip_position_uncertainty_m));
   }
   std::string xml;
   ASSERT_TRUE(nh_->getParam("robot_description", xml));
@@ -427,6 +457,10 @@ TEST(FingerNodeParameters, EveryBadParameterStopsTheNodeNamingTheKey) {
       {"_pressure_topic:='a b'", "pressure_topic"},
       {"_joint_states_topic:=7", "joint_states_topic"},
       {"_finger_state_topic:='x y'", "finger_state_topic"},
+      // The calibration's error bar, as `rosparam load` of a parameter file puts it under ~tip_uncertainty/ (the
+      // command line gives a string, not a list; the lists' own rules are the core's, test_tip_uncertainty.cpp).
+      {"_tip_uncertainty/gauge_pa:=[100000.0]", "'tip_uncertainty/gauge_pa' = [100000.0] is not a list of numbers"},
+      {"_tip_uncertainty/gauges:=1", "tip_uncertainty/gauges"},
   };
   // Every actuator key out of its range, as a rosparam (the node's other path in).
   for (const auto& spec : pf::parameterSpecs()) {

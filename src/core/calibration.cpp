@@ -444,4 +444,26 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
   return result;
 }
 
+TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out) {
+  if (fit.size() != leave_one_out.size()) throw ParameterError("tipUncertainty: fit and leave-one-out rows differ");
+  std::vector<std::size_t> order(fit.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::sort(order.begin(), order.end(), [&fit](std::size_t a, std::size_t b) { return fit[a].gauge_pa < fit[b].gauge_pa; });
+  std::vector<double> gauge, angle, position;
+  for (std::size_t i : order) {
+    if (!(fit[i].gauge_pa > 0.0)) continue;  // the rest shape needs no error bar
+    if (!gauge.empty() && fit[i].gauge_pa == gauge.back()) {  // repeated pressure: keep the larger bar
+      angle.back() = std::max({angle.back(), std::fabs(fit[i].tip_angle_error_rad()),
+                               std::fabs(leave_one_out[i].tip_angle_error_rad())});
+      position.back() = std::max({position.back(), fit[i].tip_position_error_m(),
+                                  leave_one_out[i].tip_position_error_m()});
+      continue;
+    }
+    gauge.push_back(fit[i].gauge_pa);
+    angle.push_back(std::max(std::fabs(fit[i].tip_angle_error_rad()), std::fabs(leave_one_out[i].tip_angle_error_rad())));
+    position.push_back(std::max(fit[i].tip_position_error_m(), leave_one_out[i].tip_position_error_m()));
+  }
+  return TipUncertainty::fromLists(gauge, angle, position, "calibration");
+}
+
 }  // namespace pneumatic_finger

@@ -1,5 +1,7 @@
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 
+#include "pneumatic_finger/core/tip_uncertainty.hpp"
+
 #include <yaml-cpp/yaml.h>
 
 #include <fstream>
@@ -23,6 +25,7 @@ void fromNode(const YAML::Node& root, const std::string& origin, RawParameterMap
   if (!root.IsMap()) throw ParameterError(origin + ": expected a mapping of parameter keys to values");
   for (const auto& item : root) {
     const std::string key = item.first.as<std::string>();
+    if (key == kTipUncertaintyKey) continue;  // not the actuator: the calibration's error bar (tip_uncertainty.hpp)
     if (findParameterSpec(key) == nullptr) throw ParameterError(origin + ": unknown parameter '" + key + "'");
     RawParameterValue value;
     if (item.second.IsSequence()) {
@@ -46,6 +49,7 @@ void loadRawParametersFromYamlText(const std::string& text, const std::string& o
     throw ParameterError(origin + ": not valid YAML: " + e.what());
   }
   fromNode(root, origin, raw);
+  tipUncertaintyFromYamlText(text, origin);  // a malformed error bar is refused by every reader of the file
 }
 
 void loadRawParametersFromYamlFile(const std::string& path, RawParameterMap& raw) {

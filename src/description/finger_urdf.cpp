@@ -13,6 +13,7 @@
 #include <set>
 #include <sstream>
 
+#include "pneumatic_finger/core/tip_uncertainty.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pneumatic_finger {
@@ -281,6 +282,7 @@ std::vector<GripperFinger> loadGripperFile(const std::string& path) {
       const std::string config = f["config"].as<std::string>();
       g.config_path = !config.empty() && config[0] == '/' ? config : folder + "/" + config;
       loadRawParametersFromYamlFile(g.config_path, raw);
+      g.tip_uncertainty = tipUncertaintyFromYamlFile(g.config_path);
     }
     try {
       g.parameters = FingerParameters::fromRaw(raw);

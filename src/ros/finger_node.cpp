@@ -1,8 +1,11 @@
 #include "pneumatic_finger/ros/finger_node.hpp"
 
 #include <tf2/LinearMath/Quaternion.h>
+#include <visualization_msgs/Marker.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 
@@ -258,11 +261,41 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
       if (f.mount.prefix != s.urdf.prefix) continue;
       s.urdf = f.mount;  // max_gauge_pa is read below, as for any finger
       s.finger = f.parameters;
+      s.tip_uncertainty = f.tip_uncertainty;
       found = true;
     }
     if (!found) {
       throw ParameterError("gripper file '" + s.gripper_file + "' has no finger with prefix '" + s.urdf.prefix + "'");
     }
+  }
+  // The calibration's error bar: the parameter file's tip_uncertainty mapping, which `rosparam load` puts under
+  // ~tip_uncertainty/ (or the gripper file's finger's parameter file). Checked like the file: one rule, one message.
+  {
+    const std::string base = std::string(kTipUncertaintyKey) + "/";
+    std::vector<double> lists[3];
+    const char* keys[3] = {"gauge_pa", "tip_angle_rad", "tip_position_m"};
+    bool any = false;
+    for (int i = 0; i < 3; ++i) {
+      if (!nh.hasParam(base + keys[i])) continue;
+      any = true;
+      XmlRpc::XmlRpcValue v;
+      nh.getParam(base + keys[i], v);
+      if (v.getType() != XmlRpc::XmlRpcValue::TypeArray) {
+        throw ParameterError("parameter '" + base + keys[i] + "' = " + describe(v) + " is not a list of numbers");
+      }
+      for (int k = 0; k < v.size(); ++k) {
+        double x;
+        if (!asNumber(v[k], x)) {
+          throw ParameterError("parameter '" + base + keys[i] + "': entry " + std::to_string(k + 1) +
+                               " is not a number");
+        }
+        lists[i].push_back(x);
+      }
+    }
+    if (any && !s.gripper_file.empty()) {
+      throw ParameterError("parameter '" + base + "*' is set, but gripper_file defines the actuator (and its error bar)");
+    }
+    if (any) s.tip_uncertainty = TipUncertainty::fromLists(lists[0], lists[1], lists[2], "rosparam");
   }
   try {
     s.solver = parseSolverName(readString(nh, "solver"));
@@ -296,6 +329,14 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   for (const std::string& full : names) {
     if (full.compare(0, ns.size(), ns) != 0) continue;
     const std::string key = full.substr(ns.size());
+    if (key.compare(0, std::strlen(kTipUncertaintyKey) + 1, std::string(kTipUncertaintyKey) + "/") == 0) {
+      const std::string sub = key.substr(std::strlen(kTipUncertaintyKey) + 1);
+      if (sub != "gauge_pa" && sub != "tip_angle_rad" && sub != "tip_position_m") {
+        throw ParameterError("unknown parameter '" + key + "' (in " + ns + "; known: " + kTipUncertaintyKey +
+                             "/gauge_pa, tip_angle_rad, tip_position_m)");
+      }
+      continue;
+    }
     if (key.find('/') != std::string::npos) continue;  // nested namespaces belong to others (e.g. diagnostics)
     bool known = findParameterSpec(key) != nullptr || key == "diagnostic_period";
     for (const auto& sp : specs()) known = known || key == sp.key;
@@ -380,6 +421,13 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
 
   joint_states_pub_ = nh.advertise<sensor_msgs::JointState>(settings_.joint_states_topic, 10);
   finger_state_pub_ = nh.advertise<FingerModelState>(settings_.finger_state_topic, 10);
+  tip_uncertainty_ = settings_.tip_uncertainty;
+  // Latched: rviz, started later, still gets the sphere the finger has now.
+  tip_marker_pub_ = nh.advertise<visualization_msgs::Marker>("tip_uncertainty_marker", 1, true);
+  if (tip_uncertainty_.empty()) {
+    ROS_INFO("finger_node: the parameters have no tip_uncertainty (finger_calibrate writes it): the tip's error bar "
+             "is published as NaN");
+  }
   inverse_srv_ = nh.advertiseService("pressure_for_tip_angle", &FingerNode::onInverse, this);
   reconfigure_ = std::make_unique<dynamic_reconfigure::Server<FingerNodeConfig>>(private_nh);
   reconfigure_->setCallback([this](FingerNodeConfig& config, uint32_t level) { onReconfigure(config, level); });
@@ -509,9 +557,45 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
       finger_state_.contact_points.push_back(p);
     }
   }
+  // The error bar of the free model at this pressure (vacuum: the rest shape, 0).
+  const TipUncertainty::At bar = tip_uncertainty_.at(state.gauge_pa);
+  finger_state_.tip_angle_uncertainty_rad = bar.tip_angle_rad;
+  finger_state_.tip_position_uncertainty_m = bar.tip_position_m;
+  finger_state_.tip_uncertainty_extrapolated = bar.extrapolated;
+  const double variance = bar.tip_position_m * bar.tip_position_m;
+  finger_state_.tip_position_covariance = {variance, 0.0, 0.0, 0.0, variance, 0.0, 0.0, 0.0, 0.0};
   if (tf_) tf_->sendTransform(transforms_);
   joint_states_pub_.publish(joint_states_);
   finger_state_pub_.publish(finger_state_);
+  publishTipMarker(bar);
+}
+
+void FingerNode::publishTipMarker(const TipUncertainty::At& bar) {
+  // Nothing to show without an error bar; no traffic while the bar keeps its size (the sphere rides on the tip frame).
+  if (!std::isfinite(bar.tip_position_m)) return;
+  const bool same = marker_bar_m_ >= 0.0 && bar.extrapolated == marker_extrapolated_ &&
+                    std::fabs(bar.tip_position_m - marker_bar_m_) <= 0.01 * marker_bar_m_;
+  if (same) return;
+  marker_bar_m_ = bar.tip_position_m;
+  marker_extrapolated_ = bar.extrapolated;
+  visualization_msgs::Marker m;
+  m.header.frame_id = settings_.urdf.prefix + "tip";
+  m.header.stamp = ros::Time(0);  // "latest": the sphere follows the tip frame
+  m.ns = settings_.urdf.prefix + "tip_uncertainty";
+  m.id = 0;
+  m.type = visualization_msgs::Marker::SPHERE;
+  m.action = visualization_msgs::Marker::ADD;
+  m.pose.orientation.w = 1.0;
+  // The sphere's radius is the bar: the tip is somewhere inside it, as far as the calibration can tell. At least
+  // 0.1 mm across, so that it stays visible at rest.
+  m.scale.x = m.scale.y = m.scale.z = std::max(2.0 * bar.tip_position_m, 1e-4);
+  // Cyan inside the calibrated pressures; orange above them, where the bar is a guess. Half transparent: the tip
+  // stays visible inside it.
+  m.color.r = bar.extrapolated ? 1.0f : 0.0f;
+  m.color.g = bar.extrapolated ? 0.55f : 0.85f;
+  m.color.b = bar.extrapolated ? 0.0f : 1.0f;
+  m.color.a = 0.5f;
+  tip_marker_pub_.publish(m);
 }
 
 void FingerNode::onGraspObject(const GraspObject::ConstPtr& msg) {
@@ -668,6 +752,17 @@ void FingerNode::onReconfigure(FingerNodeConfig& config, uint32_t /*level*/) {
     settings_ = next;
     input_.updateSettings(settings_.input);
     if (actuator) {
+      if (!tip_uncertainty_.empty()) {
+        ROS_WARN("finger_node: the actuator was reconfigured: the calibration's tip error bar no longer applies, "
+                 "finger_state publishes it as NaN");
+        tip_uncertainty_ = TipUncertainty{};
+        visualization_msgs::Marker gone;
+        gone.header.frame_id = settings_.urdf.prefix + "tip";
+        gone.ns = settings_.urdf.prefix + "tip_uncertainty";
+        gone.action = visualization_msgs::Marker::DELETE;
+        tip_marker_pub_.publish(gone);
+        marker_bar_m_ = -1.0;
+      }
       buildModel(nh_);
       ROS_INFO("finger_node: reconfigured: shear_modulus_pa %s Pa, chamber_gap_m %s m, base_wall_share %s; URDF "
                "republished", formatExact(config.shear_modulus_pa).c_str(), formatExact(config.chamber_gap_m).c_str(),
@@ -701,6 +796,11 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("skipped by max_rate_hz or same instant", c.throttled);
   status.add("model evaluations (unchanged pressures reuse the last)", model_->computationCount());
   if (!input_.lastProblem().empty()) status.add("last problem", input_.lastProblem());
+  status.add("tip error bar", tip_uncertainty_.empty()
+                                   ? std::string("none (NaN in finger_state)")
+                                   : "calibrated at " + std::to_string(tip_uncertainty_.gauge_pa.size()) +
+                                         " pressures up to " + formatExact(tip_uncertainty_.gauge_pa.back()) +
+                                         " Pa gauge; above: extrapolated");
   status.add("grasp object", object_ ? object_->id : std::string("(none)"));
   status.add("grasp object status", static_cast<int>(object_status_));
   status.add("predicted first touch (Pa gauge)", touch_gauge_pa_);

@@ -155,6 +155,14 @@ int main(int argc, char** argv) {
           << "# leave-one-out error: each row predicted by a fit to the others\n" << loo_table
           << "#\n# largest |error|:" << largest(worst, n, true) << "\n# largest leave-one-out |error|:"
           << largest(worst_loo, n, false) << "\n";
+    const pf::TipUncertainty bar = pf::tipUncertainty(fit.residuals, loo);
+    table << "# error bar written to the parameter file (tip_uncertainty: the larger of fit and leave-one-out):";
+    for (std::size_t i = 0; i < bar.gauge_pa.size(); ++i) {
+      table << " " << fmt("%.3f", bar.gauge_pa[i] / pf::kPaPerKgfPerCm2) << " kg/cm2 " << fmt("%.2f", bar.tip_angle_rad[i] * kDeg)
+            << " deg";
+      if (!std::isnan(bar.tip_position_m[i])) table << " " << fmt("%.1f", bar.tip_position_m[i] * 1e3) << " mm";
+      table << (i + 1 < bar.gauge_pa.size() ? ";" : "\n");
+    }
     std::cout << table.str();
     if (!output.empty()) {
       std::ofstream out(output);
@@ -162,7 +170,8 @@ int main(int argc, char** argv) {
       out << "# The calibrated actuator: written by `finger_calibrate --output` (see docs/ACCURACY.md).\n"
           << "# Every key's default in the code (parameters.cpp) equals this file; a test checks it.\n"
           << table.str() << "\n"
-          << pf::parametersToYaml(fit.parameters);
+          << pf::parametersToYaml(fit.parameters) << "\n"
+          << pf::tipUncertaintyToYaml(bar);
     }
     return 0;
   });

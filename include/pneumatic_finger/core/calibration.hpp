@@ -13,6 +13,7 @@
 
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
+#include "pneumatic_finger/core/tip_uncertainty.hpp"
 
 namespace pneumatic_finger {
 
@@ -129,5 +130,10 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
 CalibrationResult calibrate(const FingerParameters& base, const std::vector<std::string>& keys,
                             const std::vector<Measurement>& data, CalibrationObjective objective,
                             CalibrationQuantity quantity = CalibrationQuantity::kOuterAverage);
+
+/// The tip's error bar from a calibration: at each row's pressure, the larger of @p fit's and @p leave_one_out's
+/// |error| of the tip angle and of the tip position (NaN where the data measured no tip position). The rows of both
+/// are the same measurements, in the same order.
+TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out);
 
 }  // namespace pneumatic_finger

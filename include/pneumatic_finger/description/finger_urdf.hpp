@@ -16,6 +16,7 @@
 #include <urdf_model/model.h>
 
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/tip_uncertainty.hpp"
 
 namespace pneumatic_finger {
 
@@ -47,6 +48,7 @@ struct GripperFinger {
   FingerUrdfOptions mount;      ///< prefix, parent link, mount pose, max_gauge_pa
   FingerParameters parameters;  ///< the actuator
   std::string config_path;      ///< the parameter file it was read from (for messages)
+  TipUncertainty tip_uncertainty;  ///< that file's error bar (empty when it has none)
 };
 
 /// Reads a gripper file (YAML): `fingers:` a list of {prefix, parent, xyz, rpy, config}, config a parameter file

@@ -25,6 +25,7 @@
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/object_section.hpp"
 #include "pneumatic_finger/core/pressure_input.hpp"
+#include "pneumatic_finger/core/tip_uncertainty.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
 
 namespace pneumatic_finger {
@@ -48,6 +49,7 @@ const std::vector<NodeParameterSpec>& nodeParameterSpecs();
 /// Everything the node reads at start-up, validated.
 struct NodeSettings {
   FingerParameters finger;
+  TipUncertainty tip_uncertainty;  ///< the calibration's error bar (rosparam tip_uncertainty/*, or the gripper file's)
   FingerUrdfOptions urdf;
   PressureInputSettings input;  ///< the input rules' settings (atmospheric_pa and max_gauge_pa follow finger, urdf)
   SolverKind solver;
@@ -91,6 +93,13 @@ class FingerNode {
   std::unique_ptr<FingerModel> model_;
   ros::Subscriber pressure_sub_;
   ros::Publisher joint_states_pub_, finger_state_pub_;
+  // The tip's error bar (the parameter file's tip_uncertainty) as a translucent sphere at the tip, republished only
+  // when its size changes by more than 1 % or it becomes (or stops being) an extrapolation.
+  ros::Publisher tip_marker_pub_;
+  TipUncertainty tip_uncertainty_;
+  double marker_bar_m_ = -1.0;
+  bool marker_extrapolated_ = false;
+  void publishTipMarker(const TipUncertainty::At& bar);
   ros::ServiceServer inverse_srv_;
   // Made only with publish_tf: without it the node does not even advertise /tf and /tf_static.
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_;

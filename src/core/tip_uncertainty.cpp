@@ -1,0 +1,127 @@
+#include "pneumatic_finger/core/tip_uncertainty.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <fstream>
+#include <limits>
+#include <sstream>
+
+#include "pneumatic_finger/core/parameters.hpp"
+
+namespace pneumatic_finger {
+
+TipUncertainty::At TipUncertainty::at(double pressure_pa) const {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (empty() || std::isnan(pressure_pa)) return {nan, nan, false};
+  if (pressure_pa <= 0.0) return {0.0, 0.0, false};
+  const std::size_t last = gauge_pa.size() - 1;
+  if (pressure_pa > gauge_pa[last]) {
+    const double scale = pressure_pa / gauge_pa[last];
+    return {tip_angle_rad[last] * scale, tip_position_m[last] * scale, true};
+  }
+  // Between (0, 0) and the first calibrated point, or between two calibrated points.
+  double p0 = 0.0, a0 = 0.0, x0 = 0.0;
+  for (std::size_t i = 0; i <= last; ++i) {
+    const double p1 = gauge_pa[i];
+    if (pressure_pa <= p1) {
+      const double t = (pressure_pa - p0) / (p1 - p0);
+      return {a0 + t * (tip_angle_rad[i] - a0), x0 + t * (tip_position_m[i] - x0), false};
+    }
+    p0 = p1;
+    a0 = tip_angle_rad[i];
+    x0 = tip_position_m[i];
+  }
+  return {tip_angle_rad[last], tip_position_m[last], false};
+}
+
+TipUncertainty TipUncertainty::fromLists(const std::vector<double>& gauge_pa, const std::vector<double>& tip_angle_rad,
+                                         const std::vector<double>& tip_position_m, const std::string& origin) {
+  const std::string where = origin + ": " + kTipUncertaintyKey + ": ";
+  if (gauge_pa.size() != tip_angle_rad.size() || gauge_pa.size() != tip_position_m.size()) {
+    throw ParameterError(where + "gauge_pa, tip_angle_rad and tip_position_m must have the same length (" +
+                         std::to_string(gauge_pa.size()) + ", " + std::to_string(tip_angle_rad.size()) + ", " +
+                         std::to_string(tip_position_m.size()) + ")");
+  }
+  for (std::size_t i = 0; i < gauge_pa.size(); ++i) {
+    const std::string entry = " (entry " + std::to_string(i + 1) + ")";
+    if (!std::isfinite(gauge_pa[i]) || gauge_pa[i] <= 0.0 || (i > 0 && gauge_pa[i] <= gauge_pa[i - 1])) {
+      throw ParameterError(where + "gauge_pa = " + formatExact(gauge_pa[i]) + entry +
+                           " must be finite, > 0 and ascending");
+    }
+    if (!(tip_angle_rad[i] >= 0.0) || std::isinf(tip_angle_rad[i])) {
+      throw ParameterError(where + "tip_angle_rad = " + formatExact(tip_angle_rad[i]) + entry +
+                           " must be a finite number >= 0");
+    }
+    if (tip_position_m[i] < 0.0 || std::isinf(tip_position_m[i])) {
+      throw ParameterError(where + "tip_position_m = " + formatExact(tip_position_m[i]) + entry +
+                           " must be >= 0 and finite (or .nan: not measured)");
+    }
+  }
+  return {gauge_pa, tip_angle_rad, tip_position_m};
+}
+
+TipUncertainty tipUncertaintyFromYamlText(const std::string& text, const std::string& origin) {
+  YAML::Node root;
+  try {
+    root = YAML::Load(text);
+  } catch (const YAML::Exception& e) {
+    throw ParameterError(origin + ": not valid YAML: " + e.what());
+  }
+  if (!root.IsMap() || !root[kTipUncertaintyKey]) return {};
+  const YAML::Node node = root[kTipUncertaintyKey];
+  if (!node.IsMap()) throw ParameterError(origin + ": " + kTipUncertaintyKey + " must be a mapping");
+  auto list = [&](const char* key) {
+    std::vector<double> out;
+    const YAML::Node l = node[key];
+    if (!l || !l.IsSequence()) {
+      throw ParameterError(origin + ": " + kTipUncertaintyKey + ": '" + key + "' must be a list of numbers");
+    }
+    for (const auto& e : l) {
+      try {
+        out.push_back(e.as<double>());
+      } catch (const YAML::Exception&) {
+        throw ParameterError(origin + ": " + kTipUncertaintyKey + ": '" + key + "' has '" + e.Scalar() +
+                             "', not a number");
+      }
+    }
+    return out;
+  };
+  for (const auto& item : node) {
+    const std::string key = item.first.as<std::string>();
+    if (key != "gauge_pa" && key != "tip_angle_rad" && key != "tip_position_m") {
+      throw ParameterError(origin + ": " + kTipUncertaintyKey + ": unknown key '" + key +
+                           "' (known: gauge_pa, tip_angle_rad, tip_position_m)");
+    }
+  }
+  return TipUncertainty::fromLists(list("gauge_pa"), list("tip_angle_rad"), list("tip_position_m"), origin);
+}
+
+TipUncertainty tipUncertaintyFromYamlFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw ParameterError("cannot read parameter file '" + path + "'");
+  std::stringstream text;
+  text << in.rdbuf();
+  return tipUncertaintyFromYamlText(text.str(), path);
+}
+
+std::string tipUncertaintyToYaml(const TipUncertainty& u) {
+  std::ostringstream out;
+  auto list = [&out](const std::vector<double>& v) {
+    out << "[";
+    for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << (std::isnan(v[i]) ? ".nan" : formatShortest(v[i]));
+    out << "]\n";
+  };
+  out << "# How far to trust the tip (written by finger_calibrate; docs/ACCURACY.md): at each calibrated gauge pressure\n"
+      << "# (Pa), the larger of the fit's and the leave-one-out error of the tip angle (rad) and of the tip position (m).\n"
+      << "# finger_node interpolates it linearly in pressure (from 0 at rest) and flags pressures above the last one.\n"
+      << kTipUncertaintyKey << ":\n  gauge_pa: ";
+  list(u.gauge_pa);
+  out << "  tip_angle_rad: ";
+  list(u.tip_angle_rad);
+  out << "  tip_position_m: ";
+  list(u.tip_position_m);
+  return out.str();
+}
+
+}  // namespace pneumatic_finger
