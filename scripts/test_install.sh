@@ -35,10 +35,13 @@ check "finger_model_reads_the_installed_config" in_install "
   joints=\$('$installed_model' --gauge-pa 98066.5 | head -1 | tr ',' '\n' | grep -c '^joint_')
   sed -i 's/^chamber_count: 3\$/chamber_count: 7/' '$PREFIX/share/pneumatic_finger/config/finger.yaml'
   [ \"\$joints\" = 3 ] || { echo \"installed finger_model printed \$joints joints, not the edited file's 3\"; exit 1; }"
+# The installed finger_model's joint 1 at 1 kg/cm^2 is what the Python API and the node must give (the same core).
+joint1_from_installed_tool="'$installed_model' --gauge-pa 98066.5 | python3 -c 'import csv, sys; print(next(csv.DictReader(sys.stdin))[\"joint_1_rad\"])'"
 check "python_api_imports_from_install" in_install "
+  want=\$($joint1_from_installed_tool) || exit 1
   python3 -c 'import pneumatic_finger.core as pf, pneumatic_finger.msg, sys
 q = pf.FingerModel().evaluate(98066.5)[\"joint_angle_rad\"][0]
-sys.exit(0 if abs(q - 0.04514271559) < 1e-10 else \"joint 1 at 1 kg/cm^2: %r\" % q)'"
+sys.exit(0 if q == float(sys.argv[1]) else \"joint 1 at 1 kg/cm^2: %r, finger_model: %s\" % (q, sys.argv[1]))' \"\$want\""
 check "finger_calibrate_finds_the_installed_data" in_install "
   rosrun pneumatic_finger finger_calibrate | grep -q 'largest |error|'"
 check "finger_node_runs_from_install" in_install "
@@ -52,7 +55,9 @@ check "finger_node_runs_from_install" in_install "
   pub=\$!
   msg=\$(timeout 20 rostopic echo -n 1 /joint_states/position 2>&1); status=\$?
   kill \$pub 2>/dev/null
-  echo \"\$msg\" | grep -q '0.04514271559' || status=1  # joint 1 at 1 kg/cm^2, as finger_model gives it
+  want=\$($joint1_from_installed_tool)
+  # joint 1 at 1 kg/cm^2, bit for bit as the installed finger_model gives it
+  python3 -c 'import sys; sys.exit(0 if float(sys.argv[1]) in [float(x) for x in sys.argv[2].strip(\"[]-\\n \").split(\",\")] else 1)' \"\$want\" \"\$msg\" || status=1
   [ \$status = 0 ] || { echo \"\$msg\"; tail -20 '$ROOT/build/install_node.log'; exit 1; }"
 
 {

@@ -212,14 +212,16 @@ FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, doub
       s = std::min(std::max(s, 0), group.table_segments - 1);
       const double x = 2.0 * (pos - s) - 1.0;
       const double* row = &group.table[static_cast<std::size_t>(s) * kTableStride];
-      double th = row[kTableDegree * kTableFunctions + 0];
-      double co = row[kTableDegree * kTableFunctions + 1];
-      double si = row[kTableDegree * kTableFunctions + 2];
-      for (int i = kTableDegree - 1; i >= 0; --i) {
-        th = th * x + row[i * kTableFunctions + 0];
-        co = co * x + row[i * kTableFunctions + 1];
-        si = si * x + row[i * kTableFunctions + 2];
-      }
+      // Estrin's scheme for the three degree-7 polynomials: pairs, then x^2 and x^4 combine them, three levels of
+      // independent products instead of Horner's chain of seven (the chain was the table's latency).
+      static_assert(kTableDegree == 7, "Estrin's scheme below is written for degree 7");
+      const double x2 = x * x, x4 = x2 * x2;
+      auto estrin = [row, x, x2, x4](int f) {
+        auto c = [row, f](int i) { return row[i * kTableFunctions + f]; };
+        const double p01 = c(0) + c(1) * x, p23 = c(2) + c(3) * x, p45 = c(4) + c(5) * x, p67 = c(6) + c(7) * x;
+        return (p01 + p23 * x2) + (p45 + p67 * x2) * x4;
+      };
+      double th = estrin(0), co = estrin(1), si = estrin(2);
       // Near contact the interpolant may dip a rounding error below 0: theta is 0 there by definition.
       if (th < 0.0) {
         th = 0.0;
