@@ -165,7 +165,8 @@ Errors measureErrors(Variant& v, const std::vector<double>& pressures) {
                                                      {kParams.chamber_height_m[0], kParams.wall_critical_height_m[0],
                                                       kParams.chamber_gap_m[0], kParams.shear_modulus_pa[0]});
     const reference::Finger ref = reference::finger(p, kParams.atmospheric_pressure_pa, chambers,
-                                                    kParams.segment_length_m, kParams.base_segment_length_m);
+                                                    kParams.segment_length_m, kParams.base_segment_length_m,
+                                                    kParams.base_wall_share);
     const pf::FingerState& s = v.evaluate(p);
     const Eigen::Vector2d tip = s.tip();
     const double dt = std::fabs(s.half_angle_rad[0] - ref.half_angle_rad[0]);
@@ -261,7 +262,11 @@ void benchPrimitive(benchmark::State& state, int which) {
 // reach test only), and a disk the tip reaches (bracketing and bisection for one touch at the higher pressures).
 void benchContact(benchmark::State& state, int which) {
   const std::vector<double>& pressures = validatedPressures();
-  pf::FingerModel model(kParams);
+  // which == 3: from scratch on a finger whose base face is inert (base_wall_share = 0): the half-angle search then
+  // needs one sincos per sample, not two (joint 1 turns by theta itself).
+  pf::FingerParameters params = kParams;
+  if (which == 3) params.base_wall_share = 0.0;
+  pf::FingerModel model(params);
   const pf::ContactSolver solver(model);
   const pf::Obstacle obstacle = which == 0 ? pf::Obstacle::disk(0.0, 0.2, 0.01) : pf::Obstacle::disk(0.075, 0.035, 0.01);
   // which == 2: a ContactTracker on the same disk (a grasp: the object stays, the pressure changes).
@@ -272,9 +277,10 @@ void benchContact(benchmark::State& state, int which) {
     benchmark::DoNotOptimize(s.backbone_m.data());
     if (++i == pressures.size()) i = 0;
   }
-  state.SetLabel(which == 0 ? "contact: obstacle out of reach"
+  state.SetLabel(which == 0   ? "contact: obstacle out of reach"
                  : which == 1 ? "contact: disk at the tip, one touch, from scratch"
-                              : "contact: the same, ContactTracker (events kept)");
+                 : which == 2 ? "contact: the same, ContactTracker (events kept)"
+                              : "contact: from scratch, inert base face (base_wall_share = 0)");
 }
 
 // The batch entry point (FingerModel::evaluateMany) over the validated pressures, every output written to arrays the
@@ -311,7 +317,8 @@ void benchBatch(benchmark::State& state, pf::BatchPath path, bool backbone_only)
     std::vector<reference::ChamberGeometry> chambers(n, {kParams.chamber_height_m[0], kParams.wall_critical_height_m[0],
                                                          kParams.chamber_gap_m[0], kParams.shear_modulus_pa[0]});
     const reference::Finger ref = reference::finger(pressures[i], kParams.atmospheric_pressure_pa, chambers,
-                                                    kParams.segment_length_m, kParams.base_segment_length_m);
+                                                    kParams.segment_length_m, kParams.base_segment_length_m,
+                                                    kParams.base_wall_share);
     theta_error = std::max(theta_error, std::fabs(half[i * n] - ref.half_angle_rad[0]));
     const double* o = &backbone[i * 2 * (n + 2) + 2 * (n + 1)];
     tip_error = std::max(tip_error, std::hypot(o[0] - ref.x_m.back(), o[1] - ref.y_m.back()));
@@ -341,7 +348,7 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("latency/" + std::to_string(which)).c_str(),
                                  [which](benchmark::State& s) { benchPrimitive(s, which); });
   }
-  for (int which = 0; which < 3; ++which) {
+  for (int which = 0; which < 4; ++which) {
     benchmark::RegisterBenchmark(("contact/" + std::to_string(which)).c_str(),
                                  [which](benchmark::State& s) { benchContact(s, which); });
   }

@@ -131,7 +131,7 @@ for k, label in batch_ran:
 batch_rows = "\n".join(batch_rows)
 best_batch_key = max(batch_ran, key=lambda kl: runs[f"batch/{kl[0]}"]["items_per_second"])[0]
 best_batch = runs[f"batch/{best_batch_key}"]["items_per_second"]
-contact_rows = "\n".join(f"| {runs[f'contact/{i}']['label']} | {runs[f'contact/{i}']['real_time']:.0f} |" for i in range(3))
+contact_rows = "\n".join(f"| {runs[f'contact/{i}']['label']} | {runs[f'contact/{i}']['real_time']:.0f} |" for i in range(4))
 contact_ns = runs["contact/1"]["real_time"]
 tracker_ns = runs["contact/2"]["real_time"]
 
@@ -255,7 +255,8 @@ Each verdict is computed by `scripts/benchmarks.py` from the figures above; the 
 - **Contact solve ≤ {TARGET_CONTACT_NS:.0f} ns per finger and obstacle:** {verdict(contact_ns <= TARGET_CONTACT_NS)}:
   {contact_ns:.0f} ns with one touch found from scratch, {ratio(contact_ns, TARGET_CONTACT_NS)}, about
   {contact_ns / robust_ns:.0f} free evaluations: the free model at the pressure, about seven backbone samples of the
-  half-angle search (one sincos each), the closed-form pressure of the touch, and the output. Unequal chambers, or
+  half-angle search (one sincos each, two while joint 1 turns by (1 + s₀)θ: {runs["contact/3"]["real_time"]:.0f} ns with
+  an inert base face, s₀ = 0, in the same run), the closed-form pressure of the touch, and the output. Unequal chambers, or
   the paper and table solvers, take the general path (a √P grid and bisection, each step a model solve), several
   times slower. A `ContactTracker`, which keeps the touch
   events of an object that stays put, {verdict(tracker_ns <= TARGET_CONTACT_NS)} it: {tracker_ns:.0f} ns,
