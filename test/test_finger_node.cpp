@@ -215,6 +215,7 @@ TEST_F(FingerNodeTest, FingerStateCarriesTheModel) {
   ASSERT_TRUE(marker);
   EXPECT_EQ(marker->header.frame_id, kPrefix + "tip");
   EXPECT_EQ(marker->type, visualization_msgs::Marker::SPHERE);
+  EXPECT_TRUE(marker->frame_locked);  // else rviz leaves it where the tip was when it arrived
   EXPECT_EQ(marker->scale.x, 2.0 * bars.at(250000.0).tip_position_m);
   EXPECT_EQ(marker->color.r, 1.0f);
 }

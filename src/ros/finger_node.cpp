@@ -580,7 +580,8 @@ void FingerNode::publishTipMarker(const TipUncertainty::At& bar) {
   marker_extrapolated_ = bar.extrapolated;
   visualization_msgs::Marker m;
   m.header.frame_id = settings_.urdf.prefix + "tip";
-  m.header.stamp = ros::Time(0);  // "latest": the sphere follows the tip frame
+  m.header.stamp = ros::Time(0);  // "latest"
+  m.frame_locked = true;          // rviz re-transforms it every frame: the sphere rides on the tip as the finger moves
   m.ns = settings_.urdf.prefix + "tip_uncertainty";
   m.id = 0;
   m.type = visualization_msgs::Marker::SPHERE;
