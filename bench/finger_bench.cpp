@@ -294,22 +294,13 @@ void benchBatch(benchmark::State& state, pf::BatchPath path, bool backbone_only)
   const std::vector<double>& pressures = validatedPressures();
   const std::size_t count = pressures.size();
   const auto n = static_cast<std::size_t>(kParams.chamber_count);
-  std::vector<double> stretch(count * n), bulge(count * n), half(count * n), joint(count * n),
-      backbone(count * 2 * (n + 2)), tip(count);
-  std::vector<int> status(count);
-  pf::BatchOutputs out;
-  out.stretch = stretch.data();
-  out.bulge_m = bulge.data();
-  out.half_angle_rad = half.data();
-  out.joint_angle_rad = joint.data();
-  out.backbone_m = backbone.data();
-  out.tip_angle_rad = tip.data();
-  out.status = status.data();
-  if (backbone_only) out = pf::BatchOutputs{nullptr, nullptr, nullptr, nullptr, backbone.data(), nullptr, nullptr};
+  pf::BatchBuffers rows(count, kParams.chamber_count);
+  pf::BatchOutputs out = rows.outputs();
+  if (backbone_only) out = pf::BatchOutputs{nullptr, nullptr, nullptr, nullptr, rows.backbone_m.data(), nullptr, nullptr};
   pf::FingerModel model(kParams);
   for (auto _ : state) {
     model.evaluateMany(pressures.data(), count, out, path);
-    benchmark::DoNotOptimize(backbone.data());
+    benchmark::DoNotOptimize(rows.backbone_m.data());
     benchmark::ClobberMemory();
   }
   double theta_error = 0.0, tip_error = 0.0;
@@ -319,8 +310,8 @@ void benchBatch(benchmark::State& state, pf::BatchPath path, bool backbone_only)
     const reference::Finger ref = reference::finger(pressures[i], kParams.atmospheric_pressure_pa, chambers,
                                                     kParams.segment_length_m, kParams.base_segment_length_m,
                                                     kParams.base_wall_share);
-    theta_error = std::max(theta_error, std::fabs(half[i * n] - ref.half_angle_rad[0]));
-    const double* o = &backbone[i * 2 * (n + 2) + 2 * (n + 1)];
+    theta_error = std::max(theta_error, std::fabs(rows.half_angle_rad[i * n] - ref.half_angle_rad[0]));
+    const double* o = &rows.backbone_m[i * 2 * (n + 2) + 2 * (n + 1)];
     tip_error = std::max(tip_error, std::hypot(o[0] - ref.x_m.back(), o[1] - ref.y_m.back()));
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(count));

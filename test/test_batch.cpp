@@ -40,24 +40,7 @@ std::vector<double> batchPressures(const pf::FingerModel& model) {
   return p;
 }
 
-struct Rows {
-  explicit Rows(std::size_t count, int n)
-      : stretch(count * n), bulge(count * n), half(count * n), joint(count * n), backbone(count * 2 * (n + 2)),
-        tip(count), status(count) {}
-  pf::BatchOutputs outputs() {
-    pf::BatchOutputs o;
-    o.stretch = stretch.data();
-    o.bulge_m = bulge.data();
-    o.half_angle_rad = half.data();
-    o.joint_angle_rad = joint.data();
-    o.backbone_m = backbone.data();
-    o.tip_angle_rad = tip.data();
-    o.status = status.data();
-    return o;
-  }
-  std::vector<double> stretch, bulge, half, joint, backbone, tip;
-  std::vector<int> status;
-};
+using Rows = pf::BatchBuffers;
 
 bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
@@ -80,23 +63,23 @@ int compareRow(pf::FingerModel& single, const Rows& rows, std::size_t i, double 
     // Refused, or no answer (the paper's solver at some pressures): NaN throughout, where evaluate() keeps its
     // previous state.
     EXPECT_EQ(rows.status[i], static_cast<int>(want)) << what;
-    for (std::size_t k = 0; k < un; ++k) EXPECT_TRUE(std::isnan(rows.half[i * un + k])) << what;
-    for (std::size_t k = 0; k < 2 * (un + 2); ++k) EXPECT_TRUE(std::isnan(rows.backbone[i * 2 * (un + 2) + k]));
-    EXPECT_TRUE(std::isnan(rows.tip[i]));
+    for (std::size_t k = 0; k < un; ++k) EXPECT_TRUE(std::isnan(rows.half_angle_rad[i * un + k])) << what;
+    for (std::size_t k = 0; k < 2 * (un + 2); ++k) EXPECT_TRUE(std::isnan(rows.backbone_m[i * 2 * (un + 2) + k]));
+    EXPECT_TRUE(std::isnan(rows.tip_angle_rad[i]));
     return 0;
   }
   EXPECT_EQ(rows.status[i], static_cast<int>(s.status)) << what << " at P = " << gauge_pa;
   for (std::size_t k = 0; k < un; ++k) {
     const auto e = static_cast<Eigen::Index>(k);
     check(rows.stretch[i * un + k], s.stretch[e], "stretch", k);
-    check(rows.bulge[i * un + k], s.bulge_m[e], "bulge_m", k);
-    check(rows.half[i * un + k], s.half_angle_rad[e], "half_angle_rad", k);
-    check(rows.joint[i * un + k], s.joint_angle_rad[e], "joint_angle_rad", k);
+    check(rows.bulge_m[i * un + k], s.bulge_m[e], "bulge_m", k);
+    check(rows.half_angle_rad[i * un + k], s.half_angle_rad[e], "half_angle_rad", k);
+    check(rows.joint_angle_rad[i * un + k], s.joint_angle_rad[e], "joint_angle_rad", k);
   }
   for (std::size_t k = 0; k < 2 * (un + 2); ++k) {
-    check(rows.backbone[i * 2 * (un + 2) + k], s.backbone_m.data()[k], "backbone_m", k);
+    check(rows.backbone_m[i * 2 * (un + 2) + k], s.backbone_m.data()[k], "backbone_m", k);
   }
-  check(rows.tip[i], s.tip_angle_rad, "tip_angle_rad", 0);
+  check(rows.tip_angle_rad[i], s.tip_angle_rad, "tip_angle_rad", 0);
   return differ;
 }
 

@@ -466,6 +466,26 @@ bool FingerModel::gaugeForHalfAngle(double half_angle_rad, double& gauge_pa) con
   return true;
 }
 
+BatchBuffers::BatchBuffers(std::size_t count, int chamber_count) {
+  const auto n = static_cast<std::size_t>(chamber_count);
+  for (auto* v : {&stretch, &bulge_m, &half_angle_rad, &joint_angle_rad}) v->resize(count * n);
+  backbone_m.resize(count * 2 * (n + 2));
+  tip_angle_rad.resize(count);
+  status.resize(count);
+}
+
+BatchOutputs BatchBuffers::outputs() {
+  BatchOutputs o;
+  o.stretch = stretch.data();
+  o.bulge_m = bulge_m.data();
+  o.half_angle_rad = half_angle_rad.data();
+  o.joint_angle_rad = joint_angle_rad.data();
+  o.backbone_m = backbone_m.data();
+  o.tip_angle_rad = tip_angle_rad.data();
+  o.status = status.data();
+  return o;
+}
+
 const char* batchPathName(BatchPath path) {
   switch (path) {
     case BatchPath::kBest: return "best";

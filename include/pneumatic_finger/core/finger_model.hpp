@@ -67,6 +67,16 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
 /// A FingerState sized for @p parameters, at rest (the straight finger).
 FingerState restState(const FingerParameters& parameters);
 
+/// Every output of FingerModel::evaluateMany for @p count pressures of a finger of @p chamber_count chambers, in
+/// arrays it owns (row-major, as BatchOutputs describes them).
+struct BatchBuffers {
+  BatchBuffers(std::size_t count, int chamber_count);
+  std::vector<double> stretch, bulge_m, half_angle_rad, joint_angle_rad, backbone_m, tip_angle_rad;
+  std::vector<int> status;
+  /// Where evaluateMany writes: every array.
+  BatchOutputs outputs();
+};
+
 /// Threads: tipAngleAt(), gaugeForTipAngle() and the accessors of fixed data (parameters(), contactGaugePa(), ...)
 /// read only what the constructor built, so any number of threads may call them at once, also while another thread
 /// runs evaluate() (test: Property.ConstMethodsAreSafeBesideEvaluate). evaluate() and state() share the cached state:
