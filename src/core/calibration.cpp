@@ -306,6 +306,22 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
   return out;
 }
 
+namespace {
+
+// The objective over @p rows: the largest |term| (minimax) or the sum of squared terms, the terms being what
+// @p quantity compares in each row.
+double objectiveOver(const std::vector<Residual>& rows, CalibrationQuantity quantity, CalibrationObjective objective) {
+  double value = 0.0;
+  for (const Residual& r : rows) {
+    for (double e : r.terms(quantity)) {
+      value = objective == CalibrationObjective::kMinimax ? std::max(value, std::fabs(e)) : value + e * e;
+    }
+  }
+  return value;
+}
+
+}  // namespace
+
 CalibrationResult calibrate(const FingerParameters& base, const std::vector<std::string>& keys,
                             const std::vector<Measurement>& data, CalibrationObjective objective,
                             CalibrationQuantity quantity) {
@@ -379,14 +395,7 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
                                                    : outer.values[static_cast<std::size_t>(
                                                          std::find(chamber.begin(), chamber.end(), k) - chamber.begin())]);
     }
-    // The objective over every joint, as reported for any other fit.
-    both.objective_value = 0.0;
-    for (const Residual& r : both.residuals) {
-      for (double e : r.terms(quantity)) {
-        both.objective_value = objective == CalibrationObjective::kMinimax ? std::max(both.objective_value, std::fabs(e))
-                                                                          : both.objective_value + e * e;
-      }
-    }
+    both.objective_value = objectiveOver(both.residuals, quantity, objective);  // over every joint, as for any fit
     return both;
   }
   // mu goes innermost: every residual is monotone in mu, so for fixed other keys the largest |error| is
@@ -405,14 +414,8 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
       const auto k = static_cast<std::size_t>(i);
       if (trial.wall_critical_height_m[k] > trial.chamber_height_m[k]) return std::numeric_limits<double>::infinity();
     }
-    double value = 0.0;
-    for (const Residual& r : residuals(trial, data)) {
-      ++result.model_evaluations;
-      for (double e : r.terms(quantity)) {
-        value = objective == CalibrationObjective::kMinimax ? std::max(value, std::fabs(e)) : value + e * e;
-      }
-    }
-    return value;
+    result.model_evaluations += static_cast<long>(data.size());
+    return objectiveOver(residuals(trial, data), quantity, objective);
   };
   // Nested searches: axis `level` is searched with the outer ones fixed in x[0..level-1], each trial point of it
   // solved for the inner axes first. Returns the best objective value, leaving the best inner point in x.

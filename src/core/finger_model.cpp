@@ -554,10 +554,10 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
   }
   if (batch_state_.stretch.size() == 0) batch_state_ = restState(parameters_);
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  auto row = [n](const Eigen::VectorXd& from, double* to, std::size_t i, bool answered) {
+  auto row = [n, nan](const Eigen::VectorXd& from, double* to, std::size_t i, bool answered) {
     if (!to) return;
     if (answered) std::copy(from.data(), from.data() + n, to + i * n);
-    else std::fill(to + i * n, to + (i + 1) * n, std::numeric_limits<double>::quiet_NaN());
+    else std::fill(to + i * n, to + (i + 1) * n, nan);
   };
   for (std::size_t i = 0; i < count; ++i) {
     const double p = gauge_pa[i];

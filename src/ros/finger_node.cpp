@@ -113,6 +113,20 @@ bool asNumber(const XmlRpc::XmlRpcValue& v, double& out) {
   return true;
 }
 
+// The entries of a list parameter as numbers. @throws ParameterError naming the key, the value and the entry.
+std::vector<double> numbersOf(const XmlRpc::XmlRpcValue& v, const std::string& key) {
+  std::vector<double> out;
+  for (int i = 0; i < v.size(); ++i) {
+    double x;
+    if (!asNumber(v[i], x)) {
+      throw ParameterError("parameter '" + key + "' = " + describe(v) + ": entry " + std::to_string(i + 1) +
+                           " is not a number");
+    }
+    out.push_back(x);
+  }
+  return out;
+}
+
 // The one range check of a node number: at start-up (rosparam) and live (dynamic_reconfigure).
 double checkNumber(const std::string& key, double x, double max_override = NAN) {
   const NodeParameterSpec& sp = spec(key);
@@ -216,14 +230,7 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
     RawParameterValue value;
     if (v.getType() == XmlRpc::XmlRpcValue::TypeArray) {
       value.is_list = true;
-      for (int i = 0; i < v.size(); ++i) {
-        double x;
-        if (!asNumber(v[i], x)) {
-          throw ParameterError(std::string("parameter '") + spec.key + "' = " + describe(v) + ": entry " +
-                               std::to_string(i + 1) + " is not a number");
-        }
-        value.values.push_back(x);
-      }
+      value.values = numbersOf(v, spec.key);
     } else {
       double x;
       if (!asNumber(v, x)) {
@@ -283,14 +290,7 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
       if (v.getType() != XmlRpc::XmlRpcValue::TypeArray) {
         throw ParameterError("parameter '" + base + keys[i] + "' = " + describe(v) + " is not a list of numbers");
       }
-      for (int k = 0; k < v.size(); ++k) {
-        double x;
-        if (!asNumber(v[k], x)) {
-          throw ParameterError("parameter '" + base + keys[i] + "': entry " + std::to_string(k + 1) +
-                               " is not a number");
-        }
-        lists[i].push_back(x);
-      }
+      lists[i] = numbersOf(v, base + keys[i]);
     }
     if (any && !s.gripper_file.empty()) {
       throw ParameterError("parameter '" + base + "*' is set, but gripper_file defines the actuator (and its error bar)");
@@ -424,6 +424,12 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
   tip_uncertainty_ = settings_.tip_uncertainty;
   // Latched: rviz, started later, still gets the sphere the finger has now.
   tip_marker_pub_ = nh.advertise<visualization_msgs::Marker>("tip_uncertainty_marker", 1, true);
+  tip_marker_.header.frame_id = prefix + "tip";
+  tip_marker_.header.stamp = ros::Time(0);  // "latest"
+  tip_marker_.frame_locked = true;  // rviz re-transforms it every frame: the sphere rides on the tip as the finger moves
+  tip_marker_.ns = prefix + "tip_uncertainty";
+  tip_marker_.type = visualization_msgs::Marker::SPHERE;
+  tip_marker_.pose.orientation.w = 1.0;
   if (tip_uncertainty_.empty()) {
     ROS_INFO("finger_node: the parameters have no tip_uncertainty (finger_calibrate writes it): the tip's error bar "
              "is published as NaN");
@@ -578,15 +584,8 @@ void FingerNode::publishTipMarker(const TipUncertainty::At& bar) {
   if (same) return;
   marker_bar_m_ = bar.tip_position_m;
   marker_extrapolated_ = bar.extrapolated;
-  visualization_msgs::Marker m;
-  m.header.frame_id = settings_.urdf.prefix + "tip";
-  m.header.stamp = ros::Time(0);  // "latest"
-  m.frame_locked = true;          // rviz re-transforms it every frame: the sphere rides on the tip as the finger moves
-  m.ns = settings_.urdf.prefix + "tip_uncertainty";
-  m.id = 0;
-  m.type = visualization_msgs::Marker::SPHERE;
+  visualization_msgs::Marker& m = tip_marker_;  // frame, namespace and shape were set once, in the constructor
   m.action = visualization_msgs::Marker::ADD;
-  m.pose.orientation.w = 1.0;
   // The sphere's radius is the bar: the tip is somewhere inside it, as far as the calibration can tell. At least
   // 0.1 mm across, so that it stays visible at rest.
   m.scale.x = m.scale.y = m.scale.z = std::max(2.0 * bar.tip_position_m, 1e-4);
@@ -757,11 +756,8 @@ void FingerNode::onReconfigure(FingerNodeConfig& config, uint32_t /*level*/) {
         ROS_WARN("finger_node: the actuator was reconfigured: the calibration's tip error bar no longer applies, "
                  "finger_state publishes it as NaN");
         tip_uncertainty_ = TipUncertainty{};
-        visualization_msgs::Marker gone;
-        gone.header.frame_id = settings_.urdf.prefix + "tip";
-        gone.ns = settings_.urdf.prefix + "tip_uncertainty";
-        gone.action = visualization_msgs::Marker::DELETE;
-        tip_marker_pub_.publish(gone);
+        tip_marker_.action = visualization_msgs::Marker::DELETE;
+        tip_marker_pub_.publish(tip_marker_);
         marker_bar_m_ = -1.0;
       }
       buildModel(nh_);

@@ -11,6 +11,7 @@
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 #include <tf2_ros/transform_listener.h>
+#include <visualization_msgs/Marker.h>
 
 #include <cmath>
 #include <memory>
@@ -96,6 +97,7 @@ class FingerNode {
   // The tip's error bar (the parameter file's tip_uncertainty) as a translucent sphere at the tip, republished only
   // when its size changes by more than 1 % or it becomes (or stops being) an extrapolation.
   ros::Publisher tip_marker_pub_;
+  visualization_msgs::Marker tip_marker_;  // the sphere, built once; a change sets its size and colour
   TipUncertainty tip_uncertainty_;
   double marker_bar_m_ = -1.0;
   bool marker_extrapolated_ = false;
