@@ -237,10 +237,12 @@ Each verdict is computed by `scripts/benchmarks.py` from the figures above; the 
   `atan` alone takes {lat["atan (glibc)"]:.0f} ns in glibc and {lat["atan (ours)"]:.0f} ns in ours (`src/core/simd_math.hpp`,
   the one the model uses: it has a pack form, which the batch needs), a square root {lat["sqrt"]:.0f} ns and a division
   {lat["division"]:.0f} ns (the table above). An evaluation is a dependent chain of them (`src/core/stages.cpp`): g
-  needs a division; δ a square root, a division and two Halley divisions; h a square root and a division; θ a square
-  root, two divisions, about three Halley divisions, the `atan` and cos θ's division. The backbone of identical chambers
-  no longer turns one segment after another: each direction is one product with a power of e^(2iθ) found by squaring,
-  so the longest chain of dependent products is log2 N + 1 = 4 long instead of N − 1 = 6.
+  needs a division; δ a square root, a division and one Halley division; h a square root and a division; θ a square
+  root, two divisions, one Halley division (its first guess is corrected for the gap, which saved the second), the
+  `atan` (for tan θ ≤ 1/8 a short series with no division) and cos θ's division. The backbone of identical chambers
+  no longer turns one segment after another: each direction is one product with e^(2iθ), e^(4iθ) or e^(8iθ) (found
+  by squaring), so the longest chain of dependent products, squarings included, is 4 long for N = 7 instead of 6;
+  joint 1's base face costs a short series for its sine and cosine.
 - **Batch ≥ {TARGET_BATCH_PER_S / 1e6:.0f} M full-finger evaluations/s on one core (robust, 1e-12 rad):**
   {verdict(best_batch >= TARGET_BATCH_PER_S)}: {best_batch / 1e6:.1f} M/s with the {best_batch_key} packs (the widest this
   CPU has), every output written, at {fmt_err(runs[f"batch/{best_batch_key}"]["max_theta_error_rad"])} rad.

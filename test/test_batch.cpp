@@ -11,6 +11,7 @@
 
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/stages.hpp"
+#include "../src/core/simd_math.hpp"  // sinCosSmall (internal), tested directly
 
 namespace pf = pneumatic_finger;
 
@@ -35,6 +36,21 @@ std::vector<double> batchPressures(const pf::FingerModel& model) {
   for (double x : {-1.0, -1e5, -0.0, 0.0, std::numeric_limits<double>::quiet_NaN(), double(INFINITY),
                    -double(INFINITY), std::numeric_limits<double>::max(), std::numeric_limits<double>::denorm_min()}) {
     p.push_back(x);
+  }
+  // Packs whose lanes straddle a limit where the shared arithmetic switches form (simd_math.hpp): the arctangent's
+  // (tan(theta) = 1/8) and joint 1's sine and cosine (s0 theta = 1/8), alternately just below and just above it.
+  const pf::FingerParameters& params = model.parameters();
+  const double turns = 2 * params.chamber_count - 1 + params.base_wall_share;
+  std::vector<double> limits = {std::atan(0.125)};
+  if (params.base_wall_share > 0.0 && 0.125 / params.base_wall_share < 1.5) limits.push_back(0.125 / params.base_wall_share);
+  for (double theta : limits) {
+    for (int k = 1; k <= 12; ++k) {
+      for (double side : {-1.0, 1.0}) {
+        double gauge = 0.0;
+        std::string why;
+        if (model.gaugeForTipAngle(turns * theta * (1.0 + side * k * 1e-9), 1e300, gauge, why)) p.push_back(gauge);
+      }
+    }
   }
   if (p.size() % 8 == 0) p.push_back(12345.0);
   return p;
@@ -173,4 +189,30 @@ TEST(OwnArctangent, WithinOneAndAHalfUlpOfQuadPrecision) {
   // The ends: atan(t) = t for tiny t, atan(+inf) = pi/2 rounded.
   EXPECT_EQ(pf::halfAngle(1e-100, 0.0, b).rad, (1e-100 * 1e-100) / 1e-100);
   EXPECT_EQ(pf::halfAngle(1e199, 0.0, b).rad, static_cast<double>(acosq(-1) / 2));
+}
+
+// The sine and cosine of joint 1's base half angle (simd_math.hpp, sinCosSmall: the short series up to 1/8, the long
+// one up to pi/2) against libquadmath's: absolute error within 2 ulp of 1 over [0, pi/2] (the long series' alternating terms
+// cost a little near pi/2, where x^2 = 2.5), both sides of the switch.
+TEST(SinCosSmall, WithinTwoUlpOfQuadPrecision) {
+  const double ulp_of_one = std::numeric_limits<double>::epsilon();
+  double worst = 0.0, worst_at = 0.0;
+  auto check = [&](double x) {
+    double c = 0.0, s = 0.0;
+    pf::sinCosSmall(x, c, s);
+    const __float128 xq = x;
+    const double err = std::max(static_cast<double>(fabsq(c - cosq(xq))), static_cast<double>(fabsq(s - sinq(xq))));
+    if (err > worst) {
+      worst = err;
+      worst_at = x;
+    }
+  };
+  for (double x = 1e-300; x < 1.0; x *= 1.01) check(x);
+  for (int i = 0; i <= 100000; ++i) check(1.5707963267948966 * i / 100000);
+  for (int k = -20; k <= 20; ++k) check(0.125 + k * 1e-17);
+  EXPECT_LE(worst, 2.0 * ulp_of_one) << "at x = " << worst_at;
+  double c = 0.0, s = 0.0;
+  pf::sinCosSmall(0.0, c, s);
+  EXPECT_EQ(c, 1.0);
+  EXPECT_EQ(s, 0.0);
 }

@@ -106,7 +106,9 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
   const T x = d * d;
   const T r = sqrtOf(1.0 + d * d);
   const T w0 = sqrtOf(r);
-  T v = d < 1.0 ? 0.25 * x / (1.0 + 0.375 * x) : d * d / ((r + 1.0) * (w0 + 1.0));
+  const T pade = 0.25 * x / (1.0 + 0.375 * x);
+  const T shrink = 1.0 - 0.5 * m * d;
+  T v = d < 1.0 ? (shrink > 0.0 ? pade * shrink : pade) : d * d / ((r + 1.0) * (w0 + 1.0));
   v = v < hi ? v : 0.5 * hi;
   active = contact & ~rare;
   for (int it = 0; it < 64 && anyOf(active); ++it) {
@@ -151,21 +153,12 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
     sin_half[i] = wall.half.sin;
   }
 
-  // Stages 5-6 (jointsAndBackboneUniform): q_1 = theta_0 + theta, q_n = 2 theta; the directions from
-  // uniformDirections.
+  // Stages 5-6 (jointsAndBackboneUniform): q_1 = theta_0 + theta, q_n = 2 theta; the points from uniformBackbone.
   const T joint = 2.0 * rad;
-  T first_c, first_s;
-  const T joint1 = firstJoint(s.base_wall_share, rad, cos_half, sin_half, first_c, first_s);
-  const T tip_angle = joint1 + static_cast<double>(n - 1) * joint;
   T dir_c[kMaxChambers], dir_s[kMaxChambers], px[kMaxChambers], py[kMaxChambers];
-  uniformDirections(first_c, first_s, cos_half, sin_half, n, dir_c, dir_s);
-  T xs = splat<T>(s.base_segment_length_m), ys = zero;
-  for (int i = 0; i < n; ++i) {
-    xs += s.segment_length_m[i] * dir_c[i];
-    ys += s.segment_length_m[i] * dir_s[i];
-    px[i] = xs;
-    py[i] = ys;
-  }
+  const T joint1 = uniformBackbone(s.base_wall_share, rad, cos_half, sin_half, n, s.base_segment_length_m,
+                                   s.segment_length_m, dir_c, dir_s, px, py, 1);
+  const T tip_angle = joint1 + static_cast<double>(n - 1) * joint;
 
   const std::size_t un = static_cast<std::size_t>(n);
   for (int i = 0; i < valid; ++i) {

@@ -293,32 +293,33 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
 
 namespace {
 
-// Stages 5-6 for identical chambers: q_1 = theta_0 + theta, q_n = 2 theta, so segment n points along q_1 + 2 (n - 1)
-// theta and nothing per chamber needs to be looked up or copied. The directions come from uniformDirections
-// (simd_math.hpp), which the batch kernel shares, so that both round alike.
-void jointsAndBackboneUniform(const FingerParameters& parameters, const HalfAngle& h, FingerState& out) {
+// Stages 5-6 for identical chambers: q_1 = theta_0 + theta, q_n = 2 theta, and nothing per chamber needs to be looked
+// up or copied. uniformBackbone (simd_math.hpp) is shared with the batch kernel, so that both round alike.
+void jointsAndBackboneUniform(const FingerParameters& parameters, double stretch, double bulge_m, const HalfAngle& h,
+                              FingerState& out) {
   const int n = parameters.chamber_count;
-  const double q = 2.0 * h.rad;
-  double first_c, first_s;
-  const double q1 = firstJoint(parameters.base_wall_share, h.rad, h.cos, h.sin, first_c, first_s);
-  out.half_angle_rad.setConstant(h.rad);
-  out.joint_angle_rad.setConstant(q);
-  out.joint_angle_rad[0] = q1;
-  std::array<double, kMaxChamberCount> dir_c, dir_s;
-  uniformDirections(first_c, first_s, h.cos, h.sin, n, dir_c.data(), dir_s.data());
-  double x = parameters.base_segment_length_m, y = 0.0;
   double* points = out.backbone_m.data();  // column-major 2 x (N+2)
   points[0] = 0.0;
   points[1] = 0.0;
-  points[2] = x;
-  points[3] = y;
-  const double* z = parameters.segment_length_m.data();
+  points[2] = parameters.base_segment_length_m;
+  points[3] = 0.0;
+  std::array<double, kMaxChamberCount> dir_c, dir_s;
+  const double q1 = uniformBackbone(parameters.base_wall_share, h.rad, h.cos, h.sin, n,
+                                    parameters.base_segment_length_m, parameters.segment_length_m.data(),
+                                    dir_c.data(), dir_s.data(), points + 4, points + 5, 2);
+  const double q = 2.0 * h.rad;
+  // One plain loop for the four per-chamber columns (four setConstant calls cost more instructions than the stores).
+  double* stretch_out = out.stretch.data();
+  double* bulge_out = out.bulge_m.data();
+  double* half_out = out.half_angle_rad.data();
+  double* joint_out = out.joint_angle_rad.data();
   for (int i = 0; i < n; ++i) {
-    x += z[i] * dir_c[static_cast<std::size_t>(i)];
-    y += z[i] * dir_s[static_cast<std::size_t>(i)];
-    points[2 * i + 4] = x;
-    points[2 * i + 5] = y;
+    stretch_out[i] = stretch;
+    bulge_out[i] = bulge_m;
+    half_out[i] = h.rad;
+    joint_out[i] = q;
   }
+  joint_out[0] = q1;
   out.tip_angle_rad = q1 + (n - 1) * q;
   out.walls_in_contact = h.rad > 0.0;
 }
@@ -335,9 +336,7 @@ bool FingerModel::writeState(double gauge_pa, FingerState& out) {
   if (groups_.size() == 1) {
     const GroupResult r = solveGroup(groups_[0], gauge_pa, detail);
     if (!finite(r)) return false;
-    out.stretch.setConstant(r.stretch);
-    out.bulge_m.setConstant(r.bulge_m);
-    jointsAndBackboneUniform(parameters_, r.half, out);
+    jointsAndBackboneUniform(parameters_, r.stretch, r.bulge_m, r.half, out);
     out.gauge_pa = gauge_pa;
     return true;
   }

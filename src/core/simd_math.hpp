@@ -71,16 +71,23 @@ inline bool anyOf(M m) {
   return false;
 }
 
-/// atan(t) for t >= 0 (and +inf; also right for t > -tan(pi/8)), to about one ulp (test: OwnArctangent): the
-/// reduction of Cody and Waite's atan (t > tan 3pi/8: pi/2 + atan(-1/t); t > tan pi/8: pi/4 + atan((t - 1)/(t + 1)))
-/// leaves |x| <= tan(pi/8), where atan(x) = x + x z P(z)/Q(z), z = x^2, with the [5/5] Pade approximant of
-/// (atan(x) - x)/(x z) (relative error 2.7e-17 at the end of the range; scripts/atan_coefficients.py derives it).
-/// P and Q go by Estrin's scheme (three levels of independent products instead of a chain of five). Written without
-/// branches so that a pack takes it lane by lane; a plain double skips the reduction's division where it divides by
-/// 1, which changes no bit (t/1 = t) and saves its latency in the single evaluation.
-/// Why our own: glibc's atan has no pack form, and a pack must round as the single evaluation does.
+/// atan(t) for 0 <= t <= 1/8 by its Taylor series t + t z sum_{k=1..8} (-z)^(k-1)/(2k+1), z = t^2: the first term left
+/// out, t^19/19, is below 3e-18 t there. No division, and Estrin's scheme (the pairs, then z^2 and z^4), so its
+/// latency is about half the general form's.
+constexpr double kAtanSmallLimit = 0.125;
 template <class T>
-inline T atanNonNegative(T t) {
+inline T atanSmall(T t) {
+  const T z = t * t;
+  const T z2 = z * z;
+  const T z4 = z2 * z2;
+  const T p = (splat<T>(-1.0 / 3.0) + z * splat<T>(1.0 / 5.0)) + z2 * (splat<T>(-1.0 / 7.0) + z * splat<T>(1.0 / 9.0)) +
+              z4 * ((splat<T>(-1.0 / 11.0) + z * splat<T>(1.0 / 13.0)) +
+                    z2 * (splat<T>(-1.0 / 15.0) + z * splat<T>(1.0 / 17.0)));
+  return t + t * z * p;
+}
+
+template <class T>
+inline T atanGeneral(T t) {
   const auto big = t > splat<T>(2.4142135623730950488);
   const auto mid = t > splat<T>(0.4142135623730950488);
   const T one = splat<T>(1.0);
@@ -105,79 +112,160 @@ inline T atanNonNegative(T t) {
   return base_hi + (x + (x * z * (p / q) + base_lo));
 }
 
+/// atan(t) for t >= 0 (and +inf; also right for t > -tan(pi/8)), to about one ulp (test: OwnArctangent): the
+/// reduction of Cody and Waite's atan (t > tan 3pi/8: pi/2 + atan(-1/t); t > tan pi/8: pi/4 + atan((t - 1)/(t + 1)))
+/// leaves |x| <= tan(pi/8), where atan(x) = x + x z P(z)/Q(z), z = x^2, with the [5/5] Pade approximant of
+/// (atan(x) - x)/(x z) (relative error 2.7e-17 at the end of the range; scripts/atan_coefficients.py derives it).
+/// P and Q go by Estrin's scheme (three levels of independent products instead of a chain of five). Written without
+/// branches so that a pack takes it lane by lane; a plain double skips the reduction's division where it divides by
+/// 1, which changes no bit (t/1 = t) and saves its latency in the single evaluation.
+/// Why our own: glibc's atan has no pack form, and a pack must round as the single evaluation does.
+/// Small arguments (t <= 1/8, which covers the walls' half angles up to 7 degrees, the validated range of the
+/// calibrated finger) take atanSmall instead: no reduction and no division.
+template <class T>
+inline T atanNonNegative(T t) {
+  if constexpr (lanesOf<T>() == 1) {
+    return t <= kAtanSmallLimit ? atanSmall(t) : atanGeneral(t);
+  } else {
+    // A pack computes the form its lanes need, both only when its lanes straddle the limit.
+    const auto small = t <= splat<T>(kAtanSmallLimit);
+    if (!anyOf(~small)) return atanSmall(t);
+    if (!anyOf(small)) return atanGeneral(t);
+    return small ? atanSmall(t) : atanGeneral(t);
+  }
+}
+
 /// cos(x) and sin(x) for 0 <= x <= pi/2 by their Taylor series to x^22 and x^23 (the first term left out is below
-/// 2e-18 there), in Horner form in x^2; absolute error about one ulp. Shared by the single evaluation and the batch
-/// kernel for joint 1's base half angle (docs/MODEL.md stage 5), so that both round it alike.
+/// 2e-18 there), as polynomials in z = x^2 by Estrin's scheme: pairs of coefficients, then z^2, z^4 and z^8 combine
+/// them, a tree five products deep instead of Horner's chain of eleven. For x <= 1/8 (joint 1's base half angle stays
+/// below 0.03 rad in the validated range) the series stop at x^10 and x^11 (the first term left out, x^12/12!, is
+/// below 1e-19 there): half the work. Absolute error below 2 ulp of 1 (test: SinCosSmall). Shared by the single
+/// evaluation and the batch kernel for joint 1's base half angle (docs/MODEL.md stage 5), so that both round it alike.
+constexpr double kSinCosShortLimit = 0.125;
 template <class T>
 inline void sinCosSmall(T x, T& cos_x, T& sin_x) {
   const T z = x * x;
-  // sin x / x = sum_k (-z)^k / (2k+1)!, cos x = sum_k (-z)^k / (2k)!, k = 0..11. With b_k = (-1)^k times the Horner
-  // partial sum, b_k = 1/(2k+1)! - z b_{k+1}: every coefficient positive, b_0 the sum.
-  T s = splat<T>(1.0 / 25852016738884976640000.0);  // 1/23!
-  T c = splat<T>(1.0 / 1124000727777607680000.0);   // 1/22!
-  const double sin_coefficients[11] = {1.0 / 51090942171709440000.0, 1.0 / 121645100408832000.0,
-                                       1.0 / 355687428096000.0,      1.0 / 1307674368000.0,
-                                       1.0 / 6227020800.0,           1.0 / 39916800.0,
-                                       1.0 / 362880.0,               1.0 / 5040.0,
-                                       1.0 / 120.0,                  1.0 / 6.0,
-                                       1.0};
-  const double cos_coefficients[11] = {1.0 / 2432902008176640000.0, 1.0 / 6402373705728000.0,
-                                       1.0 / 20922789888000.0,      1.0 / 87178291200.0,
-                                       1.0 / 479001600.0,           1.0 / 3628800.0,
-                                       1.0 / 40320.0,               1.0 / 720.0,
-                                       1.0 / 24.0,                  1.0 / 2.0,
-                                       1.0};
-  for (int k = 0; k < 11; ++k) {
-    s = splat<T>(sin_coefficients[k]) - z * s;
-    c = splat<T>(cos_coefficients[k]) - z * c;
+  const T z2 = z * z;
+  const T z4 = z2 * z2;
+  // a_k (-z)^k summed over k = 0..11 (or 0..5), with a_k = 1/(2k+1)! for sin x / x and 1/(2k)! for cos x; the signs are
+  // folded into the pairs a_2j - a_2j+1 z.
+  auto pairs = [z](const double* a, T* p, int count) {
+    for (int j = 0; j < count; ++j) p[j] = splat<T>(a[2 * j]) - z * splat<T>(a[2 * j + 1]);
+  };
+  auto shortSeries = [&](const double* a) {
+    T p[3];
+    pairs(a, p, 3);
+    return (p[0] + z2 * p[1]) + z4 * p[2];
+  };
+  auto longSeries = [&](const double* a) {
+    T p[6];
+    pairs(a, p, 6);
+    const T z8 = z4 * z4;
+    return ((p[0] + z2 * p[1]) + z4 * (p[2] + z2 * p[3])) + z8 * (p[4] + z2 * p[5]);
+  };
+  static constexpr double kSin[12] = {1.0,
+                                      1.0 / 6.0,
+                                      1.0 / 120.0,
+                                      1.0 / 5040.0,
+                                      1.0 / 362880.0,
+                                      1.0 / 39916800.0,
+                                      1.0 / 6227020800.0,
+                                      1.0 / 1307674368000.0,
+                                      1.0 / 355687428096000.0,
+                                      1.0 / 121645100408832000.0,
+                                      1.0 / 51090942171709440000.0,
+                                      1.0 / 25852016738884976640000.0};
+  static constexpr double kCos[12] = {1.0,
+                                      1.0 / 2.0,
+                                      1.0 / 24.0,
+                                      1.0 / 720.0,
+                                      1.0 / 40320.0,
+                                      1.0 / 3628800.0,
+                                      1.0 / 479001600.0,
+                                      1.0 / 87178291200.0,
+                                      1.0 / 20922789888000.0,
+                                      1.0 / 6402373705728000.0,
+                                      1.0 / 2432902008176640000.0,
+                                      1.0 / 1124000727777607680000.0};
+  bool all_short, any_short;
+  if constexpr (lanesOf<T>() == 1) {
+    all_short = any_short = x <= kSinCosShortLimit;
+  } else {
+    const auto short_lane = x <= splat<T>(kSinCosShortLimit);
+    all_short = !anyOf(~short_lane);
+    any_short = anyOf(short_lane);
   }
-  sin_x = x * s;
-  cos_x = c;
+  if (all_short) {
+    sin_x = x * shortSeries(kSin);
+    cos_x = shortSeries(kCos);
+  } else if (!any_short) {
+    sin_x = x * longSeries(kSin);
+    cos_x = longSeries(kCos);
+  } else {
+    // A pack that straddles the limit: each lane as the single evaluation would take it.
+    const auto short_lane = x <= splat<T>(kSinCosShortLimit);
+    sin_x = short_lane ? x * shortSeries(kSin) : x * longSeries(kSin);
+    cos_x = short_lane ? shortSeries(kCos) : longSeries(kCos);
+  }
 }
 
-/// The directions of the N segments of a finger whose chambers are identical (docs/MODEL.md stage 6): segment 1
-/// points along Theta_1 = theta_0 + theta, and each later one turns by r = e^(2 i theta) more: segment n along
-/// Theta_1 + 2 (n - 1) theta. r^(2^k) come from squaring and every direction from one product with a power already
-/// there, so the longest chain of dependent complex products is log2(N) + 1 long instead of N - 1 (a chain of
-/// rotations is what limited the latency).
-/// @param first_c, first_s cos and sin of Theta_1
-/// @param cos_half, sin_half cos and sin of theta
-/// @param[out] dir_c, dir_s cos and sin of Theta_1..Theta_N (N entries each)
+/// Stages 5-6 for identical chambers (docs/MODEL.md): the joints q_1 = theta_0 + theta (theta_0 = s0 theta, the passive
+/// base segment's face) and q_n = 2 theta, and the backbone's points 2..N+1 (point 0 is the mount, point 1 the end of
+/// the base segment, (Z_0, 0)). Segment n points along q_1 + 2 (n - 1) theta, that is e^(i q_1) r^(n-1) with
+/// r = e^(2 i theta): directions 1..3 come from r and r^2, and every later one from the one four before it and r^4, so
+/// that the longest chain of dependent complex products is 2 + (N - 4)/4 long instead of N - 1 (a chain of rotations
+/// limited the latency), in one short loop (a tree of doubling steps was as short, but its nested loops cost more
+/// instructions than the products). With s0 = 0, e^(i q_1) is theta's own, exactly.
+/// Shared by the single evaluation and the batch kernel, so that both round alike.
+/// @param dir_c, dir_s scratch for N directions
+/// @param[out] x, y the points' coordinates, point 2 + j at x[j * stride], y[j * stride]
+/// @return q_1
 template <class T>
-inline void uniformDirections(T first_c, T first_s, T cos_half, T sin_half, int chamber_count, T* dir_c, T* dir_s) {
+inline T uniformBackbone(double base_wall_share, T theta, T cos_half, T sin_half, int chamber_count,
+                         double base_segment_length_m, const double* segment_length_m, T* dir_c, T* dir_s, T* x,
+                         T* y, int stride) {
   // r = e^(2 i theta): cos 2 theta as a product, which does not cancel near pi/4.
-  T pow_c = (cos_half - sin_half) * (cos_half + sin_half);
-  T pow_s = splat<T>(2.0) * sin_half * cos_half;
-  dir_c[0] = first_c;
-  dir_s[0] = first_s;
-  for (int done = 1; done < chamber_count; done *= 2) {
-    // Directions done..2 done - 1 are directions 0..done - 1 turned by r^done.
-    for (int j = done; j < 2 * done && j < chamber_count; ++j) {
-      dir_c[j] = dir_c[j - done] * pow_c - dir_s[j - done] * pow_s;
-      dir_s[j] = dir_s[j - done] * pow_c + dir_c[j - done] * pow_s;
-    }
-    const T c2 = (pow_c - pow_s) * (pow_c + pow_s);
-    pow_s = splat<T>(2.0) * pow_s * pow_c;
-    pow_c = c2;
+  const T r1_c = (cos_half - sin_half) * (cos_half + sin_half);
+  const T r1_s = splat<T>(2.0) * sin_half * cos_half;
+  const T r2_c = (r1_c - r1_s) * (r1_c + r1_s);
+  const T r2_s = splat<T>(2.0) * r1_s * r1_c;
+  const T r4_c = (r2_c - r2_s) * (r2_c + r2_s);
+  const T r4_s = splat<T>(2.0) * r2_s * r2_c;
+  T q1 = theta, first_c = cos_half, first_s = sin_half;
+  if (base_wall_share != 0.0) {
+    const T theta0 = base_wall_share * theta;
+    T c0, s0;
+    sinCosSmall(theta0, c0, s0);
+    first_c = c0 * cos_half - s0 * sin_half;
+    first_s = s0 * cos_half + c0 * sin_half;
+    q1 = theta0 + theta;
   }
-}
-
-/// Joint 1 of identical chambers (docs/MODEL.md stage 5): q_1 = theta_0 + theta with theta_0 = s0 theta, and the
-/// direction of segment 1, e^(i q_1) = e^(i theta_0) e^(i theta). With s0 = 0 (an inert base face) nothing is
-/// computed: q_1 = theta and the direction is theta's own, exactly.
-template <class T>
-inline T firstJoint(double base_wall_share, T theta, T cos_half, T sin_half, T& first_c, T& first_s) {
-  if (base_wall_share == 0.0) {
-    first_c = cos_half;
-    first_s = sin_half;
-    return theta;
+  T c[4], s[4];
+  c[0] = first_c;
+  s[0] = first_s;
+  c[1] = first_c * r1_c - first_s * r1_s;
+  s[1] = first_s * r1_c + first_c * r1_s;
+  c[2] = first_c * r2_c - first_s * r2_s;
+  s[2] = first_s * r2_c + first_c * r2_s;
+  c[3] = c[1] * r2_c - s[1] * r2_s;
+  s[3] = s[1] * r2_c + c[1] * r2_s;
+  const int head = chamber_count < 4 ? chamber_count : 4;
+  for (int j = 0; j < head; ++j) {
+    dir_c[j] = c[j];
+    dir_s[j] = s[j];
   }
-  const T theta0 = base_wall_share * theta;
-  T c0, s0;
-  sinCosSmall(theta0, c0, s0);
-  first_c = c0 * cos_half - s0 * sin_half;
-  first_s = s0 * cos_half + c0 * sin_half;
-  return theta0 + theta;
+  for (int j = 4; j < chamber_count; ++j) {
+    dir_c[j] = dir_c[j - 4] * r4_c - dir_s[j - 4] * r4_s;
+    dir_s[j] = dir_s[j - 4] * r4_c + dir_c[j - 4] * r4_s;
+  }
+  T px = splat<T>(base_segment_length_m), py = splat<T>(0.0);
+  for (int i = 0; i < chamber_count; ++i) {
+    px += segment_length_m[i] * dir_c[i];
+    py += segment_length_m[i] * dir_s[i];
+    x[i * stride] = px;
+    y[i * stride] = py;
+  }
+  return q1;
 }
 
 }  // namespace
