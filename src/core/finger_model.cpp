@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "pneumatic_finger/core/units.hpp"
 #include "batch_kernel.hpp"
@@ -295,10 +296,13 @@ namespace {
 
 // Stages 5-6 for identical chambers: q_1 = theta_0 + theta, q_n = 2 theta, and nothing per chamber needs to be looked
 // up or copied. uniformBackbone (simd_math.hpp) is shared with the batch kernel, so that both round alike.
+// kChambers > 0 is the chamber count as a compile-time constant, so that the compiler unrolls the loops over the
+// chambers (their control cost as much as their arithmetic); 0 takes it from the parameters.
+template <int kChambers>
 void jointsAndBackboneUniform(const FingerParameters& parameters, double stretch, double bulge_m, const HalfAngle& h,
                               FingerState& out) {
-  const int n = parameters.chamber_count;
-  double* points = out.backbone_m.data();  // column-major 2 x (N+2)
+  const int n = kChambers > 0 ? kChambers : parameters.chamber_count;
+  double* __restrict points = out.backbone_m.data();  // column-major 2 x (N+2)
   points[0] = 0.0;
   points[1] = 0.0;
   points[2] = parameters.base_segment_length_m;
@@ -309,10 +313,11 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, double stretch
                                     dir_c.data(), dir_s.data(), points + 4, points + 5, 2);
   const double q = 2.0 * h.rad;
   // One plain loop for the four per-chamber columns (four setConstant calls cost more instructions than the stores).
-  double* stretch_out = out.stretch.data();
-  double* bulge_out = out.bulge_m.data();
-  double* half_out = out.half_angle_rad.data();
-  double* joint_out = out.joint_angle_rad.data();
+  // Distinct arrays: __restrict spares the compiler's run-time checks for overlap, which cost more than the stores.
+  double* __restrict stretch_out = out.stretch.data();
+  double* __restrict bulge_out = out.bulge_m.data();
+  double* __restrict half_out = out.half_angle_rad.data();
+  double* __restrict joint_out = out.joint_angle_rad.data();
   for (int i = 0; i < n; ++i) {
     stretch_out[i] = stretch;
     bulge_out[i] = bulge_m;
@@ -322,6 +327,21 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, double stretch
   joint_out[0] = q1;
   out.tip_angle_rad = q1 + (n - 1) * q;
   out.walls_in_contact = h.rad > 0.0;
+}
+
+// One instance per chamber count up to kUnrolledChambers (the fingers people build have a handful to a dozen
+// chambers), the run-time count above.
+using UniformWriter = void (*)(const FingerParameters&, double, double, const HalfAngle&, FingerState&);
+constexpr int kUnrolledChambers = 16;
+template <std::size_t... kCounts>
+constexpr std::array<UniformWriter, sizeof...(kCounts)> uniformWriters(std::index_sequence<kCounts...>) {
+  return {&jointsAndBackboneUniform<static_cast<int>(kCounts)>...};
+}
+constexpr std::array<UniformWriter, kUnrolledChambers + 1> kUniformWriters =
+    uniformWriters(std::make_index_sequence<kUnrolledChambers + 1>{});
+
+UniformWriter uniformWriterFor(int chamber_count) {
+  return kUniformWriters[static_cast<std::size_t>(chamber_count <= kUnrolledChambers ? chamber_count : 0)];
 }
 
 }  // namespace
@@ -336,7 +356,7 @@ bool FingerModel::writeState(double gauge_pa, FingerState& out) {
   if (groups_.size() == 1) {
     const GroupResult r = solveGroup(groups_[0], gauge_pa, detail);
     if (!finite(r)) return false;
-    jointsAndBackboneUniform(parameters_, r.stretch, r.bulge_m, r.half, out);
+    uniformWriterFor(parameters_.chamber_count)(parameters_, r.stretch, r.bulge_m, r.half, out);
     out.gauge_pa = gauge_pa;
     return true;
   }

@@ -218,12 +218,13 @@ inline void sinCosSmall(T x, T& cos_x, T& sin_x) {
 /// instructions than the products). With s0 = 0, e^(i q_1) is theta's own, exactly.
 /// Shared by the single evaluation and the batch kernel, so that both round alike.
 /// @param dir_c, dir_s scratch for N directions
-/// @param[out] x, y the points' coordinates, point 2 + j at x[j * stride], y[j * stride]
+/// @param[out] x, y the points' coordinates, point 2 + j at x[j * stride], y[j * stride] (no element reached through
+/// both, nor through the scratch: hence __restrict)
 /// @return q_1
 template <class T>
 inline T uniformBackbone(double base_wall_share, T theta, T cos_half, T sin_half, int chamber_count,
-                         double base_segment_length_m, const double* segment_length_m, T* dir_c, T* dir_s, T* x,
-                         T* y, int stride) {
+                         double base_segment_length_m, const double* __restrict segment_length_m,
+                         T* __restrict dir_c, T* __restrict dir_s, T* __restrict x, T* __restrict y, int stride) {
   // r = e^(2 i theta): cos 2 theta as a product, which does not cancel near pi/4.
   const T r1_c = (cos_half - sin_half) * (cos_half + sin_half);
   const T r1_s = splat<T>(2.0) * sin_half * cos_half;
