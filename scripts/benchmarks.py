@@ -177,7 +177,7 @@ the variant returned NaN: its quartic root finder produced no root that satisfie
 
 - **robust**, the default: safeguarded Halley on the stretch polynomial and on Wang's relation, rewritten as a
   polynomial in (1+tan²θ)^¼ − 1 (`src/core/stages.cpp`).
-- **table**: piecewise degree-7 polynomials of θ, cos θ and sin θ in √P, built at start-up. The segments double until
+- **table**: piecewise degree-7 polynomials of θ, cos θ, sin θ and joint 1's cos q₁, sin q₁ in √P, built at start-up. The segments double until
   the measured error against the robust solver is ≤ 5e-13 rad. Above the table's range (3 kg/cm²), the robust
   solver answers, which is why the table's hard-case time is close to the robust one.
 - **paper**: the paper's own closed forms: eq 10–12 (trigonometric Cardano), then eq 16–35 (Ferrari).
@@ -262,7 +262,7 @@ Each verdict is computed by `scripts/benchmarks.py` from the figures above; the 
   until its slowest lane is done), which is what keeps the bits of the single evaluation.
 - **Table variant ≤ {TARGET_TABLE_NS:.0f} ns at its measured bound:** bound {verdict(table_err <= TARGET_ERROR_RAD)}, at
   {fmt_err(table_err)} rad against the quad reference; speed {verdict(table_ns <= TARGET_TABLE_NS)}: {table_ns:.0f} ns,
-  {ratio(table_ns, TARGET_TABLE_NS)}. The table skips the chain, but a √P, three degree-7 polynomials and the backbone
+  {ratio(table_ns, TARGET_TABLE_NS)}. The table skips the chain, but a √P, five degree-7 polynomials and the backbone
   remain (joints + backbone of unequal chambers, the general chain of rotations:
   {runs["robust_stage/5"]["real_time"]:.0f} ns above).
 - **Contact solve ≤ {TARGET_CONTACT_NS:.0f} ns per finger and obstacle:** {verdict(contact_ns <= TARGET_CONTACT_NS)}:

@@ -153,11 +153,13 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
     sin_half[i] = wall.half.sin;
   }
 
-  // Stages 5-6 (jointsAndBackboneUniform): q_1 = theta_0 + theta, q_n = 2 theta; the points from uniformBackbone.
+  // Stages 5-6 (jointsAndBackboneUniform): q_1 = theta_0 + theta, q_n = 2 theta; the points from uniformPoints.
   const T joint = 2.0 * rad;
+  T first_c, first_s;
+  const T joint1 = firstJoint(s.base_wall_share, rad, cos_half, sin_half, first_c, first_s);
   T dir_c[kMaxChambers], dir_s[kMaxChambers], px[kMaxChambers], py[kMaxChambers];
-  const T joint1 = uniformBackbone(s.base_wall_share, rad, cos_half, sin_half, n, s.base_segment_length_m,
-                                   s.segment_length_m, dir_c, dir_s, px, py, 1);
+  uniformPoints(first_c, first_s, cos_half, sin_half, n, s.base_segment_length_m, s.segment_length_m, dir_c, dir_s,
+                px, py, 1);
   const T tip_angle = joint1 + static_cast<double>(n - 1) * joint;
 
   const std::size_t un = static_cast<std::size_t>(n);

@@ -17,7 +17,9 @@ namespace {
 
 constexpr int kTableDegree = 7;                   // per-segment polynomial degree
 constexpr int kTableNodes = kTableDegree + 1;     // Chebyshev nodes per segment
-constexpr int kTableFunctions = 3;                // theta, cos(theta), sin(theta)
+// theta, cos(theta), sin(theta), and cos and sin of joint 1's q_1 = (1 + s0) theta, so that a finger of identical chambers
+// needs no series for its base face (simd_math.hpp, firstJoint) when the table answers.
+constexpr int kTableFunctions = 5;
 constexpr int kTableStride = kTableNodes * kTableFunctions;
 constexpr int kTableMaxSegments = 4096;
 
@@ -127,28 +129,30 @@ void FingerModel::buildTable(ChamberGroup& group) {
   const double u_end = std::sqrt(options_.table_max_gauge_pa);
   if (!(u_end > u_begin)) return;  // never in contact within the table's range: theta = 0 or robust above
   auto exact = [&](double u) { return solveRobust(group, u * u, parameters_.atmospheric_pressure_pa).half; };
+  // e^(i q_1) as the robust solver's backbone forms it.
+  auto first = [&](const HalfAngle& h, double& c, double& s) {
+    firstJoint(parameters_.base_wall_share, h.rad, h.cos, h.sin, c, s);
+  };
   double achieved = 0.0;
   for (int segments = 8; segments <= kTableMaxSegments; segments *= 2) {
     const double width = (u_end - u_begin) / segments;
     group.table.assign(static_cast<std::size_t>(segments) * kTableStride, 0.0);
     for (int s = 0; s < segments; ++s) {
       const double u0 = u_begin + s * width;
-      // One solve per node gives theta, cos and sin together.
-      std::array<double, kTableNodes> theta_at{}, cos_at{}, sin_at{};
+      // One solve per node gives every function together.
+      std::array<std::array<double, kTableNodes>, kTableFunctions> at{};
       for (int j = 0; j < kTableNodes; ++j) {
+        const auto k = static_cast<std::size_t>(j);
         const HalfAngle h = exact(u0 + 0.5 * (chebyshevNode(j) + 1.0) * width);
-        theta_at[static_cast<std::size_t>(j)] = h.rad;
-        cos_at[static_cast<std::size_t>(j)] = h.cos;
-        sin_at[static_cast<std::size_t>(j)] = h.sin;
+        at[0][k] = h.rad;
+        at[1][k] = h.cos;
+        at[2][k] = h.sin;
+        first(h, at[3][k], at[4][k]);
       }
-      const auto theta = monomialInterpolant(theta_at);
-      const auto cosine = monomialInterpolant(cos_at);
-      const auto sine = monomialInterpolant(sin_at);
       double* row = &group.table[static_cast<std::size_t>(s) * kTableStride];
-      for (int i = 0; i < kTableNodes; ++i) {
-        row[i * kTableFunctions + 0] = theta[static_cast<std::size_t>(i)];
-        row[i * kTableFunctions + 1] = cosine[static_cast<std::size_t>(i)];
-        row[i * kTableFunctions + 2] = sine[static_cast<std::size_t>(i)];
+      for (int f = 0; f < kTableFunctions; ++f) {
+        const auto coefficients = monomialInterpolant(at[static_cast<std::size_t>(f)]);
+        for (int i = 0; i < kTableNodes; ++i) row[i * kTableFunctions + f] = coefficients[static_cast<std::size_t>(i)];
       }
     }
     group.table_u_begin = u_begin;
@@ -163,9 +167,12 @@ void FingerModel::buildTable(ChamberGroup& group) {
         const double u = u_begin + (s + j / 10.0) * width;
         const double p = u * u;
         const HalfAngle want = exact(u);
+        double want_first_c, want_first_s;
+        first(want, want_first_c, want_first_s);
         const GroupResult got = solveGroup(group, p, false);
         achieved = std::max({achieved, std::fabs(got.half.rad - want.rad), std::fabs(got.half.cos - want.cos),
-                             std::fabs(got.half.sin - want.sin)});
+                             std::fabs(got.half.sin - want.sin), std::fabs(got.first_c - want_first_c),
+                             std::fabs(got.first_s - want_first_s)});
       }
     }
     if (achieved <= options_.table_tolerance_rad) break;
@@ -213,7 +220,7 @@ FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, doub
       s = std::min(std::max(s, 0), group.table_segments - 1);
       const double x = 2.0 * (pos - s) - 1.0;
       const double* row = &group.table[static_cast<std::size_t>(s) * kTableStride];
-      // Estrin's scheme for the three degree-7 polynomials: pairs, then x^2 and x^4 combine them, three levels of
+      // Estrin's scheme for the degree-7 polynomials: pairs, then x^2 and x^4 combine them, three levels of
       // independent products instead of Horner's chain of seven (the chain was the table's latency).
       static_assert(kTableDegree == 7, "Estrin's scheme below is written for degree 7");
       const double x2 = x * x, x4 = x2 * x2;
@@ -222,16 +229,19 @@ FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, doub
         const double p01 = c(0) + c(1) * x, p23 = c(2) + c(3) * x, p45 = c(4) + c(5) * x, p67 = c(6) + c(7) * x;
         return (p01 + p23 * x2) + (p45 + p67 * x2) * x4;
       };
-      double th = estrin(0), co = estrin(1), si = estrin(2);
+      double th = estrin(0), co = estrin(1), si = estrin(2), first_c = estrin(3), first_s = estrin(4);
       // Near contact the interpolant may dip a rounding error below 0: theta is 0 there by definition.
       if (th < 0.0) {
         th = 0.0;
-        co = 1.0;
-        si = 0.0;
+        co = first_c = 1.0;
+        si = first_s = 0.0;
       }
       r.half.rad = th;
       r.half.cos = co;
       r.half.sin = si;
+      r.has_first = true;
+      r.first_c = first_c;
+      r.first_s = first_s;
       return r;
     }
   }
@@ -295,22 +305,30 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
 namespace {
 
 // Stages 5-6 for identical chambers: q_1 = theta_0 + theta, q_n = 2 theta, and nothing per chamber needs to be looked
-// up or copied. uniformBackbone (simd_math.hpp) is shared with the batch kernel, so that both round alike.
+// up or copied. firstJoint and uniformPoints (simd_math.hpp) are shared with the batch kernel, so that both round alike.
 // kChambers > 0 is the chamber count as a compile-time constant, so that the compiler unrolls the loops over the
-// chambers (their control cost as much as their arithmetic); 0 takes it from the parameters.
+// chambers (their control cost as much as their arithmetic); 0 takes it from the parameters. @p first: e^(i q_1) where
+// the solver has it (two numbers: the table), or null to compute it here.
 template <int kChambers>
 void jointsAndBackboneUniform(const FingerParameters& parameters, double stretch, double bulge_m, const HalfAngle& h,
-                              FingerState& out) {
+                              const double* first, FingerState& out) {
   const int n = kChambers > 0 ? kChambers : parameters.chamber_count;
   double* __restrict points = out.backbone_m.data();  // column-major 2 x (N+2)
   points[0] = 0.0;
   points[1] = 0.0;
   points[2] = parameters.base_segment_length_m;
   points[3] = 0.0;
+  double first_c, first_s, q1;
+  if (first) {
+    first_c = first[0];
+    first_s = first[1];
+    q1 = parameters.base_wall_share == 0.0 ? h.rad : parameters.base_wall_share * h.rad + h.rad;  // as firstJoint
+  } else {
+    q1 = firstJoint(parameters.base_wall_share, h.rad, h.cos, h.sin, first_c, first_s);
+  }
   std::array<double, kMaxChamberCount> dir_c, dir_s;
-  const double q1 = uniformBackbone(parameters.base_wall_share, h.rad, h.cos, h.sin, n,
-                                    parameters.base_segment_length_m, parameters.segment_length_m.data(),
-                                    dir_c.data(), dir_s.data(), points + 4, points + 5, 2);
+  uniformPoints(first_c, first_s, h.cos, h.sin, n, parameters.base_segment_length_m,
+                parameters.segment_length_m.data(), dir_c.data(), dir_s.data(), points + 4, points + 5, 2);
   const double q = 2.0 * h.rad;
   // One plain loop for the four per-chamber columns (four setConstant calls cost more instructions than the stores).
   // Distinct arrays: __restrict spares the compiler's run-time checks for overlap, which cost more than the stores.
@@ -331,7 +349,7 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, double stretch
 
 // One instance per chamber count up to kUnrolledChambers (the fingers people build have a handful to a dozen
 // chambers), the run-time count above.
-using UniformWriter = void (*)(const FingerParameters&, double, double, const HalfAngle&, FingerState&);
+using UniformWriter = void (*)(const FingerParameters&, double, double, const HalfAngle&, const double*, FingerState&);
 constexpr int kUnrolledChambers = 16;
 template <std::size_t... kCounts>
 constexpr std::array<UniformWriter, sizeof...(kCounts)> uniformWriters(std::index_sequence<kCounts...>) {
@@ -356,7 +374,9 @@ bool FingerModel::writeState(double gauge_pa, FingerState& out) {
   if (groups_.size() == 1) {
     const GroupResult r = solveGroup(groups_[0], gauge_pa, detail);
     if (!finite(r)) return false;
-    uniformWriterFor(parameters_.chamber_count)(parameters_, r.stretch, r.bulge_m, r.half, out);
+    const double first[2] = {r.first_c, r.first_s};
+    uniformWriterFor(parameters_.chamber_count)(parameters_, r.stretch, r.bulge_m, r.half, r.has_first ? first : nullptr,
+                                                out);
     out.gauge_pa = gauge_pa;
     return true;
   }

@@ -209,22 +209,40 @@ inline void sinCosSmall(T x, T& cos_x, T& sin_x) {
   }
 }
 
-/// Stages 5-6 for identical chambers (docs/MODEL.md): the joints q_1 = theta_0 + theta (theta_0 = s0 theta, the passive
-/// base segment's face) and q_n = 2 theta, and the backbone's points 2..N+1 (point 0 is the mount, point 1 the end of
-/// the base segment, (Z_0, 0)). Segment n points along q_1 + 2 (n - 1) theta, that is e^(i q_1) r^(n-1) with
+/// Joint 1 of identical chambers (docs/MODEL.md stage 5): q_1 = theta_0 + theta with theta_0 = s0 theta (the passive
+/// base segment's face), and the direction of segment 1, e^(i q_1) = e^(i theta_0) e^(i theta). With s0 = 0 nothing is
+/// computed: q_1 = theta and the direction is theta's own, exactly.
+/// @return q_1
+template <class T>
+inline T firstJoint(double base_wall_share, T theta, T cos_half, T sin_half, T& first_c, T& first_s) {
+  if (base_wall_share == 0.0) {
+    first_c = cos_half;
+    first_s = sin_half;
+    return theta;
+  }
+  const T theta0 = base_wall_share * theta;
+  T c0, s0;
+  sinCosSmall(theta0, c0, s0);
+  first_c = c0 * cos_half - s0 * sin_half;
+  first_s = s0 * cos_half + c0 * sin_half;
+  return theta0 + theta;
+}
+
+/// Stage 6 for identical chambers (docs/MODEL.md): the backbone's points 2..N+1 (point 0 is the mount, point 1 the end
+/// of the base segment, (Z_0, 0)). Segment n points along q_1 + 2 (n - 1) theta, that is e^(i q_1) r^(n-1) with
 /// r = e^(2 i theta): directions 1..3 come from r and r^2, and every later one from the one four before it and r^4, so
 /// that the longest chain of dependent complex products is 2 + (N - 4)/4 long instead of N - 1 (a chain of rotations
 /// limited the latency), in one short loop (a tree of doubling steps was as short, but its nested loops cost more
-/// instructions than the products). With s0 = 0, e^(i q_1) is theta's own, exactly.
-/// Shared by the single evaluation and the batch kernel, so that both round alike.
+/// instructions than the products). Shared by the single evaluation and the batch kernel, so that both round alike.
+/// @param first_c, first_s e^(i q_1), from firstJoint (or the table's polynomials)
+/// @param cos_half, sin_half cos and sin of theta
 /// @param dir_c, dir_s scratch for N directions
 /// @param[out] x, y the points' coordinates, point 2 + j at x[j * stride], y[j * stride] (no element reached through
 /// both, nor through the scratch: hence __restrict)
-/// @return q_1
 template <class T>
-inline T uniformBackbone(double base_wall_share, T theta, T cos_half, T sin_half, int chamber_count,
-                         double base_segment_length_m, const double* __restrict segment_length_m,
-                         T* __restrict dir_c, T* __restrict dir_s, T* __restrict x, T* __restrict y, int stride) {
+inline void uniformPoints(T first_c, T first_s, T cos_half, T sin_half, int chamber_count,
+                          double base_segment_length_m, const double* __restrict segment_length_m,
+                          T* __restrict dir_c, T* __restrict dir_s, T* __restrict x, T* __restrict y, int stride) {
   // r = e^(2 i theta): cos 2 theta as a product, which does not cancel near pi/4.
   const T r1_c = (cos_half - sin_half) * (cos_half + sin_half);
   const T r1_s = splat<T>(2.0) * sin_half * cos_half;
@@ -232,15 +250,6 @@ inline T uniformBackbone(double base_wall_share, T theta, T cos_half, T sin_half
   const T r2_s = splat<T>(2.0) * r1_s * r1_c;
   const T r4_c = (r2_c - r2_s) * (r2_c + r2_s);
   const T r4_s = splat<T>(2.0) * r2_s * r2_c;
-  T q1 = theta, first_c = cos_half, first_s = sin_half;
-  if (base_wall_share != 0.0) {
-    const T theta0 = base_wall_share * theta;
-    T c0, s0;
-    sinCosSmall(theta0, c0, s0);
-    first_c = c0 * cos_half - s0 * sin_half;
-    first_s = s0 * cos_half + c0 * sin_half;
-    q1 = theta0 + theta;
-  }
   T c[4], s[4];
   c[0] = first_c;
   s[0] = first_s;
@@ -266,7 +275,6 @@ inline T uniformBackbone(double base_wall_share, T theta, T cos_half, T sin_half
     x[i * stride] = px;
     y[i * stride] = py;
   }
-  return q1;
 }
 
 }  // namespace

@@ -154,6 +154,10 @@ class FingerModel {
   struct GroupResult {
     double stretch, bulge_m;
     HalfAngle half;
+    /// e^(i q_1) of a finger of identical chambers (joint 1, with the base face's share), where the solver has it
+    /// without computing (the table's polynomials); otherwise has_first is false and the backbone computes it.
+    bool has_first = false;
+    double first_c = 1.0, first_s = 0.0;
   };
 
   /// The robust chain (stages 1-4) for one group of identical chambers.
