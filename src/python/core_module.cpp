@@ -86,26 +86,25 @@ class PyFingerModel {
     const Array p = pressures(gauge_pa, scalar);
     const auto count = static_cast<py::ssize_t>(p.size());
     const py::ssize_t n = model_->chamberCount();
-    Array stretch({count, n}), bulge({count, n}), half({count, n}), joints({count, n}), backbone({count, n + 2, py::ssize_t(2)}),
-        tip({count});
-    py::array_t<int> status({count});
-    pf::BatchOutputs out;
-    out.stretch = stretch.mutable_data();
-    out.bulge_m = bulge.mutable_data();
-    out.half_angle_rad = half.mutable_data();
-    out.joint_angle_rad = joints.mutable_data();
-    out.backbone_m = backbone.mutable_data();
-    out.tip_angle_rad = tip.mutable_data();
-    out.status = status.mutable_data();
+    // The batch's arrays are the core's BatchBuffers (one definition of their shapes); numpy views them, and a capsule
+    // keeps them alive as long as any view does.
+    auto* rows = new pf::BatchBuffers(static_cast<std::size_t>(count), static_cast<int>(n));
+    const py::capsule owner(rows, [](void* r) { delete static_cast<pf::BatchBuffers*>(r); });
     const double* gauges = p.data();
     {
       // The loop runs in C++ without the GIL; evaluate() keeps a cache, so one call at a time per model.
       py::gil_scoped_release release;
       std::lock_guard<std::mutex> lock(mutex_);
-      model_->evaluateMany(gauges, static_cast<std::size_t>(count), out);
+      model_->evaluateMany(gauges, static_cast<std::size_t>(count), rows->outputs());
     }
+    auto view = [&owner](std::vector<double>& v, std::vector<py::ssize_t> shape) {
+      return Array(std::move(shape), v.data(), owner);
+    };
+    const Array stretch = view(rows->stretch, {count, n}), bulge = view(rows->bulge_m, {count, n}),
+                half = view(rows->half_angle_rad, {count, n}), joints = view(rows->joint_angle_rad, {count, n}),
+                backbone = view(rows->backbone_m, {count, n + 2, py::ssize_t(2)}), tip = view(rows->tip_angle_rad, {count});
     py::list names;
-    for (py::ssize_t i = 0; i < count; ++i) names.append(statusName(status.data()[i]));
+    for (py::ssize_t i = 0; i < count; ++i) names.append(statusName(rows->status[static_cast<std::size_t>(i)]));
     py::dict d;
     auto put = [&](const char* key, const Array& a) {
       d[key] = scalar ? py::object(a[py::int_(0)]) : py::object(a);
