@@ -9,12 +9,7 @@ OUT="${1:-$ROOT/docs/cell_rviz.png}"
 PHASE="${2:-lift}"
 CONFIG="${3:-$ROOT/rviz/pick_and_place_cell.rviz}"
 source "$ROOT/scripts/ros_env.sh"
-port=$ROS_PORT
-display=":$((port % 400 + 100))"
-pids=()
-cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }
-trap cleanup EXIT
-Xvfb "$display" -screen 0 1200x800x24 -nolisten tcp >/dev/null 2>&1 & pids+=($!)
+source "$ROOT/scripts/headless.sh"  # Xvfb on $display; every pid in $pids is stopped on exit
 DISPLAY="$display" roslaunch --port "$port" pneumatic_finger pick_and_place_cell.launch rviz:=true rviz_config:="$(realpath "$CONFIG")" \
   >"$ROOT/build/screenshot_cell.log" 2>&1 & pids+=($!)
 sleep 8   # rviz start-up

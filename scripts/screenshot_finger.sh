@@ -6,12 +6,7 @@ ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 GAUGE="${1:-196133}"
 OUT="${2:-$ROOT/docs/finger_rviz.png}"
 source "$ROOT/scripts/ros_env.sh"
-port=$ROS_PORT
-display=":$((port % 400 + 100))"
-pids=()
-cleanup() { for p in "${pids[@]}"; do kill "$p" 2>/dev/null || true; done; wait 2>/dev/null || true; }
-trap cleanup EXIT
-Xvfb "$display" -screen 0 1200x800x24 -nolisten tcp >/dev/null 2>&1 & pids+=($!)
+source "$ROOT/scripts/headless.sh"  # Xvfb on $display; every pid in $pids is stopped on exit
 DISPLAY="$display" roslaunch --port "$port" pneumatic_finger finger.launch rviz:=true >"$ROOT/build/screenshot.log" 2>&1 & pids+=($!)
 sleep 6
 absolute=$(/usr/bin/python3 -c "print($GAUGE + 101325)")
