@@ -112,7 +112,9 @@ inline T atanGeneral(T t) {
   return base_hi + (x + (x * z * (p / q) + base_lo));
 }
 
-/// atan(t) for t >= 0 (and +inf; also right for t > -tan(pi/8)), to about one ulp (test: OwnArctangent): the
+/// atan(t) for t >= 0 and +inf (not for t < 0, which the short form would take), to about one ulp (test:
+/// OwnArctangent). Small arguments (t <= 1/8, which covers the walls' half angles up to 7 degrees, the validated range
+/// of the calibrated finger) take atanSmall: no reduction and no division. Larger ones take the general form: the
 /// reduction of Cody and Waite's atan (t > tan 3pi/8: pi/2 + atan(-1/t); t > tan pi/8: pi/4 + atan((t - 1)/(t + 1)))
 /// leaves |x| <= tan(pi/8), where atan(x) = x + x z P(z)/Q(z), z = x^2, with the [5/5] Pade approximant of
 /// (atan(x) - x)/(x z) (relative error 2.7e-17 at the end of the range; scripts/atan_coefficients.py derives it).
@@ -120,8 +122,6 @@ inline T atanGeneral(T t) {
 /// branches so that a pack takes it lane by lane; a plain double skips the reduction's division where it divides by
 /// 1, which changes no bit (t/1 = t) and saves its latency in the single evaluation.
 /// Why our own: glibc's atan has no pack form, and a pack must round as the single evaluation does.
-/// Small arguments (t <= 1/8, which covers the walls' half angles up to 7 degrees, the validated range of the
-/// calibrated finger) take atanSmall instead: no reduction and no division.
 template <class T>
 inline T atanNonNegative(T t) {
   if constexpr (lanesOf<T>() == 1) {
