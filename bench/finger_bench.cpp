@@ -209,6 +209,25 @@ void benchVariant(benchmark::State& state, const std::string& name, bool hard) {
   state.SetLabel(hard ? "hard cases" : "validated range");
 }
 
+// Two independent models (robust solver) evaluated alternately, each on its own pressure: if the CPU overlapped one
+// evaluation with the next, a pair would take less than twice one evaluation (robust/validated, the same loop).
+void benchPair(benchmark::State& state) {
+  const std::vector<double>& pressures = validatedPressures();
+  auto first = makeVariant("robust"), second = makeVariant("robust");
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const pf::FingerState& a = first->evaluate(pressures[i]);
+    const pf::FingerState& b = second->evaluate(pressures[i + 1]);
+    benchmark::DoNotOptimize(a.backbone_m.data());
+    benchmark::DoNotOptimize(b.backbone_m.data());
+    benchmark::ClobberMemory();
+    i += 2;
+    if (i + 1 >= pressures.size()) i = 0;
+  }
+  state.counters["evaluations_per_iteration"] = 2;
+  state.SetLabel("two independent models, alternately");
+}
+
 // The stages alone, over the validated range, to show where the time of a robust evaluation goes.
 void benchStages(benchmark::State& state, int stage) {
   const std::vector<double>& pressures = validatedPressures();
@@ -331,6 +350,7 @@ int main(int argc, char** argv) {
                                    [name, hard](benchmark::State& s) { benchVariant(s, name, hard); });
     }
   }
+  benchmark::RegisterBenchmark("robust_pair/validated", benchPair);
   for (int stage = 1; stage <= 5; ++stage) {
     benchmark::RegisterBenchmark(("robust_stage/" + std::to_string(stage)).c_str(),
                                  [stage](benchmark::State& s) { benchStages(s, stage); });
