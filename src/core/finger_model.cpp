@@ -322,7 +322,7 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, double stretch
   if (first) {
     first_c = first[0];
     first_s = first[1];
-    q1 = parameters.base_wall_share == 0.0 ? h.rad : parameters.base_wall_share * h.rad + h.rad;  // as firstJoint
+    q1 = firstJointAngle(parameters.base_wall_share, h.rad);
   } else {
     q1 = firstJoint(parameters.base_wall_share, h.rad, h.cos, h.sin, first_c, first_s);
   }

@@ -210,8 +210,14 @@ inline void sinCosSmall(T x, T& cos_x, T& sin_x) {
 }
 
 /// Joint 1 of identical chambers (docs/MODEL.md stage 5): q_1 = theta_0 + theta with theta_0 = s0 theta (the passive
-/// base segment's face), and the direction of segment 1, e^(i q_1) = e^(i theta_0) e^(i theta). With s0 = 0 nothing is
-/// computed: q_1 = theta and the direction is theta's own, exactly.
+/// base segment's face); with s0 = 0, q_1 = theta exactly.
+template <class T>
+inline T firstJointAngle(double base_wall_share, T theta) {
+  return base_wall_share == 0.0 ? theta : base_wall_share * theta + theta;
+}
+
+/// Joint 1 of identical chambers: q_1 (firstJointAngle) and the direction of segment 1, e^(i q_1) =
+/// e^(i theta_0) e^(i theta). With s0 = 0 nothing is computed: the direction is theta's own, exactly.
 /// @return q_1
 template <class T>
 inline T firstJoint(double base_wall_share, T theta, T cos_half, T sin_half, T& first_c, T& first_s) {
@@ -225,7 +231,7 @@ inline T firstJoint(double base_wall_share, T theta, T cos_half, T sin_half, T& 
   sinCosSmall(theta0, c0, s0);
   first_c = c0 * cos_half - s0 * sin_half;
   first_s = s0 * cos_half + c0 * sin_half;
-  return theta0 + theta;
+  return firstJointAngle(base_wall_share, theta);
 }
 
 /// Stage 6 for identical chambers (docs/MODEL.md): the backbone's points 2..N+1 (point 0 is the mount, point 1 the end
