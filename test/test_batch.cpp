@@ -52,6 +52,14 @@ std::vector<double> batchPressures(const pf::FingerModel& model) {
       }
     }
   }
+  // ... and the series of stages 2-3 (s = sqrt(g/3) = 1/20, at P (2 P_o + P) = 3 P_o mu / 400).
+  const double po = params.atmospheric_pressure_pa, mu = params.shear_modulus_pa[0];
+  const double at_series_limit = std::sqrt(po * po + 3.0 * po * mu * 0.05 * 0.05) - po;
+  for (int k = 1; k <= 12; ++k) {
+    for (double side : {-1.0, 1.0}) p.push_back(at_series_limit * (1.0 + side * std::pow(10.0, -k - 3)));
+  }
+  p.push_back(std::nextafter(at_series_limit, 0.0));
+  p.push_back(std::nextafter(at_series_limit, INFINITY));
   if (p.size() % 8 == 0) p.push_back(12345.0);
   return p;
 }

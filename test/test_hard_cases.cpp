@@ -61,7 +61,7 @@ TEST(HardCase, NearRestStretchExcessKeepsItsDigits) {
   const double paper_rel_9 = std::fabs(pf::paper::stretch(g9) - 1 - pf::stretchExcess(g9)) / pf::stretchExcess(g9);
   EXPECT_GT(paper_rel_6, 1e-3) << "the paper's stretch at 1e-6 Pa was expected to lose most digits";
   EXPECT_GT(paper_rel_9, 0.5) << "the paper's stretch at 1e-9 Pa was expected to lose all digits";
-  RecordProperty("paper_stretch_excess_rel_error_at_1e-6_Pa", std::to_string(paper_rel_6));
+  RecordProperty("paper_stretch_excess_rel_error_at_1e-6_Pa", pf_test::scientific(paper_rel_6));
 }
 
 // Near rest, a^3 - 1 and sqrt(2 lambda^2 - 1) - 1 cancel; the factored forms do not.
@@ -103,7 +103,7 @@ TEST(HardCase, ContactCrossing) {
   EXPECT_LE(absError(pf::halfAngle(h14, c, b).rad, want14), 1e-14 * want14);
   const double paper_rel = absError(pf::paper::halfAngle(h14, c, b), want14) / want14;
   EXPECT_GT(paper_rel, 0.1);
-  RecordProperty("paper_half_angle_relative_error_1e-14_above_contact", std::to_string(paper_rel));
+  RecordProperty("paper_half_angle_relative_error_1e-14_above_contact", pf_test::scientific(paper_rel));
   for (int k = 1; k <= 15; ++k) {
     const double h = c * (1 + std::pow(10.0, -k));
     const double want = reference::halfAngleForBulge(h, c, b);
@@ -137,7 +137,7 @@ TEST(HardCase, ResolventBranchSwitch) {
   const auto want = reference::chamberChain(1e8, kPaper.atmospheric_pressure_pa, chamber);
   const double paper_at_1e8 = absError(pf::paper::halfAngle(want.bulge_m, c, b), want.half_angle_rad);
   EXPECT_GT(paper_at_1e8, 1e-12);
-  RecordProperty("paper_half_angle_error_at_1e8_Pa", std::to_string(paper_at_1e8));
+  RecordProperty("paper_half_angle_error_at_1e8_Pa", pf_test::scientific(paper_at_1e8));
 }
 
 // Large P: theta -> pi/2, where asin(y) is ill-conditioned (d theta/dy = 1/cos theta); and pressures so large
@@ -172,7 +172,7 @@ TEST(HardCase, NearlyBiquadraticQuartic) {
   for (double gap : {1e-15, 1e-9}) {
     const double paper = worstOver(withGap(gap), pf::SolverKind::kPaper, pressures).half_angle_rad;
     EXPECT_GT(paper, 1e-12) << "gap " << gap;
-    RecordProperty("paper_half_angle_error_gap_" + std::to_string(gap), std::to_string(paper));
+    RecordProperty("paper_half_angle_error_gap_" + std::to_string(gap), pf_test::scientific(paper));
   }
 }
 

@@ -137,7 +137,7 @@ TEST(Property, TableSolverErrorIsMeasuredAndWithinTolerance) {
   }
   EXPECT_LE(worst.half_angle_rad, pf_test::kAngleTolerance);
   EXPECT_LE(worst.point_m, pf_test::kPointTolerance);
-  RecordProperty("table_max_half_angle_error_rad", std::to_string(worst.half_angle_rad));
+  RecordProperty("table_max_half_angle_error_rad", pf_test::scientific(worst.half_angle_rad));
   // Outside its range it hands over to the robust solver.
   pf::FingerModel robust(kPaper);
   EXPECT_EQ(table.evaluate(1e6).half_angle_rad[0], robust.evaluate(1e6).half_angle_rad[0]);

@@ -62,6 +62,43 @@ TEST(Stage3Bulge, MatchesReference) {
   }
 }
 
+TEST(Stage23Series, ChainMatchesReferenceOnBothSidesOfTheSeriesLimit) {
+  // solveWall takes stages 2-3 from their power series in s = sqrt(g/3) up to s = 1/20 (simd_math.hpp), stage by stage
+  // above: both must give the reference's stretch and bulge to a few ulp. The limit is at P = 3.4e5 Pa for this finger.
+  const double po = kPaper.atmospheric_pressure_pa, mu = kPaper.shear_modulus_pa[0];
+  const double limit_pa = std::sqrt(po * po + 3.0 * po * mu * 0.05 * 0.05) - po;
+  std::vector<double> pressures = kSweep;
+  for (int k = 1; k <= 12; ++k) {
+    pressures.push_back(limit_pa * (1 - std::pow(10.0, -k)));
+    pressures.push_back(limit_pa * (1 + std::pow(10.0, -k)));
+  }
+  // Up to three times the limit's pressure (s = 0.09), where the series, were it taken, would miss by 1e-14.
+  for (double f = 0.25; f <= 3.0; f += 0.0625) pressures.push_back(limit_pa * f);
+  int below = 0, above = 0;
+  double worst_stretch = 0.0, worst_bulge = 0.0;
+  for (double p : pressures) {
+    const auto want = reference::chamberChain(p, po, paperChamber());
+    const pf::WallSolution got = pf::solveWall(p, po, mu, kPaper.chamber_height_m[0], kPaper.chamber_gap_m[0],
+                                               kPaper.wall_critical_height_m[0]);
+    (p < limit_pa ? below : above) += 1;
+    if (p == 0.0) {
+      EXPECT_EQ(got.stretch_excess, 0.0);
+      EXPECT_EQ(got.bulge_m, 0.0);
+      continue;
+    }
+    worst_stretch = std::max(worst_stretch, absError(got.stretch_excess, want.stretch_excess) / want.stretch_excess);
+    worst_bulge = std::max(worst_bulge, absError(got.bulge_m, want.bulge_m) / want.bulge_m);
+  }
+  EXPECT_GT(below, 100);
+  EXPECT_GT(above, 100);
+  // The series' own error is below 1.3e-18 (scripts/wall_series.py); what remains is rounding: s from P in four
+  // roundings and a square root, then each sum's (the terms fall off by at least 7 times each): at most 4 ulp.
+  EXPECT_LE(worst_stretch, 4 * 0x1p-52);
+  EXPECT_LE(worst_bulge, 4 * 0x1p-52);
+  RecordProperty("max_stretch_relative_error", pf_test::scientific(worst_stretch));
+  RecordProperty("max_bulge_relative_error", pf_test::scientific(worst_bulge));
+}
+
 TEST(Stage4HalfAngle, MatchesReferenceForTheReferenceBulge) {
   // Feed the reference's own bulge so that only stage 4 is measured.
   const double b = kPaper.wall_critical_height_m[0], c = kPaper.chamber_gap_m[0];
@@ -107,8 +144,8 @@ TEST(Stage6Backbone, WholeFingerMatchesReferenceOverDenseSweep) {
   EXPECT_LE(worst.joint_angle_rad, pf_test::kAngleTolerance);
   EXPECT_LE(worst.tip_angle_rad, pf_test::kAngleTolerance);
   EXPECT_LE(worst.point_m, pf_test::kPointTolerance);
-  RecordProperty("max_half_angle_error_rad", std::to_string(worst.half_angle_rad));
-  RecordProperty("max_point_error_m", std::to_string(worst.point_m));
+  RecordProperty("max_half_angle_error_rad", pf_test::scientific(worst.half_angle_rad));
+  RecordProperty("max_point_error_m", pf_test::scientific(worst.point_m));
 }
 
 TEST(Stage6Backbone, UnequalChambersMatchReference) {

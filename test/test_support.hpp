@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <string>
 #include <vector>
 
 #include "pneumatic_finger/core/finger_model.hpp"
@@ -71,6 +73,13 @@ inline std::vector<double> pressureSweep(double max_pa, int linear, int per_deca
   for (double e = -3; e <= std::log10(max_pa); e += 1.0 / per_decade) out.push_back(std::pow(10.0, e));
   std::sort(out.begin(), out.end());
   return out;
+}
+
+/// A measured error for RecordProperty, in a form that shows it (std::to_string prints 1e-17 as "0.000000").
+inline std::string scientific(double x) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3e", x);
+  return text;
 }
 
 /// The accuracy the default solver promises (the README: "exact to 1e-12").

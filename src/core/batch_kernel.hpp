@@ -48,6 +48,32 @@ inline T minOf(T a, T b) {
   return b < a ? b : a;
 }
 
+/// Stages 2-3 stage by stage (stretchExcess, then bulge), for lanes above the series' limit.
+template <class T, class M>
+inline void stagesTwoThree(const UniformRobustSpec& s, T g, M rare, T& delta_out, T& h_out) {
+  const T zero = splat<T>(0.0);
+  // Stage 2, stretchExcess: the rational first guess, then Halley until the step is below 4e-6 delta.
+  const T sq = sqrtOf(g * (1.0 / 3.0));
+  T delta = sq * (1.0 + sq * (1.2637079407904241 + sq * 0.602317462994015)) /
+            (1.0 + sq * (0.9303746074570908 + sq * 0.34774814939720705));
+  // stretchExcess returns 0 for g = 0, which also a positive pressure gives where P/P_o underflows.
+  const auto stretched = g > zero;
+  delta = stretched ? delta : zero;
+  auto active = stretched & ~rare;
+  for (int i = 0; i < 16 && anyOf(active); ++i) {
+    const T f = delta * delta * (3.0 + delta) - g * (1.0 + delta);
+    const T fp = delta * (3.0 * delta + 6.0) - g;
+    const T fpp = 6.0 * delta + 6.0;
+    const T step = 2.0 * f * fp / (2.0 * fp * fp - f * fpp);
+    delta = active ? delta - step : delta;
+    active = active & (absOf(step) > 4e-6 * delta);
+  }
+
+  // Stage 3, bulge.
+  h_out = s.chamber_height_m * delta * (2.0 + delta) / (sqrtOf(1.0 + delta * (4.0 + 2.0 * delta)) + 1.0);
+  delta_out = delta;
+}
+
 /// One pack of pressures: lanes [0, valid) are gauge_pa[0..valid), written to rows row0.. of @p out.
 template <class T>
 inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa, int valid, std::size_t row0,
@@ -73,25 +99,23 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
   g = loaded ? g : zero;
   auto rare = g > splat<T>(1e30);
 
-  // Stage 2, stretchExcess: the rational first guess, then Halley until the step is below 4e-6 delta.
-  const T sq = sqrtOf(g * (1.0 / 3.0));
-  T delta = sq * (1.0 + sq * (1.2637079407904241 + sq * 0.602317462994015)) /
-            (1.0 + sq * (0.9303746074570908 + sq * 0.34774814939720705));
-  // stretchExcess returns 0 for g = 0, which also a positive pressure gives where P/P_o underflows.
-  const auto stretched = g > zero;
-  delta = stretched ? delta : zero;
-  auto active = stretched & ~rare;
-  for (int i = 0; i < 16 && anyOf(active); ++i) {
-    const T f = delta * delta * (3.0 + delta) - g * (1.0 + delta);
-    const T fp = delta * (3.0 * delta + 6.0) - g;
-    const T fpp = 6.0 * delta + 6.0;
-    const T step = 2.0 * f * fp / (2.0 * fp * fp - f * fpp);
-    delta = active ? delta - step : delta;
-    active = active & (absOf(step) > 4e-6 * delta);
+  // Stages 2-3 as solveWall takes them: by their series in s = sqrt(g/3) where s is below the limit, else stage by stage
+  // (a pack computes both only when its lanes straddle the limit).
+  const T s_sq = stretchSeriesArgumentSquared(p, s.atmospheric_pa, 1.0 / (3.0 * s.atmospheric_pa * s.shear_modulus_pa));
+  const auto series = s_sq <= splat<T>(kStretchSeriesLimit * kStretchSeriesLimit);
+  T delta = zero, h = zero;
+  if (anyOf(~series)) {
+    T delta_h = zero, h_h = zero;
+    stagesTwoThree(s, g, rare, delta_h, h_h);
+    delta = delta_h;
+    h = h_h;
   }
-
-  // Stage 3, bulge.
-  const T h = s.chamber_height_m * delta * (2.0 + delta) / (sqrtOf(1.0 + delta * (4.0 + 2.0 * delta)) + 1.0);
+  if (anyOf(series)) {
+    T delta_s, h_s;
+    stretchAndBulgeSeries(sqrtOf(s_sq), s.chamber_height_m, delta_s, h_s);
+    delta = series ? delta_s : delta;
+    h = series ? h_s : h;
+  }
 
   // Stage 4, halfAngle: walls in contact where h > c.
   const double c = s.gap_m;
@@ -110,7 +134,7 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
   const T shrink = 1.0 - 0.5 * m * d;
   T v = d < 1.0 ? (shrink > 0.0 ? pade * shrink : pade) : d * d / ((r + 1.0) * (w0 + 1.0));
   v = v < hi ? v : 0.5 * hi;
-  active = contact & ~rare;
+  auto active = contact & ~rare;
   for (int it = 0; it < 64 && anyOf(active); ++it) {
     const T w = 1.0 + v;
     const T tv = d - m * v;

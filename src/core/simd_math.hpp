@@ -18,6 +18,7 @@
 #pragma GCC diagnostic push
 // GCC 12's _mm512_sqrt_pd starts from _mm512_undefined_pd(), which -Wuninitialized reports by mistake.
 #pragma GCC diagnostic ignored "-Wuninitialized"
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
 namespace pneumatic_finger {
 namespace {  // NOLINT(build/namespaces): see above, internal linkage per instruction set
@@ -133,6 +134,60 @@ inline T atanNonNegative(T t) {
     if (!anyOf(small)) return atanGeneral(t);
     return small ? atanSmall(t) : atanGeneral(t);
   }
+}
+
+/// c[0] + c[1] x + ... + c[N-1] x^(N-1) by Estrin's scheme: pairs c[2i] + c[2i+1] x, then pairs of those with x^2,
+/// then with x^4, ...: a tree about log2(N) products deep where Horner's rule is a chain of N - 1. The loops have
+/// constant trip counts and unroll into straight code.
+template <int N, class T>
+inline T estrin(const double (&c)[N], T x) {
+  static_assert(N >= 1, "a polynomial has a coefficient");
+  T p[(N + 1) / 2];
+#pragma GCC unroll 32
+  for (int i = 0; i < N / 2; ++i) p[i] = splat<T>(c[2 * i]) + x * splat<T>(c[2 * i + 1]);
+  if constexpr (N % 2 == 1) p[N / 2] = splat<T>(c[N - 1]);
+  T power = x * x;
+  int count = (N + 1) / 2;
+#pragma GCC unroll 8
+  while (count > 1) {
+#pragma GCC unroll 16
+    for (int i = 0; i < count / 2; ++i) p[i] = p[2 * i] + power * p[2 * i + 1];
+    if (count % 2 == 1) p[count / 2] = p[count - 1];
+    count = (count + 1) / 2;
+    if (count > 1) power = power * power;
+  }
+  return p[0];
+}
+
+/// Stages 2 and 3 together (docs/MODEL.md) for small energy groups: with s = sqrt(g/3) <= 1/20, the stretch excess
+/// delta and the bulge h as power series in s, delta = s (1 + s/3 - s^2/18 - ...) and h = L s (1 - s/6 + 11 s^2/18 - ...).
+/// Both come from s at once, so the chain skips the cubic's Halley steps and the bulge's square root and division
+/// (together about as long as the rest of the chain). The coefficients and their error are derived exactly by
+/// scripts/wall_series.py: the terms left out are below 6e-21 (delta) and 1.3e-18 (h) relative, well below the
+/// rounding of the sums (test: Stage23Series). The limit covers the calibrated finger to 3.4e5 Pa, beyond its
+/// validated range (2 kg/cm^2) and the table's (3e5 Pa); above it the Halley steps answer.
+constexpr double kStretchSeriesLimit = 0.05;
+template <class T>
+inline void stretchAndBulgeSeries(T s, double chamber_height_m, T& stretch_excess, T& bulge_m) {
+  static constexpr double kStretch[13] = {1.0, 0.3333333333333333, -0.05555555555555555, -0.037037037037037035,
+                                          0.023148148148148147, 0.00411522633744856, -0.009002057613168725,
+                                          0.0013717421124828531, 0.0030423620637098003, -0.0015749631661840166,
+                                          -0.0007487822613422751, 0.0009427198880026193, 5.518236619869374e-06};
+  static constexpr double kBulge[19] = {1.0, -0.16666666666666666, 0.6111111111111112, -1.287037037037037,
+                                        2.7453703703703702, -6.276748971193416, 15.046553497942387,
+                                        -37.20413237311386, 94.16247880467917, -242.80790212366,
+                                        635.6690019226617, -1685.1426906396948, 4514.487249626413,
+                                        -12203.085460039309, 33241.729265522365, -91162.71356536484,
+                                        251487.37246667803, -697407.7990546674, 1943046.0695171214};
+  stretch_excess = s * estrin(kStretch, s);
+  bulge_m = splat<T>(chamber_height_m) * (s * estrin(kBulge, s));
+}
+
+/// s^2 = g/3 = P (2 P_o + P) / (3 P_o mu), the series' argument squared, from the gauge pressure: one product chain
+/// with the constant 1/(3 P_o mu) (@p inv_three_po_mu) instead of stage 1's two divisions.
+template <class T>
+inline T stretchSeriesArgumentSquared(T gauge_pa, double atmospheric_pa, double inv_three_po_mu) {
+  return gauge_pa * (splat<T>(2.0 * atmospheric_pa) + gauge_pa) * splat<T>(inv_three_po_mu);
 }
 
 /// cos(x) and sin(x) for 0 <= x <= pi/2 by their Taylor series to x^22 and x^23 (the first term left out is below

@@ -209,8 +209,16 @@ HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m)
 WallSolution solveWall(double gauge_pa, double atmospheric_pa, double shear_modulus_pa, double chamber_height_m,
                        double gap_m, double wall_critical_height_m) {
   WallSolution w;
-  w.stretch_excess = stretchExcess(energyGroup(gauge_pa, atmospheric_pa, shear_modulus_pa));
-  w.bulge_m = bulge(w.stretch_excess, chamber_height_m);
+  // Stages 2-3 by their series in s = sqrt(g/3) where it is short (simd_math.hpp), else stage by stage. The batch
+  // kernel takes the same branch per pressure (batch_kernel.hpp).
+  const double s_sq =
+      stretchSeriesArgumentSquared(gauge_pa, atmospheric_pa, 1.0 / (3.0 * atmospheric_pa * shear_modulus_pa));
+  if (gauge_pa >= 0.0 && s_sq <= kStretchSeriesLimit * kStretchSeriesLimit) {
+    stretchAndBulgeSeries(std::sqrt(s_sq), chamber_height_m, w.stretch_excess, w.bulge_m);
+  } else {
+    w.stretch_excess = stretchExcess(energyGroup(gauge_pa, atmospheric_pa, shear_modulus_pa));
+    w.bulge_m = bulge(w.stretch_excess, chamber_height_m);
+  }
   w.half = halfAngle(w.bulge_m, gap_m, wall_critical_height_m);
   return w;
 }
