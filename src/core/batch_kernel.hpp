@@ -10,6 +10,7 @@
 // test/test_batch.cpp checks the bits against FingerModel::evaluate over ordinary and hard pressures.
 #pragma once
 
+#include <cmath>
 #include <cstddef>
 
 #include "pneumatic_finger/core/evaluation.hpp"
@@ -103,65 +104,40 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
   // (a pack computes both only when its lanes straddle the limit).
   const T s_sq = stretchSeriesArgumentSquared(p, s.atmospheric_pa, 1.0 / (3.0 * s.atmospheric_pa * s.shear_modulus_pa));
   const auto series = s_sq <= splat<T>(kStretchSeriesLimit * kStretchSeriesLimit);
-  T delta = zero, h = zero;
+  T delta = zero, h = zero, m_series = zero;
   if (anyOf(~series)) {
     T delta_h = zero, h_h = zero;
     stagesTwoThree(s, g, rare, delta_h, h_h);
     delta = delta_h;
     h = h_h;
   }
+  const double c = s.gap_m;
+  const double two_over_b = 2.0 / s.wall_critical_height_m;
   if (anyOf(series)) {
     T delta_s, h_s;
-    stretchAndBulgeSeries(sqrtOf(s_sq), s.chamber_height_m, delta_s, h_s);
+    const T s_root = sqrtOf(s_sq);
+    stretchAndBulgeSeries(s_root, s.chamber_height_m, delta_s, h_s);
     delta = series ? delta_s : delta;
     h = series ? h_s : h;
+    m_series = (std::sqrt(s.chamber_height_m * c) * two_over_b) * (sqrtOf(s_root) * bulgeRootSeries(s_root));
   }
 
-  // Stage 4, halfAngle: walls in contact where h > c.
-  const double c = s.gap_m;
+  // Stage 4 (halfAngleOfWall in stages.cpp): walls in contact where h > c; m from the series where solveWall takes it.
   const auto contact = h > c;
-  const double two_over_b = 2.0 / s.wall_critical_height_m;
   const T big_h = h * two_over_b;
-  const T m = sqrtOf(h * c) * two_over_b;
-  const T d = big_h * ((h - c) * two_over_b) / (big_h + m);
+  const T m = series ? m_series : sqrtOf(h * c) * two_over_b;
+  const T num = big_h * ((h - c) * two_over_b), den = big_h + m;
+  const T d = num / den;
   rare = rare | (contact & (~(big_h < 1e200) | ~(m > 0.0) | (d > 1e6)));
-  // quarterPowerExcessOfTan: v = (1 + tan^2)^(1/4) - 1 by safeguarded Halley on Q(v), from v(D).
-  T lo = zero, hi = d / m;
-  const T x = d * d;
-  const T r = sqrtOf(1.0 + d * d);
-  const T w0 = sqrtOf(r);
-  const T pade = 0.25 * x / (1.0 + 0.375 * x);
-  const T shrink = 1.0 - 0.5 * m * d;
-  T v = d < 1.0 ? (shrink > 0.0 ? pade * shrink : pade) : d * d / ((r + 1.0) * (w0 + 1.0));
-  v = v < hi ? v : 0.5 * hi;
-  auto active = contact & ~rare;
-  for (int it = 0; it < 64 && anyOf(active); ++it) {
-    const T w = 1.0 + v;
-    const T tv = d - m * v;
-    const T q = v * (4.0 + v * (6.0 + v * (4.0 + v))) - tv * tv;
-    active = active & (q != 0.0);
-    const auto above = q > 0.0;
-    hi = active & above ? v : hi;
-    lo = active & ~above ? v : lo;
-    const T qp = 4.0 * w * w * w + 2.0 * m * tv;
-    const T qpp = 12.0 * w * w - 2.0 * m * m;
-    const T step = 2.0 * q * qp / (2.0 * qp * qp - q * qpp);
-    T next = v - step;
-    const auto halley = (next >= lo) & (next <= hi);
-    next = halley ? next : 0.5 * (lo + hi);
-    const T moved = absOf(next - v);
-    v = active ? next : v;
-    const auto converged =
-        halley & (moved * moved * moved * (1.0 + m) <= 1e-17 * minOf(d - m * v, one) * minOf(v + 1e-300, one));
-    const auto bracketed = hi - lo <= 4.0 * __DBL_EPSILON__ * hi;
-    active = active & ~converged & ~bracketed;
+  T rad = zero, cos_half = one, sin_half = zero;
+  const auto active = contact & ~rare;
+  if (anyOf(active)) {
+    T rad_c, cos_c, sin_c;
+    wallHalfAngle(d, m, quarterPowerStart(num, den, d, m), active, rad_c, cos_c, sin_c);
+    rad = contact ? rad_c : zero;
+    cos_half = contact ? cos_c : one;
+    sin_half = contact ? sin_c : zero;
   }
-  // halfAngleFromTan: theta = atan(t), cos = 1/w^2, sin = t cos.
-  const T t = d - m * v;
-  const T w = 1.0 + v;
-  T rad = contact ? atanNonNegative(t) : zero;
-  T cos_half = contact ? 1.0 / (w * w) : one;
-  T sin_half = contact ? t * cos_half : zero;
   T stretch = 1.0 + delta;
   T bulge_m = h;
 

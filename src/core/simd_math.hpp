@@ -72,6 +72,13 @@ inline bool anyOf(M m) {
   return false;
 }
 
+/// The lanes a mask leaves out: !m for a plain double's bool, ~m for a pack's lane masks.
+inline bool notOf(bool m) { return !m; }
+template <class M>
+inline M notOf(M m) {
+  return ~m;
+}
+
 /// atan(t) for 0 <= t <= 1/8 by its Taylor series t + t z sum_{k=1..8} (-z)^(k-1)/(2k+1), z = t^2: the first term left
 /// out, t^19/19, is below 3e-18 t there. No division, and Estrin's scheme (the pairs, then z^2 and z^4), so its
 /// latency is about half the general form's.
@@ -188,6 +195,83 @@ inline void stretchAndBulgeSeries(T s, double chamber_height_m, T& stretch_exces
 template <class T>
 inline T stretchSeriesArgumentSquared(T gauge_pa, double atmospheric_pa, double inv_three_po_mu) {
   return gauge_pa * (splat<T>(2.0 * atmospheric_pa) + gauge_pa) * splat<T>(inv_three_po_mu);
+}
+
+/// sqrt(h/(L s)) = 1 - s/12 + 29 s^2/96 - ... for s <= 1/20 (scripts/wall_series.py: the terms left out are below 5.1e-19
+/// relative), so that stage 4's m = 2 sqrt(h c)/b = (2 sqrt(L c)/b) sqrt(s) sqrt(h/(L s)) needs no square root of h: only
+/// sqrt(s), which runs beside the series instead of after them.
+template <class T>
+inline T bulgeRootSeries(T s) {
+  static constexpr double kRoot[19] = {1.0, -0.08333333333333333, 0.3020833333333333, -0.6183449074074074,
+                                       1.2755292727623457, -2.845288688753858, 6.709678011503076,
+                                       -16.39469503080894, 41.11527568349895, -105.24696972359337,
+                                       273.8998798651855, -722.5266941770849, 1927.6122829794456,
+                                       -5192.046960708485, 14100.035206253755, -38564.81989420076,
+                                       106137.06196593269, -293717.7641003618, 816800.8828791904};
+  return estrin(kRoot, s);
+}
+
+/// Stage 4's first guess of v = (1 + tan^2 theta)^(1/4) - 1 (docs/MODEL.md; stages.cpp explains the forms), from
+/// D = num/den: below D = 1 the [1/1] Pade form of v(D) times the gap's first-order factor (1 - m D/2) where that is
+/// positive, written over one division with num and den (D's own division runs beside it, not before it); above, v(D)
+/// itself, (D^2)/((r + 1)(sqrt(r) + 1)) with r = sqrt(1 + D^2). A pack computes the second form only when a lane needs it.
+template <class T>
+inline T quarterPowerStart(T num, T den, T d, T m) {
+  const T one = splat<T>(1.0);
+  const T num_sq = num * num;
+  const T den_sq_pade = den * den + splat<T>(0.375) * num_sq;
+  const T shrunk = den - splat<T>(0.5) * m * num;  // den (1 - m D/2)
+  const auto shrink = shrunk > splat<T>(0.0);
+  const T small_d = (splat<T>(0.25) * num_sq * (shrink ? shrunk : den)) / (den * den_sq_pade);
+  const auto below = d < one;
+  if (!anyOf(notOf(below))) return small_d;
+  const T r = sqrtOf(one + d * d);
+  const T large_d = d * d / ((r + one) * (sqrtOf(r) + one));
+  return below ? small_d : large_d;
+}
+
+/// Stage 4's solve where the walls touch (0 < D <= 1e6, m > 0; the rare rest stays in stages.cpp): safeguarded Halley
+/// steps on Q(v) = v (4 + 6v + 4v^2 + v^3) - (D - m v)^2 from @p v (stages.cpp explains Q, the bracket and the stopping
+/// rule), then theta = atan(t) with t = D - m v, cos theta = 1/w^2 and sin theta = t cos theta, w = 1 + v. Lanes outside
+/// @p active take no step, and their outputs mean nothing: the caller selects. Shared by the single evaluation and the
+/// batch kernel: a lane stops where the single evaluation stops, and a pack goes on until its last lane has stopped.
+/// @return the steps taken (at least 1).
+template <class T, class M>
+inline int wallHalfAngle(T d, T m, T v, M active, T& rad, T& cos_half, T& sin_half) {
+  const T zero = splat<T>(0.0), one = splat<T>(1.0);
+  T lo = zero, hi = d / m;
+  v = v < hi ? v : splat<T>(0.5) * hi;
+  int steps = 0;
+  for (; steps < 64 && anyOf(active); ++steps) {
+    const T w = one + v;
+    const T tv = d - m * v;
+    // Q by Estrin's pairs: v ((4 + 6v) + v^2 (4 + v)).
+    const T q = v * ((splat<T>(4.0) + splat<T>(6.0) * v) + (v * v) * (splat<T>(4.0) + v)) - tv * tv;
+    active = active & (q != zero);
+    const auto above = q > zero;
+    hi = active & above ? v : hi;
+    lo = active & notOf(above) ? v : lo;
+    const T qp = splat<T>(4.0) * w * w * w + splat<T>(2.0) * m * tv;
+    const T qpp = splat<T>(12.0) * w * w - splat<T>(2.0) * m * m;
+    const T step = splat<T>(2.0) * q * qp / (splat<T>(2.0) * qp * qp - q * qpp);
+    T next = v - step;
+    const auto halley = (next >= lo) & (next <= hi);
+    next = halley ? next : splat<T>(0.5) * (lo + hi);
+    const T moved = next - v < zero ? v - next : next - v;
+    v = active ? next : v;
+    // A Halley step of size s leaves an error of order s^3; t = D - m v needs m * error < ulp(t).
+    const T d_mv = d - m * v, v_tiny = v + splat<T>(1e-300);
+    const auto converged = halley & (moved * moved * moved * (one + m) <=
+                                     splat<T>(1e-17) * (one < d_mv ? one : d_mv) * (one < v_tiny ? one : v_tiny));
+    const auto bracketed = hi - lo <= splat<T>(4.0 * __DBL_EPSILON__) * hi;
+    active = active & notOf(converged) & notOf(bracketed);
+  }
+  const T t = d - m * v;
+  const T w = one + v;
+  rad = atanNonNegative(t);
+  cos_half = one / (w * w);  // w is solved to well below an ulp of v: no square root needed
+  sin_half = t * cos_half;
+  return steps < 1 ? 1 : steps;
 }
 
 /// cos(x) and sin(x) for 0 <= x <= pi/2 by their Taylor series to x^22 and x^23 (the first term left out is below

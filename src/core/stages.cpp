@@ -116,62 +116,12 @@ double tanHalfAngleLargeBulge(double d, double m, int& iterations) {
   return t;
 }
 
-// v = w - 1 = (1 + t^2)^(1/4) - 1 for the usual bulges. With t = D - m v, w^4 = 1 + t^2 becomes the polynomial
-//   Q(v) = v (4 + 6v + 4v^2 + v^3) - (D - m v)^2 = 0,
-// written so that nothing cancels near v = 0; Q is increasing on [0, D/m] (Q' = 4 w^3 + 2 m t > 0), negative at 0 and
-// positive at D/m, so it has one root there. Start at v(D), an upper bound (t <= D), and take safeguarded Halley
-// steps: no square root per step.
-double quarterPowerExcessOfTan(double d, double m, int& iterations) {
-  double lo = 0.0, hi = d / m;
-  // Start near v(D) = (1 + D^2)^(1/4) - 1: for D < 1 its [1/1] Pade form (x/4)/(1 + 3x/8), x = D^2, is within 1e-6
-  // relative at D = 0.1 and costs one division instead of two square roots. The root's t = D - m v is below D, and
-  // to first order v(t) = v(D) (1 - m v'(D)) with v'(D) = D/(2 w^3), about D/2: that factor takes the start from a
-  // relative error of m D/2 (2e-3 at the validated range's top) to one of order (m D)^2 (2e-5 there), close enough
-  // for one Halley step where it took two. A factor that is not positive (m D >= 2) is left out.
-  const double x = d * d;
-  double v;
-  if (d < 1.0) {
-    v = 0.25 * x / (1.0 + 0.375 * x);
-    const double shrink = 1.0 - 0.5 * m * d;
-    if (shrink > 0.0) v *= shrink;
-  } else {
-    v = quarterPower(d).w_m1;
-  }
-  if (!(v < hi)) v = 0.5 * hi;
-  for (; iterations < 64; ++iterations) {
-    const double w = 1.0 + v;
-    const double tv = d - m * v;
-    const double q = v * (4.0 + v * (6.0 + v * (4.0 + v))) - tv * tv;
-    if (q == 0.0) break;
-    (q > 0.0 ? hi : lo) = v;
-    const double qp = 4.0 * w * w * w + 2.0 * m * tv;
-    const double qpp = 12.0 * w * w - 2.0 * m * m;
-    const double step = 2.0 * q * qp / (2.0 * qp * qp - q * qpp);
-    double next = v - step;
-    const bool halley = next >= lo && next <= hi;
-    if (!halley) next = 0.5 * (lo + hi);
-    const double moved = std::fabs(next - v);
-    v = next;
-    // A Halley step of size s leaves an error of order s^3; t = D - m v needs m * error < ulp(t).
-    if (halley && moved * moved * moved * (1.0 + m) <= 1e-17 * std::min(d - m * v, 1.0) * std::min(v + 1e-300, 1.0)) {
-      break;
-    }
-    if (hi - lo <= 4.0 * std::numeric_limits<double>::epsilon() * hi) break;
-  }
-  ++iterations;
-  return v;
-}
-
-// theta, cos and sin from t = tan(theta), and w = (1 + t^2)^(1/4) when the solve produced it (else 0).
-HalfAngle halfAngleFromTan(double t, double w, int iterations) {
+// theta, cos and sin from t = tan(theta) for the rare forms (no gap, a huge bulge); the usual ones come with w.
+HalfAngle halfAngleFromTan(double t, int iterations) {
   HalfAngle out;
   out.iterations = iterations;
-  out.rad = atanNonNegative(t);  // our own atan (simd_math.hpp): the batch kernel rounds it the same way
-  if (w > 0.0) {
-    // cos(theta) = 1/sqrt(1 + t^2) = 1/w^2, and w is solved to well below an ulp of v: no square root needed.
-    out.cos = 1.0 / (w * w);
-    out.sin = t * out.cos;
-  } else if (t > kLargeTan) {
+  out.rad = atanNonNegative(t);  // our own atan (simd_math.hpp), as everywhere in the chain
+  if (t > kLargeTan) {
     out.cos = 1.0 / t;
     out.sin = 1.0;
   } else {
@@ -181,11 +131,19 @@ HalfAngle halfAngleFromTan(double t, double w, int iterations) {
   return out;
 }
 
-}  // namespace
-
-HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m) {
-  if (!(bulge_m > gap_m)) return HalfAngle{};  // walls not in contact (docs/MODEL.md, stage 4)
-  const double two_over_b = 2.0 / wall_critical_height_m;
+// Stage 4 with the walls touching, from the bulge and m = 2 sqrt(h c)/b (the caller's: from h itself, or from the
+// series in s). Eq 15 <=> t + m (w - 1) = D, with t = tan(theta), w = (1 + t^2)^(1/4) and D = H - m, formed as
+// H (H - 2k)/(H + m) so that it keeps its digits where h -> c (both H and m -> 2k). The usual bulges go through the
+// solve shared with the batch kernel (simd_math.hpp, wallHalfAngle): v = w - 1 as the root of
+//   Q(v) = v (4 + 6v + 4v^2 + v^3) - (D - m v)^2 = 0,
+// written so that nothing cancels near v = 0; Q is increasing on [0, D/m] (Q' = 4 w^3 + 2 m t > 0), negative at 0 and
+// positive at D/m, so it has one root there, found by safeguarded Halley steps: no square root per step. The start
+// (quarterPowerStart) is near v(D) = (1 + D^2)^(1/4) - 1, an upper bound (t <= D): for D < 1 its [1/1] Pade form
+// (x/4)/(1 + 3x/8), x = D^2, is within 1e-6 relative at D = 0.1 and costs no square root. The root's t = D - m v is
+// below D, and to first order v(t) = v(D) (1 - m v'(D)) with v'(D) = D/(2 w^3), about D/2: that factor takes the
+// start from a relative error of m D/2 (2e-3 at the validated range's top) to one of order (m D)^2 (2e-5 there), close
+// enough for one Halley step. A step of size s leaves an error of order s^3; t needs m * error < ulp(t).
+HalfAngle halfAngleOfWall(double bulge_m, double gap_m, double two_over_b, double m) {
   const double big_h = bulge_m * two_over_b;
   if (!(big_h < 1e200)) {  // tan(theta) ~ H > 1e200: theta = pi/2 to the last bit
     HalfAngle out;
@@ -194,16 +152,23 @@ HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m)
     out.sin = 1.0;
     return out;
   }
-  // Eq 15 <=> t + m (w - 1) = D, with t = tan(theta), w = (1 + t^2)^(1/4), m = sqrt(2kH) = 2 sqrt(h c)/b and
-  // D = H - m, formed as H (H - 2k)/(H + m) so that it keeps its digits where h -> c (both H and m -> 2k).
   // (h c underflows to 0 only for c < 1e-154 m, where m < 1e-75 and dropping it changes nothing.)
-  const double m = std::sqrt(bulge_m * gap_m) * two_over_b;
-  const double d = big_h * ((bulge_m - gap_m) * two_over_b) / (big_h + m);
+  const double num = big_h * ((bulge_m - gap_m) * two_over_b), den = big_h + m;
+  const double d = num / den;
   int iterations = 0;
-  if (!(m > 0.0)) return halfAngleFromTan(d, 0.0, iterations);  // c = 0: eq 15 is h = (b/2) tan(theta)
-  if (d > 1e6) return halfAngleFromTan(tanHalfAngleLargeBulge(d, m, iterations), 0.0, iterations);
-  const double v = quarterPowerExcessOfTan(d, m, iterations);
-  return halfAngleFromTan(d - m * v, 1.0 + v, iterations);
+  if (!(m > 0.0)) return halfAngleFromTan(d, iterations);  // c = 0: eq 15 is h = (b/2) tan(theta)
+  if (d > 1e6) return halfAngleFromTan(tanHalfAngleLargeBulge(d, m, iterations), iterations);
+  HalfAngle out;
+  out.iterations = wallHalfAngle(d, m, quarterPowerStart(num, den, d, m), true, out.rad, out.cos, out.sin);
+  return out;
+}
+
+}  // namespace
+
+HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m) {
+  if (!(bulge_m > gap_m)) return HalfAngle{};  // walls not in contact (docs/MODEL.md, stage 4)
+  const double two_over_b = 2.0 / wall_critical_height_m;
+  return halfAngleOfWall(bulge_m, gap_m, two_over_b, std::sqrt(bulge_m * gap_m) * two_over_b);
 }
 
 WallSolution solveWall(double gauge_pa, double atmospheric_pa, double shear_modulus_pa, double chamber_height_m,
@@ -214,11 +179,17 @@ WallSolution solveWall(double gauge_pa, double atmospheric_pa, double shear_modu
   const double s_sq =
       stretchSeriesArgumentSquared(gauge_pa, atmospheric_pa, 1.0 / (3.0 * atmospheric_pa * shear_modulus_pa));
   if (gauge_pa >= 0.0 && s_sq <= kStretchSeriesLimit * kStretchSeriesLimit) {
-    stretchAndBulgeSeries(std::sqrt(s_sq), chamber_height_m, w.stretch_excess, w.bulge_m);
-  } else {
-    w.stretch_excess = stretchExcess(energyGroup(gauge_pa, atmospheric_pa, shear_modulus_pa));
-    w.bulge_m = bulge(w.stretch_excess, chamber_height_m);
+    const double s = std::sqrt(s_sq);
+    stretchAndBulgeSeries(s, chamber_height_m, w.stretch_excess, w.bulge_m);
+    if (!(w.bulge_m > gap_m)) return w;  // walls not in contact: theta = 0
+    // m = 2 sqrt(h c)/b from the series too (bulgeRootSeries): no square root of h after the series.
+    const double two_over_b = 2.0 / wall_critical_height_m;
+    const double m = (std::sqrt(chamber_height_m * gap_m) * two_over_b) * (std::sqrt(s) * bulgeRootSeries(s));
+    w.half = halfAngleOfWall(w.bulge_m, gap_m, two_over_b, m);
+    return w;
   }
+  w.stretch_excess = stretchExcess(energyGroup(gauge_pa, atmospheric_pa, shear_modulus_pa));
+  w.bulge_m = bulge(w.stretch_excess, chamber_height_m);
   w.half = halfAngle(w.bulge_m, gap_m, wall_critical_height_m);
   return w;
 }
