@@ -143,27 +143,32 @@ inline T atanNonNegative(T t) {
   }
 }
 
+/// The largest power of two below @p n (n >= 2).
+constexpr int powerOfTwoBelow(int n) { return n <= 2 ? 1 : 2 * powerOfTwoBelow((n + 1) / 2); }
+constexpr int log2Of(int n) { return n <= 1 ? 0 : 1 + log2Of(n / 2); }
+
+/// c[kLo] + c[kLo+1] x + ... + c[kLo+kCount-1] x^(kCount-1): the lower half (kHalf coefficients, a power of two) plus
+/// x^kHalf times the upper half, each split again; @p powers holds x, x^2, x^4, ... Compile-time recursion, so the
+/// whole tree is straight code with no array in memory.
+template <int kLo, int kCount, int N, class T>
+inline T estrinRange(const double (&c)[N], const T* powers) {
+  if constexpr (kCount == 1) {
+    return splat<T>(c[kLo]);
+  } else {
+    constexpr int kHalf = powerOfTwoBelow(kCount);
+    return estrinRange<kLo, kHalf>(c, powers) + powers[log2Of(kHalf)] * estrinRange<kLo + kHalf, kCount - kHalf>(c, powers);
+  }
+}
+
 /// c[0] + c[1] x + ... + c[N-1] x^(N-1) by Estrin's scheme: pairs c[2i] + c[2i+1] x, then pairs of those with x^2,
-/// then with x^4, ...: a tree about log2(N) products deep where Horner's rule is a chain of N - 1. The loops have
-/// constant trip counts and unroll into straight code.
+/// then with x^4, ...: a tree about log2(N) products deep where Horner's rule is a chain of N - 1.
 template <int N, class T>
 inline T estrin(const double (&c)[N], T x) {
   static_assert(N >= 1, "a polynomial has a coefficient");
-  T p[(N + 1) / 2];
-#pragma GCC unroll 32
-  for (int i = 0; i < N / 2; ++i) p[i] = splat<T>(c[2 * i]) + x * splat<T>(c[2 * i + 1]);
-  if constexpr (N % 2 == 1) p[N / 2] = splat<T>(c[N - 1]);
-  T power = x * x;
-  int count = (N + 1) / 2;
-#pragma GCC unroll 8
-  while (count > 1) {
-#pragma GCC unroll 16
-    for (int i = 0; i < count / 2; ++i) p[i] = p[2 * i] + power * p[2 * i + 1];
-    if (count % 2 == 1) p[count / 2] = p[count - 1];
-    count = (count + 1) / 2;
-    if (count > 1) power = power * power;
-  }
-  return p[0];
+  T powers[log2Of(N) + 1];
+  powers[0] = x;
+  for (int k = 1; k <= log2Of(N); ++k) powers[k] = powers[k - 1] * powers[k - 1];
+  return estrinRange<0, N>(c, powers);
 }
 
 /// Stages 2 and 3 together (docs/MODEL.md) for small energy groups: with s = sqrt(g/3) <= 1/20, the stretch excess
