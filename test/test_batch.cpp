@@ -37,8 +37,9 @@ std::vector<double> batchPressures(const pf::FingerModel& model) {
                    -double(INFINITY), std::numeric_limits<double>::max(), std::numeric_limits<double>::denorm_min()}) {
     p.push_back(x);
   }
-  // Packs whose lanes straddle a limit where the shared arithmetic switches form (simd_math.hpp): the arctangent's
-  // (tan(theta) = 1/8) and joint 1's sine and cosine (s0 theta = 1/8), alternately just below and just above it.
+  // Packs whose lanes straddle a limit where the shared arithmetic switches form (simd_math.hpp): the arctangent's and
+  // joint 1's direction's (both at tan(theta) = 1/8) and joint 1's base-face sine and cosine (s0 theta = 1/8, above
+  // it), alternately just below and just above it.
   const pf::FingerParameters& params = model.parameters();
   const double turns = 2 * params.chamber_count - 1 + params.base_wall_share;
   std::vector<double> limits = {std::atan(0.125)};
@@ -197,6 +198,35 @@ TEST(OwnArctangent, WithinOneAndAHalfUlpOfQuadPrecision) {
   // The ends: atan(t) = t for tiny t, atan(+inf) = pi/2 rounded.
   EXPECT_EQ(pf::halfAngle(1e-100, 0.0, b).rad, (1e-100 * 1e-100) / 1e-100);
   EXPECT_EQ(pf::halfAngle(1e199, 0.0, b).rad, static_cast<double>(acosq(-1) / 2));
+}
+
+// Joint 1's direction from tan(theta) (stages.hpp, FirstJointSeries; simd_math.hpp, firstJoint): cos and sin of
+// (1 + s0) atan(t) against libquadmath's, up to the series' limit t = 1/8 and just above it (where the base face's sine
+// and cosine answer), for inert, calibrated and fully turning faces.
+TEST(FirstJointSeries, WithinTwoUlpOfQuadPrecision) {
+  const double ulp_of_one = std::numeric_limits<double>::epsilon();
+  for (double share : {0.0, 0.1, 0.31406024809341682, 0.5, 1.0}) {
+    const pf::FirstJointSeries series = pf::firstJointSeries(share);
+    double worst = 0.0, worst_at = 0.0;
+    auto check = [&](double t) {
+      const __float128 q1 = (1 + static_cast<__float128>(share)) * atanq(static_cast<__float128>(t));
+      // theta, cos and sin as the solve gives them (each rounded once), the direction from them.
+      const __float128 theta_q = atanq(static_cast<__float128>(t));
+      const double theta = static_cast<double>(theta_q);
+      const double cos_half = static_cast<double>(cosq(theta_q)), sin_half = static_cast<double>(sinq(theta_q));
+      double c = 0.0, s = 0.0;
+      pf::firstJoint(share, series, theta, t, cos_half, sin_half, c, s);
+      const double err = std::max(static_cast<double>(fabsq(c - cosq(q1))), static_cast<double>(fabsq(s - sinq(q1))));
+      if (err > worst) {
+        worst = err;
+        worst_at = t;
+      }
+    };
+    for (double t = 1e-300; t < 0.2; t *= 1.01) check(t);
+    for (int i = 0; i <= 20000; ++i) check(0.2 * i / 20000);
+    for (int k = -20; k <= 20; ++k) check(0.125 + k * 1e-17);
+    EXPECT_LE(worst, 2.0 * ulp_of_one) << "s0 = " << share << ", at t = " << worst_at;
+  }
 }
 
 // The sine and cosine of joint 1's base half angle (simd_math.hpp, sinCosSmall: the short series up to 1/8, the long

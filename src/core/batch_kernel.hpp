@@ -26,6 +26,7 @@ struct UniformRobustSpec {
   double base_segment_length_m;
   const double* segment_length_m;  ///< chamber_count entries
   double base_wall_share;          ///< s0: theta_0 = s0 theta
+  FirstJointSeries first_joint;    ///< firstJointSeries(base_wall_share)
 };
 
 /// One kernel per instruction set (batch_generic.cpp, batch_avx2.cpp, batch_avx512.cpp).
@@ -129,14 +130,15 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
   const T num = big_h * ((h - c) * two_over_b), den = big_h + m;
   const T d = num / den;
   rare = rare | (contact & (~(big_h < 1e200) | ~(m > 0.0) | (d > 1e6)));
-  T rad = zero, cos_half = one, sin_half = zero;
+  T rad = zero, cos_half = one, sin_half = zero, tan_half = zero;
   const auto active = contact & ~rare;
   if (anyOf(active)) {
-    T rad_c, cos_c, sin_c;
-    wallHalfAngle(d, m, quarterPowerStart(num, den, d, m), active, rad_c, cos_c, sin_c);
+    T rad_c, cos_c, sin_c, tan_c;
+    wallHalfAngle(d, m, quarterPowerStart(num, den, d, m), active, rad_c, cos_c, sin_c, tan_c);
     rad = contact ? rad_c : zero;
     cos_half = contact ? cos_c : one;
     sin_half = contact ? sin_c : zero;
+    tan_half = contact ? tan_c : zero;
   }
   T stretch = 1.0 + delta;
   T bulge_m = h;
@@ -151,14 +153,15 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
     rad[i] = wall.half.rad;
     cos_half[i] = wall.half.cos;
     sin_half[i] = wall.half.sin;
+    tan_half[i] = wall.half.tan;
   }
 
   // Stages 5-6 (jointsAndBackboneUniform): q_1 = theta_0 + theta, q_n = 2 theta; the points from uniformPoints.
   const T joint = 2.0 * rad;
   T first_c, first_s;
-  const T joint1 = firstJoint(s.base_wall_share, rad, cos_half, sin_half, first_c, first_s);
+  const T joint1 = firstJoint(s.base_wall_share, s.first_joint, rad, tan_half, cos_half, sin_half, first_c, first_s);
   T dir_c[kMaxChambers], dir_s[kMaxChambers], px[kMaxChambers], py[kMaxChambers];
-  uniformPoints(first_c, first_s, cos_half, sin_half, n, s.base_segment_length_m, s.segment_length_m, dir_c, dir_s,
+  uniformPoints<0>(first_c, first_s, cos_half, sin_half, n, s.base_segment_length_m, s.segment_length_m, dir_c, dir_s,
                 px, py, 1);
   const T tip_angle = joint1 + static_cast<double>(n - 1) * joint;
 

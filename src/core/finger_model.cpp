@@ -88,7 +88,7 @@ double contactGaugePa(double chamber_height_m, double chamber_gap_m, double shea
 }
 
 FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions& options)
-    : parameters_(parameters), options_(options) {
+    : parameters_(parameters), options_(options), first_joint_series_(firstJointSeries(parameters.base_wall_share)) {
   const int n = parameters_.chamber_count;
   group_of_chamber_.resize(static_cast<std::size_t>(n));
   contact_gauge_pa_ = std::numeric_limits<double>::infinity();
@@ -131,7 +131,7 @@ void FingerModel::buildTable(ChamberGroup& group) {
   auto exact = [&](double u) { return solveRobust(group, u * u, parameters_.atmospheric_pressure_pa).half; };
   // e^(i q_1) as the robust solver's backbone forms it.
   auto first = [&](const HalfAngle& h, double& c, double& s) {
-    firstJoint(parameters_.base_wall_share, h.rad, h.cos, h.sin, c, s);
+    firstJoint(parameters_.base_wall_share, first_joint_series_, h.rad, h.tan, h.cos, h.sin, c, s);
   };
   double achieved = 0.0;
   for (int segments = 8; segments <= kTableMaxSegments; segments *= 2) {
@@ -200,6 +200,7 @@ FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, doub
       r.half.rad = theta;
       r.half.cos = std::cos(theta);
       r.half.sin = std::sin(theta);
+      r.half.tan = r.half.sin / r.half.cos;
       return r;
     }
     case SolverKind::kTable: {
@@ -310,8 +311,8 @@ namespace {
 // chambers (their control cost as much as their arithmetic); 0 takes it from the parameters. @p first: e^(i q_1) where
 // the solver has it (two numbers: the table), or null to compute it here.
 template <int kChambers>
-void jointsAndBackboneUniform(const FingerParameters& parameters, double stretch, double bulge_m, const HalfAngle& h,
-                              const double* first, FingerState& out) {
+void jointsAndBackboneUniform(const FingerParameters& parameters, const FirstJointSeries& series, double stretch,
+                              double bulge_m, const HalfAngle& h, const double* first, FingerState& out) {
   const int n = kChambers > 0 ? kChambers : parameters.chamber_count;
   double* __restrict points = out.backbone_m.data();  // column-major 2 x (N+2)
   points[0] = 0.0;
@@ -324,10 +325,10 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, double stretch
     first_s = first[1];
     q1 = firstJointAngle(parameters.base_wall_share, h.rad);
   } else {
-    q1 = firstJoint(parameters.base_wall_share, h.rad, h.cos, h.sin, first_c, first_s);
+    q1 = firstJoint(parameters.base_wall_share, series, h.rad, h.tan, h.cos, h.sin, first_c, first_s);
   }
   std::array<double, kMaxChamberCount> dir_c, dir_s;
-  uniformPoints(first_c, first_s, h.cos, h.sin, n, parameters.base_segment_length_m,
+  uniformPoints<kChambers>(first_c, first_s, h.cos, h.sin, n, parameters.base_segment_length_m,
                 parameters.segment_length_m.data(), dir_c.data(), dir_s.data(), points + 4, points + 5, 2);
   const double q = 2.0 * h.rad;
   // One plain loop for the four per-chamber columns (four setConstant calls cost more instructions than the stores).
@@ -336,6 +337,7 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, double stretch
   double* __restrict bulge_out = out.bulge_m.data();
   double* __restrict half_out = out.half_angle_rad.data();
   double* __restrict joint_out = out.joint_angle_rad.data();
+#pragma GCC unroll 64
   for (int i = 0; i < n; ++i) {
     stretch_out[i] = stretch;
     bulge_out[i] = bulge_m;
@@ -349,7 +351,8 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, double stretch
 
 // One instance per chamber count up to kUnrolledChambers (the fingers people build have a handful to a dozen
 // chambers), the run-time count above.
-using UniformWriter = void (*)(const FingerParameters&, double, double, const HalfAngle&, const double*, FingerState&);
+using UniformWriter = void (*)(const FingerParameters&, const FirstJointSeries&, double, double, const HalfAngle&,
+                               const double*, FingerState&);
 constexpr int kUnrolledChambers = 16;
 template <std::size_t... kCounts>
 constexpr std::array<UniformWriter, sizeof...(kCounts)> uniformWriters(std::index_sequence<kCounts...>) {
@@ -375,8 +378,8 @@ bool FingerModel::writeState(double gauge_pa, FingerState& out) {
     const GroupResult r = solveGroup(groups_[0], gauge_pa, detail);
     if (!finite(r)) return false;
     const double first[2] = {r.first_c, r.first_s};
-    uniformWriterFor(parameters_.chamber_count)(parameters_, r.stretch, r.bulge_m, r.half, r.has_first ? first : nullptr,
-                                                out);
+    uniformWriterFor(parameters_.chamber_count)(parameters_, first_joint_series_, r.stretch, r.bulge_m, r.half,
+                                                r.has_first ? first : nullptr, out);
     out.gauge_pa = gauge_pa;
     return true;
   }
@@ -587,7 +590,7 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
     const UniformRobustSpec spec{parameters_.chamber_count, parameters_.atmospheric_pressure_pa, g.shear_modulus_pa,
                                  g.chamber_height_m, g.chamber_gap_m, g.wall_critical_height_m,
                                  parameters_.base_segment_length_m, parameters_.segment_length_m.data(),
-                                 parameters_.base_wall_share};
+                                 parameters_.base_wall_share, first_joint_series_};
     batchKernel(path)(spec, gauge_pa, count, out);
     return;
   }

@@ -237,12 +237,12 @@ inline T quarterPowerStart(T num, T den, T d, T m) {
 
 /// Stage 4's solve where the walls touch (0 < D <= 1e6, m > 0; the rare rest stays in stages.cpp): safeguarded Halley
 /// steps on Q(v) = v (4 + 6v + 4v^2 + v^3) - (D - m v)^2 from @p v (stages.cpp explains Q, the bracket and the stopping
-/// rule), then theta = atan(t) with t = D - m v, cos theta = 1/w^2 and sin theta = t cos theta, w = 1 + v. Lanes outside
+/// rule), then t = D - m v, theta = atan(t), cos theta = 1/w^2 and sin theta = t cos theta, w = 1 + v. Lanes outside
 /// @p active take no step, and their outputs mean nothing: the caller selects. Shared by the single evaluation and the
 /// batch kernel: a lane stops where the single evaluation stops, and a pack goes on until its last lane has stopped.
 /// @return the steps taken (at least 1).
 template <class T, class M>
-inline int wallHalfAngle(T d, T m, T v, M active, T& rad, T& cos_half, T& sin_half) {
+inline int wallHalfAngle(T d, T m, T v, M active, T& rad, T& cos_half, T& sin_half, T& tan_half) {
   const T zero = splat<T>(0.0), one = splat<T>(1.0);
   T lo = zero, hi = d / m;
   v = v < hi ? v : splat<T>(0.5) * hi;
@@ -273,6 +273,7 @@ inline int wallHalfAngle(T d, T m, T v, M active, T& rad, T& cos_half, T& sin_ha
   }
   const T t = d - m * v;
   const T w = one + v;
+  tan_half = t;
   rad = atanNonNegative(t);
   cos_half = one / (w * w);  // w is solved to well below an ulp of v: no square root needed
   sin_half = t * cos_half;
@@ -360,39 +361,76 @@ inline T firstJointAngle(double base_wall_share, T theta) {
   return base_wall_share == 0.0 ? theta : base_wall_share * theta + theta;
 }
 
-/// Joint 1 of identical chambers: q_1 (firstJointAngle) and the direction of segment 1, e^(i q_1) =
-/// e^(i theta_0) e^(i theta). With s0 = 0 nothing is computed: the direction is theta's own, exactly.
+/// Up to this tan(theta), joint 1's direction comes from its series (FirstJointSeries, stages.hpp).
+constexpr double kFirstJointSeriesLimit = 0.125;
+
+/// Joint 1 of identical chambers: q_1 (firstJointAngle) and the direction of segment 1, e^(i q_1) = e^(i (1 + s0)
+/// theta). With s0 = 0 nothing is computed: the direction is theta's own, exactly. Up to tan(theta) = 1/8 (7 degrees:
+/// the calibrated finger's validated range) it is @p series in t (stages.hpp); above, the base face's sine and cosine
+/// rotate theta's
+/// (a pack takes the form each lane needs, both only when its lanes straddle the limit).
 /// @return q_1
 template <class T>
-inline T firstJoint(double base_wall_share, T theta, T cos_half, T sin_half, T& first_c, T& first_s) {
+inline T firstJoint(double base_wall_share, const FirstJointSeries& series, T theta, T tan_half, T cos_half,
+                    T sin_half, T& first_c, T& first_s) {
   if (base_wall_share == 0.0) {
     first_c = cos_half;
     first_s = sin_half;
     return theta;
   }
-  const T theta0 = base_wall_share * theta;
-  T c0, s0;
-  sinCosSmall(theta0, c0, s0);
-  first_c = c0 * cos_half - s0 * sin_half;
-  first_s = s0 * cos_half + c0 * sin_half;
+  auto fromSeries = [&](T& c, T& s) {
+    const T z = tan_half * tan_half;
+    c = estrin(series.cos_c, z);
+    s = tan_half * estrin(series.sin_c, z);
+  };
+  auto fromFace = [&](T& c, T& s) {
+    T c0, s0;
+    sinCosSmall(base_wall_share * theta, c0, s0);
+    c = c0 * cos_half - s0 * sin_half;
+    s = s0 * cos_half + c0 * sin_half;
+  };
+  bool all_series, any_series;
+  if constexpr (lanesOf<T>() == 1) {
+    all_series = any_series = tan_half <= kFirstJointSeriesLimit;
+  } else {
+    const auto lane = tan_half <= splat<T>(kFirstJointSeriesLimit);
+    all_series = !anyOf(notOf(lane));
+    any_series = anyOf(lane);
+  }
+  if (all_series) {
+    fromSeries(first_c, first_s);
+  } else if (!any_series) {
+    fromFace(first_c, first_s);
+  } else {
+    T sc, ss, fc, fs;
+    fromSeries(sc, ss);
+    fromFace(fc, fs);
+    const auto lane = tan_half <= splat<T>(kFirstJointSeriesLimit);
+    first_c = lane ? sc : fc;
+    first_s = lane ? ss : fs;
+  }
   return firstJointAngle(base_wall_share, theta);
 }
 
 /// Stage 6 for identical chambers (docs/MODEL.md): the backbone's points 2..N+1 (point 0 is the mount, point 1 the end
 /// of the base segment, (Z_0, 0)). Segment n points along q_1 + 2 (n - 1) theta, that is e^(i q_1) r^(n-1) with
-/// r = e^(2 i theta): directions 1..3 come from r and r^2, and every later one from the one four before it and r^4, so
-/// that the longest chain of dependent complex products is 2 + (N - 4)/4 long instead of N - 1 (a chain of rotations
-/// limited the latency), in one short loop (a tree of doubling steps was as short, but its nested loops cost more
-/// instructions than the products). Shared by the single evaluation and the batch kernel, so that both round alike.
+/// r = e^(2 i theta), so point n + 1 is (Z_0, 0) + e^(i q_1) S_n with S_n = sum_(j < n) Z_(j+1) r^j: the backbone in
+/// segment 1's frame, turned once. S needs only cos and sin of theta, which the solve has before theta itself (they
+/// come from w, theta from the arctangent of t), so its complex products run beside the arctangent and joint 1's
+/// direction, and one rotation per point is all that waits for those. The powers of r: r, r^2, r^3 = r r^2, and every
+/// later one from the one four before it and r^4, a chain 2 + (N - 4)/4 products long instead of N - 1. Shared by the
+/// single evaluation and the batch kernel, so that both round alike.
+/// @tparam kChambers the chamber count when known at compile time (the loops then unroll into straight code), else 0
 /// @param first_c, first_s e^(i q_1), from firstJoint (or the table's polynomials)
 /// @param cos_half, sin_half cos and sin of theta
-/// @param dir_c, dir_s scratch for N directions
+/// @param power_c, power_s scratch for N powers of r
 /// @param[out] x, y the points' coordinates, point 2 + j at x[j * stride], y[j * stride] (no element reached through
 /// both, nor through the scratch: hence __restrict)
-template <class T>
+template <int kChambers, class T>
 inline void uniformPoints(T first_c, T first_s, T cos_half, T sin_half, int chamber_count,
                           double base_segment_length_m, const double* __restrict segment_length_m,
-                          T* __restrict dir_c, T* __restrict dir_s, T* __restrict x, T* __restrict y, int stride) {
+                          T* __restrict power_c, T* __restrict power_s, T* __restrict x, T* __restrict y, int stride) {
+  const int n = kChambers > 0 ? kChambers : chamber_count;
   // r = e^(2 i theta): cos 2 theta as a product, which does not cancel near pi/4.
   const T r1_c = (cos_half - sin_half) * (cos_half + sin_half);
   const T r1_s = splat<T>(2.0) * sin_half * cos_half;
@@ -400,30 +438,26 @@ inline void uniformPoints(T first_c, T first_s, T cos_half, T sin_half, int cham
   const T r2_s = splat<T>(2.0) * r1_s * r1_c;
   const T r4_c = (r2_c - r2_s) * (r2_c + r2_s);
   const T r4_s = splat<T>(2.0) * r2_s * r2_c;
-  T c[4], s[4];
-  c[0] = first_c;
-  s[0] = first_s;
-  c[1] = first_c * r1_c - first_s * r1_s;
-  s[1] = first_s * r1_c + first_c * r1_s;
-  c[2] = first_c * r2_c - first_s * r2_s;
-  s[2] = first_s * r2_c + first_c * r2_s;
-  c[3] = c[1] * r2_c - s[1] * r2_s;
-  s[3] = s[1] * r2_c + c[1] * r2_s;
-  const int head = chamber_count < 4 ? chamber_count : 4;
-  for (int j = 0; j < head; ++j) {
-    dir_c[j] = c[j];
-    dir_s[j] = s[j];
+  const T head_c[4] = {splat<T>(1.0), r1_c, r2_c, r1_c * r2_c - r1_s * r2_s};
+  const T head_s[4] = {splat<T>(0.0), r1_s, r2_s, r1_s * r2_c + r1_c * r2_s};
+#pragma GCC unroll 4
+  for (int j = 0; j < (n < 4 ? n : 4); ++j) {
+    power_c[j] = head_c[j];
+    power_s[j] = head_s[j];
   }
-  for (int j = 4; j < chamber_count; ++j) {
-    dir_c[j] = dir_c[j - 4] * r4_c - dir_s[j - 4] * r4_s;
-    dir_s[j] = dir_s[j - 4] * r4_c + dir_c[j - 4] * r4_s;
+#pragma GCC unroll 64
+  for (int j = 4; j < n; ++j) {
+    power_c[j] = power_c[j - 4] * r4_c - power_s[j - 4] * r4_s;
+    power_s[j] = power_s[j - 4] * r4_c + power_c[j - 4] * r4_s;
   }
-  T px = splat<T>(base_segment_length_m), py = splat<T>(0.0);
-  for (int i = 0; i < chamber_count; ++i) {
-    px += segment_length_m[i] * dir_c[i];
-    py += segment_length_m[i] * dir_s[i];
-    x[i * stride] = px;
-    y[i * stride] = py;
+  const T x0 = splat<T>(base_segment_length_m);
+  T sx = splat<T>(0.0), sy = splat<T>(0.0);
+#pragma GCC unroll 64
+  for (int j = 0; j < n; ++j) {
+    sx += segment_length_m[j] * power_c[j];
+    sy += segment_length_m[j] * power_s[j];
+    x[j * stride] = x0 + (first_c * sx - first_s * sy);
+    y[j * stride] = first_s * sx + first_c * sy;
   }
 }
 

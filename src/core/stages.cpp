@@ -120,6 +120,7 @@ double tanHalfAngleLargeBulge(double d, double m, int& iterations) {
 HalfAngle halfAngleFromTan(double t, int iterations) {
   HalfAngle out;
   out.iterations = iterations;
+  out.tan = t;
   out.rad = atanNonNegative(t);  // our own atan (simd_math.hpp), as everywhere in the chain
   if (t > kLargeTan) {
     out.cos = 1.0 / t;
@@ -150,6 +151,7 @@ HalfAngle halfAngleOfWall(double bulge_m, double gap_m, double two_over_b, doubl
     out.rad = kHalfPi;
     out.cos = 0.0;
     out.sin = 1.0;
+    out.tan = std::numeric_limits<double>::infinity();
     return out;
   }
   // (h c underflows to 0 only for c < 1e-154 m, where m < 1e-75 and dropping it changes nothing.)
@@ -159,7 +161,7 @@ HalfAngle halfAngleOfWall(double bulge_m, double gap_m, double two_over_b, doubl
   if (!(m > 0.0)) return halfAngleFromTan(d, iterations);  // c = 0: eq 15 is h = (b/2) tan(theta)
   if (d > 1e6) return halfAngleFromTan(tanHalfAngleLargeBulge(d, m, iterations), iterations);
   HalfAngle out;
-  out.iterations = wallHalfAngle(d, m, quarterPowerStart(num, den, d, m), true, out.rad, out.cos, out.sin);
+  out.iterations = wallHalfAngle(d, m, quarterPowerStart(num, den, d, m), true, out.rad, out.cos, out.sin, out.tan);
   return out;
 }
 
@@ -192,6 +194,20 @@ WallSolution solveWall(double gauge_pa, double atmospheric_pa, double shear_modu
   w.bulge_m = bulge(w.stretch_excess, chamber_height_m);
   w.half = halfAngle(w.bulge_m, gap_m, wall_critical_height_m);
   return w;
+}
+
+FirstJointSeries firstJointSeries(double base_wall_share) {
+  const double a = 1.0 + base_wall_share;
+  double b[20];
+  b[0] = 1.0;
+  b[1] = a;
+  for (int n = 1; n + 1 < 20; ++n) b[n + 1] = (a * b[n] + (n - 1) * b[n - 1]) / (n + 1);
+  FirstJointSeries series{};
+  for (int k = 0; k < 10; ++k) {
+    series.cos_c[k] = (k % 2 == 0 ? 1.0 : -1.0) * b[2 * k];
+    series.sin_c[k] = (k % 2 == 0 ? 1.0 : -1.0) * b[2 * k + 1];
+  }
+  return series;
 }
 
 double bulgeForHalfAngle(double half_angle_rad, double gap_m, double wall_critical_height_m) {

@@ -170,6 +170,7 @@ class FingerModel {
 
   FingerParameters parameters_;
   ModelOptions options_;
+  FirstJointSeries first_joint_series_;  // joint 1's direction for identical chambers (stages.hpp)
   std::vector<ChamberGroup> groups_;
   std::vector<int> group_of_chamber_;
   double contact_gauge_pa_ = 0.0;

@@ -45,6 +45,7 @@ struct HalfAngle {
   double rad = 0.0;  ///< theta in [0, pi/2]
   double cos = 1.0;  ///< cos(theta)
   double sin = 0.0;  ///< sin(theta)
+  double tan = 0.0;  ///< tan(theta) (+inf at pi/2): the solve's own variable, from which joint 1's direction is a series
   int iterations = 0;  ///< solver steps used (0 below contact); for tests and benchmarks
 };
 
@@ -58,6 +59,20 @@ struct HalfAngle {
 /// @param[in] gap_m c (m), >= 0
 /// @param[in] wall_critical_height_m b (m), > 0
 HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m);
+
+/// Joint 1's direction for identical chambers (docs/MODEL.md stage 5), e^(i q_1) = e^(i a theta) with a = 1 + s0, as
+/// power series in t = tan(theta): cos(a atan t) = sum cos_c[k] t^2k and sin(a atan t) = t sum sin_c[k] t^2k. They are
+/// Re and Im of ((1 + i t)/(1 - i t))^(a/2) = sum i^n b_n t^n, and (1 + t^2) f' = i a f gives b_0 = 1, b_1 = a and
+/// (n + 1) b_(n+1) = a b_n + (n - 1) b_(n-1): positive terms, so the coefficients come out to a few ulp. For t <= 1/8 and
+/// a <= 2, b_n t^n <= (n + 1) 8^-n: the first terms left out (n = 20, 21) are below 2e-17 relative. The backbone takes
+/// the direction from t beside the arctangent rather than after it (simd_math.hpp, firstJoint).
+struct FirstJointSeries {
+  double cos_c[10];  ///< (-1)^k b_2k
+  double sin_c[10];  ///< (-1)^k b_(2k+1)
+};
+
+/// The series above for the base face's share @p base_wall_share (s0, in [0, 1]).
+FirstJointSeries firstJointSeries(double base_wall_share);
 
 /// One chamber's wall at one pressure: what stages 1-4 give.
 struct WallSolution {
