@@ -331,18 +331,26 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, const FirstJoi
   uniformPoints<kChambers>(first_c, first_s, h.cos, h.sin, n, parameters.base_segment_length_m,
                 parameters.segment_length_m.data(), dir_c.data(), dir_s.data(), points + 4, points + 5, 2);
   const double q = 2.0 * h.rad;
-  // One plain loop for the four per-chamber columns (four setConstant calls cost more instructions than the stores).
+  // The four per-chamber columns: with the count known at compile time, two numbers per store (a fixed-size map, which
+  // Eigen writes in packets); otherwise one plain loop (four run-time setConstant calls cost more than the stores).
   // Distinct arrays: __restrict spares the compiler's run-time checks for overlap, which cost more than the stores.
   double* __restrict stretch_out = out.stretch.data();
   double* __restrict bulge_out = out.bulge_m.data();
   double* __restrict half_out = out.half_angle_rad.data();
   double* __restrict joint_out = out.joint_angle_rad.data();
-#pragma GCC unroll 64
-  for (int i = 0; i < n; ++i) {
-    stretch_out[i] = stretch;
-    bulge_out[i] = bulge_m;
-    half_out[i] = h.rad;
-    joint_out[i] = q;
+  if constexpr (kChambers > 0) {
+    using Column = Eigen::Map<Eigen::Matrix<double, kChambers, 1>, Eigen::Unaligned>;
+    Column(stretch_out).setConstant(stretch);
+    Column(bulge_out).setConstant(bulge_m);
+    Column(half_out).setConstant(h.rad);
+    Column(joint_out).setConstant(q);
+  } else {
+    for (int i = 0; i < n; ++i) {
+      stretch_out[i] = stretch;
+      bulge_out[i] = bulge_m;
+      half_out[i] = h.rad;
+      joint_out[i] = q;
+    }
   }
   joint_out[0] = q1;
   out.tip_angle_rad = q1 + (n - 1) * q;
