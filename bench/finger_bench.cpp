@@ -228,28 +228,33 @@ void benchPair(benchmark::State& state) {
   state.SetLabel("two independent models, alternately");
 }
 
-// The stages alone, over the validated range, to show where the time of a robust evaluation goes.
+// The pieces of an evaluation alone, over the validated range, to show where its time goes: one wall's chain as the
+// robust solver runs it (solveWall: stages 1-3 by their series in s, then stage 4), stage 4 alone from the bulge, the
+// whole finger's half angles without writing a state (tipAngleAt: one solve and a sum) for the robust and the table
+// solvers, and the joints and backbone of the general path (unequal chambers) from given half angles.
 void benchStages(benchmark::State& state, int stage) {
   const std::vector<double>& pressures = validatedPressures();
   const double p_o = kParams.atmospheric_pressure_pa, mu = kParams.shear_modulus_pa[0];
   const double l = kParams.chamber_height_m[0], b = kParams.wall_critical_height_m[0], c = kParams.chamber_gap_m[0];
-  std::vector<double> g(pressures.size()), delta(pressures.size()), h(pressures.size());
+  std::vector<double> h(pressures.size());
   std::vector<pf::HalfAngle> theta(pressures.size());
   for (std::size_t i = 0; i < pressures.size(); ++i) {
-    g[i] = pf::energyGroup(pressures[i], p_o, mu);
-    delta[i] = pf::stretchExcess(g[i]);
-    h[i] = pf::bulge(delta[i], l);
-    theta[i] = pf::halfAngle(h[i], c, b);
+    const pf::WallSolution w = pf::solveWall(pressures[i], p_o, mu, l, c, b);
+    h[i] = w.bulge_m;
+    theta[i] = w.half;
   }
+  pf::ModelOptions table_options;
+  table_options.solver = pf::SolverKind::kTable;
+  const pf::FingerModel robust(kParams), table(kParams, table_options);
   pf::FingerState out = pf::restState(kParams);
   std::vector<pf::HalfAngle> seven(7);
   std::size_t i = 0;
   for (auto _ : state) {
     switch (stage) {
-      case 1: benchmark::DoNotOptimize(pf::energyGroup(pressures[i], p_o, mu)); break;
-      case 2: benchmark::DoNotOptimize(pf::stretchExcess(g[i])); break;
-      case 3: benchmark::DoNotOptimize(pf::bulge(delta[i], l)); break;
-      case 4: benchmark::DoNotOptimize(pf::halfAngle(h[i], c, b)); break;
+      case 1: benchmark::DoNotOptimize(pf::solveWall(pressures[i], p_o, mu, l, c, b)); break;
+      case 2: benchmark::DoNotOptimize(pf::halfAngle(h[i], c, b)); break;
+      case 3: benchmark::DoNotOptimize(robust.tipAngleAt(pressures[i])); break;
+      case 4: benchmark::DoNotOptimize(table.tipAngleAt(pressures[i])); break;
       default:
         std::fill(seven.begin(), seven.end(), theta[i]);
         pf::jointsAndBackbone(kParams, seven.data(), out);
@@ -257,8 +262,11 @@ void benchStages(benchmark::State& state, int stage) {
     }
     if (++i == pressures.size()) i = 0;
   }
-  state.SetLabel(stage == 1 ? "energy group g(P)" : stage == 2 ? "stretch delta(g)" : stage == 3 ? "bulge h(delta)"
-                 : stage == 4 ? "half angle theta(h)" : "joints + backbone (N = 7, general path)");
+  state.SetLabel(stage == 1   ? "one wall, stages 1-4 (solveWall)"
+                 : stage == 2 ? "stage 4 alone, theta(h)"
+                 : stage == 3 ? "robust: the tip angle only, no state written (tipAngleAt)"
+                 : stage == 4 ? "table: the tip angle only, no state written (tipAngleAt)"
+                              : "joints + backbone (N = 7, general path)");
 }
 
 // Latency of the primitives the solvers chain together: each result feeds the next call, so this is the
