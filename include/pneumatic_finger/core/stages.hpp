@@ -81,8 +81,10 @@ struct WallSolution {
   HalfAngle half;               ///< theta, with its cosine and sine
 };
 
-/// Stages 1-4 chained with the robust forms above: gauge pressure -> g -> delta -> h -> theta. The one place the
-/// robust chain is written; the model's robust solver and its table builder call it.
+/// Stages 1-4 chained with the robust forms: gauge pressure -> delta, h -> theta. Where s = sqrt(g/3) <= 1/20 (the
+/// validated range and beyond), delta, h and stage 4's m come from power series in s (docs/MODEL.md stages 2-4);
+/// otherwise g -> delta -> h -> theta by the functions above. The model's robust solver and its table builder call it;
+/// the batch kernel shares its arithmetic (src/core/simd_math.hpp) and takes the same branch per pressure.
 /// @param[in] gauge_pa P (Pa gauge); <= 0 gives the rest wall
 /// @param[in] atmospheric_pa P_o (Pa)
 /// @param[in] shear_modulus_pa mu (Pa)
