@@ -143,6 +143,35 @@ TEST(Property, TableSolverErrorIsMeasuredAndWithinTolerance) {
   EXPECT_EQ(table.evaluate(1e6).half_angle_rad[0], robust.evaluate(1e6).half_angle_rad[0]);
 }
 
+TEST(Property, WithoutChamberDetailStretchAndBulgeAreNaNNotPlaceholders) {
+  // chamber_detail = false leaves stretch and bulge out (the table solver then skips the chain): the state says so
+  // with NaN rather than a rest value, and everything else is what the full evaluation gives, bit for bit.
+  pf::RawParameterMap raw;
+  raw["chamber_gap_m"] = {{3e-5, 4e-5, 5e-5, 6e-5, 5e-5, 4e-5, 3e-5}, true};
+  const pf::FingerParameters unequal = pf::FingerParameters::fromRaw(raw);
+  for (const pf::FingerParameters& params : {kPaper, unequal}) {
+    for (pf::SolverKind solver : {pf::SolverKind::kTable, pf::SolverKind::kRobust}) {
+      pf::ModelOptions lean, full;
+      lean.solver = full.solver = solver;
+      lean.chamber_detail = false;
+      pf::FingerModel lean_model(params, lean), full_model(params, full);
+      for (double p : {0.0, 5e4, 1.5e5, 2.5e5, 1e6, -1e4}) {
+        const pf::FingerState& a = lean_model.evaluate(p);
+        const pf::FingerState& b = full_model.evaluate(p);
+        for (int i = 0; i < params.chamber_count; ++i) {
+          EXPECT_TRUE(std::isnan(a.stretch[i]) && std::isnan(a.bulge_m[i])) << "P = " << p;
+          EXPECT_TRUE(std::isfinite(b.stretch[i]) && std::isfinite(b.bulge_m[i])) << "P = " << p;
+          EXPECT_EQ(a.half_angle_rad[i], b.half_angle_rad[i]) << "P = " << p;
+          EXPECT_EQ(a.joint_angle_rad[i], b.joint_angle_rad[i]) << "P = " << p;
+        }
+        EXPECT_EQ(a.tip().x(), b.tip().x()) << "P = " << p;
+        EXPECT_EQ(a.tip().y(), b.tip().y()) << "P = " << p;
+        EXPECT_EQ(a.status, b.status);
+      }
+    }
+  }
+}
+
 TEST(Property, InverseModelRoundTrips) {
   pf::FingerModel model(kPaper);
   for (double p : {1e4, 5e4, 1e5, 1.5e5, 2e5}) {

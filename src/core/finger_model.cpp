@@ -115,7 +115,7 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
   }
   scratch_.resize(groups_.size());
   chamber_half_.resize(static_cast<std::size_t>(n));
-  state_ = restState(parameters_);
+  state_ = initialState();
 }
 
 int FingerModel::tableSegmentCount() const {
@@ -311,8 +311,8 @@ namespace {
 // chambers (their control cost as much as their arithmetic); 0 takes it from the parameters. @p first: e^(i q_1) where
 // the solver has it (two numbers: the table), or null to compute it here.
 template <int kChambers>
-void jointsAndBackboneUniform(const FingerParameters& parameters, const FirstJointSeries& series, double stretch,
-                              double bulge_m, const HalfAngle& h, const double* first, FingerState& out) {
+void jointsAndBackboneUniform(const FingerParameters& parameters, const FirstJointSeries& series, bool detail,
+                              double stretch, double bulge_m, const HalfAngle& h, const double* first, FingerState& out) {
   const int n = kChambers > 0 ? kChambers : parameters.chamber_count;
   double* __restrict points = out.backbone_m.data();  // column-major 2 x (N+2)
   points[0] = 0.0;
@@ -340,14 +340,18 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, const FirstJoi
   double* __restrict joint_out = out.joint_angle_rad.data();
   if constexpr (kChambers > 0) {
     using Column = Eigen::Map<Eigen::Matrix<double, kChambers, 1>, Eigen::Unaligned>;
-    Column(stretch_out).setConstant(stretch);
-    Column(bulge_out).setConstant(bulge_m);
+    if (detail) {
+      Column(stretch_out).setConstant(stretch);
+      Column(bulge_out).setConstant(bulge_m);
+    }
     Column(half_out).setConstant(h.rad);
     Column(joint_out).setConstant(q);
   } else {
     for (int i = 0; i < n; ++i) {
-      stretch_out[i] = stretch;
-      bulge_out[i] = bulge_m;
+      if (detail) {
+        stretch_out[i] = stretch;
+        bulge_out[i] = bulge_m;
+      }
       half_out[i] = h.rad;
       joint_out[i] = q;
     }
@@ -359,7 +363,7 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, const FirstJoi
 
 // One instance per chamber count up to kUnrolledChambers (the fingers people build have a handful to a dozen
 // chambers), the run-time count above.
-using UniformWriter = void (*)(const FingerParameters&, const FirstJointSeries&, double, double, const HalfAngle&,
+using UniformWriter = void (*)(const FingerParameters&, const FirstJointSeries&, bool, double, double, const HalfAngle&,
                                const double*, FingerState&);
 constexpr int kUnrolledChambers = 16;
 template <std::size_t... kCounts>
@@ -375,6 +379,15 @@ UniformWriter uniformWriterFor(int chamber_count) {
 
 }  // namespace
 
+FingerState FingerModel::initialState() const {
+  FingerState s = restState(parameters_);
+  if (!options_.chamber_detail) {
+    s.stretch.setConstant(std::numeric_limits<double>::quiet_NaN());
+    s.bulge_m.setConstant(std::numeric_limits<double>::quiet_NaN());
+  }
+  return s;
+}
+
 bool FingerModel::writeState(double gauge_pa, FingerState& out) {
   const bool detail = options_.chamber_detail;
   auto finite = [](const GroupResult& r) {
@@ -386,7 +399,7 @@ bool FingerModel::writeState(double gauge_pa, FingerState& out) {
     const GroupResult r = solveGroup(groups_[0], gauge_pa, detail);
     if (!finite(r)) return false;
     const double first[2] = {r.first_c, r.first_s};
-    uniformWriterFor(parameters_.chamber_count)(parameters_, first_joint_series_, r.stretch, r.bulge_m, r.half,
+    uniformWriterFor(parameters_.chamber_count)(parameters_, first_joint_series_, detail, r.stretch, r.bulge_m, r.half,
                                                 r.has_first ? first : nullptr, out);
     out.gauge_pa = gauge_pa;
     return true;
@@ -398,8 +411,10 @@ bool FingerModel::writeState(double gauge_pa, FingerState& out) {
   for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
     const GroupResult& r = scratch_[static_cast<std::size_t>(group_of_chamber_[k])];
     const auto i = static_cast<Eigen::Index>(k);
-    out.stretch[i] = r.stretch;
-    out.bulge_m[i] = r.bulge_m;
+    if (detail) {
+      out.stretch[i] = r.stretch;
+      out.bulge_m[i] = r.bulge_m;
+    }
     chamber_half_[k] = r.half;
   }
   jointsAndBackbone(parameters_, chamber_half_.data(), out);
@@ -602,7 +617,7 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
     batchKernel(path)(spec, gauge_pa, count, out);
     return;
   }
-  if (batch_state_.stretch.size() == 0) batch_state_ = restState(parameters_);
+  if (batch_state_.stretch.size() == 0) batch_state_ = initialState();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto row = [n, nan](const Eigen::VectorXd& from, double* to, std::size_t i, bool answered) {
     if (!to) return;

@@ -37,7 +37,8 @@ struct ModelOptions {
   double table_max_gauge_pa = 3.0e5;
   /// Largest |theta_table - theta_robust| the table may have on its check grid (rad); segments double until met.
   double table_tolerance_rad = 5e-13;
-  /// Fill stretch and bulge even when the solver does not need them (the table solver skips the chain).
+  /// Compute and write each chamber's stretch and bulge even when the solver does not need them (the table solver
+  /// skips the chain). false: the state's stretch and bulge hold NaN (not computed), and no evaluation writes them.
   bool chamber_detail = true;
 };
 
@@ -167,6 +168,8 @@ class FingerModel {
   /// Writes the state at @p gauge_pa into @p out; returns false, leaving @p out untouched, when the solver gave a
   /// non-finite stretch, bulge or half angle.
   bool writeState(double gauge_pa, FingerState& out);
+  /// The rest shape, with NaN for stretch and bulge when the options leave them out (chamber_detail false).
+  FingerState initialState() const;
 
   FingerParameters parameters_;
   ModelOptions options_;
