@@ -1,9 +1,11 @@
 // The batch kernel: the robust solver for a finger of identical chambers, SIMD across pressures (each lane of a pack
 // is one pressure). Internal header of src/core; see simd_math.hpp for why everything here has internal linkage.
 //
-// It is a transcription of the single evaluation (stages.cpp: energyGroup, stretchExcess, bulge, halfAngle; and
-// finger_model.cpp: the uniform joints and backbone), operation for operation and in the same order, so that every
-// lane rounds as the single evaluation does. Where the single evaluation branches, the kernel computes the common
+// It computes what the single evaluation computes (stages.cpp: solveWall; finger_model.cpp: the uniform joints and
+// backbone), so that every lane rounds as the single evaluation does: most of the arithmetic is the same templates
+// (simd_math.hpp: the series of stages 2-4, stage 4's solve, joint 1's direction, the points); stage 1 and the stretch's
+// Halley steps above the series' limit are transcribed here, operation for operation and in the same order. Where the
+// single evaluation branches, the kernel computes the common
 // branch for every lane and selects; an iteration stops per lane where the single one stops, and the pack goes on
 // until its last lane stops (lanes that stopped keep their value). The rare branches (energy group > 1e30, bulge
 // beyond 1e6 wall heights, a zero gap) are left to the single evaluation, lane by lane.
@@ -42,12 +44,6 @@ namespace {  // NOLINT(build/namespaces)
 template <class T>
 inline T absOf(T x) {
   return x < splat<T>(0.0) ? -x : x;
-}
-
-// std::min(a, b) is (b < a) ? b : a; the same selection, lane by lane.
-template <class T>
-inline T minOf(T a, T b) {
-  return b < a ? b : a;
 }
 
 /// Stages 2-3 stage by stage (stretchExcess, then bulge), for lanes above the series' limit.
