@@ -6,12 +6,15 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/stages.hpp"
 #include "../src/core/simd_math.hpp"  // sinCosSmall (internal), tested directly
+#include "../src/core/table_kernel.hpp"  // the table's polynomial variants (internal), tested directly
 
 namespace pf = pneumatic_finger;
 
@@ -253,4 +256,50 @@ TEST(SinCosSmall, WithinTwoUlpOfQuadPrecision) {
   pf::sinCosSmall(0.0, c, s);
   EXPECT_EQ(c, 1.0);
   EXPECT_EQ(s, 0.0);
+}
+
+// The table solver's polynomials (table_kernel.hpp), one variant per instruction set: the same bits in every variant
+// this CPU runs, and each value within a few ulp of the polynomial evaluated in quad precision (Horner, __float128).
+TEST(TablePolynomials, EveryVariantGivesTheSameBitsAndMatchesQuadPrecision) {
+  std::vector<std::pair<const char*, void (*)(const double*, int, double, double*)>> variants = {
+      {"generic", pf::tablePolynomialsGeneric}};
+#if defined(__x86_64__)
+  if (pf::batchPathAvailable(pf::BatchPath::kAvx2)) variants.emplace_back("avx2", pf::tablePolynomialsAvx2);
+  if (pf::batchPathAvailable(pf::BatchPath::kAvx512)) variants.emplace_back("avx512", pf::tablePolynomialsAvx512);
+#endif
+  std::mt19937_64 rng(20261124);
+  std::uniform_real_distribution<double> coefficient(-1.0, 1.0), local(-1.0, 1.0);
+  for (int functions : {8, 16, 40}) {
+    std::vector<double> row(static_cast<std::size_t>(8 * functions));
+    // Coefficients that shrink with the power, as an interpolant's do, so that the sum is not all cancellation.
+    for (int i = 0; i < 8; ++i) {
+      for (int f = 0; f < functions; ++f) row[static_cast<std::size_t>(i * functions + f)] = coefficient(rng) / (1 << i);
+    }
+    for (int trial = 0; trial < 200; ++trial) {
+      const double x = trial == 0 ? -1.0 : trial == 1 ? 1.0 : local(rng);
+      std::vector<double> want(static_cast<std::size_t>(functions));
+      variants[0].second(row.data(), functions, x, want.data());
+      for (int f = 0; f < functions; ++f) {
+        __float128 quad = 0;
+        for (int i = 7; i >= 0; --i) quad = quad * x + row[static_cast<std::size_t>(i * functions + f)];
+        // Estrin's scheme rounds each term c_i x^i at most 8 times (c7: c7 x, + c6, x^2, * x^2, + p45, x^4 (two),
+        // * x^4, + the rest), so its error is at most 8 eps sum |c_i x^i| (to first order).
+        double magnitude = 0.0;
+        for (int i = 0; i < 8; ++i) {
+          magnitude += std::fabs(row[static_cast<std::size_t>(i * functions + f)] * std::pow(x, i));
+        }
+        EXPECT_LE(std::fabs(static_cast<double>(quad - want[static_cast<std::size_t>(f)])),
+                  8.0 * std::numeric_limits<double>::epsilon() * magnitude)
+            << "f = " << f << ", x = " << x;
+      }
+      for (std::size_t v = 1; v < variants.size(); ++v) {
+        std::vector<double> got(static_cast<std::size_t>(functions));
+        variants[v].second(row.data(), functions, x, got.data());
+        for (int f = 0; f < functions; ++f) {
+          EXPECT_TRUE(sameBits(got[static_cast<std::size_t>(f)], want[static_cast<std::size_t>(f)]))
+              << variants[v].first << ": f = " << f << ", x = " << x;
+        }
+      }
+    }
+  }
 }

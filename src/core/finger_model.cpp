@@ -4,12 +4,14 @@
 #include <array>
 #include <limits>
 #include <cmath>
+#include <cstring>
 #include <sstream>
 #include <stdexcept>
 #include <utility>
 
 #include "pneumatic_finger/core/units.hpp"
 #include "batch_kernel.hpp"
+#include "table_kernel.hpp"
 
 namespace pneumatic_finger {
 
@@ -17,10 +19,12 @@ namespace {
 
 constexpr int kTableDegree = 7;                   // per-segment polynomial degree
 constexpr int kTableNodes = kTableDegree + 1;     // Chebyshev nodes per segment
-// theta, cos(theta), sin(theta), and cos and sin of joint 1's q_1 = (1 + s0) theta, so that a finger of identical chambers
-// needs no series for its base face (simd_math.hpp, firstJoint) when the table answers.
-constexpr int kTableFunctions = 5;
-constexpr int kTableStride = kTableNodes * kTableFunctions;
+// Unequal chambers: theta, cos theta, sin theta. Identical chambers: 2 N point coordinates, theta, and zeros up to
+// whole packs of the widest SIMD variant (table_kernel.hpp).
+constexpr int kTableTrigFunctions = 3;
+constexpr int tableShapeFunctions(int chamber_count) {
+  return (2 * chamber_count + 1 + kTablePackFunctions - 1) / kTablePackFunctions * kTablePackFunctions;
+}
 constexpr int kTableMaxSegments = 4096;
 
 // The kTableNodes first-kind Chebyshev nodes on [-1, 1].
@@ -50,6 +54,142 @@ std::array<double, kTableNodes> monomialInterpolant(const std::array<double, kTa
   }
   return mono;
 }
+
+// Estrin's scheme for one of a segment's degree-7 polynomials (coefficient i of function f at
+// row[i * functions + f]): pairs, then x^2 and x^4 combine them, three levels of independent products instead of
+// Horner's chain of seven (the chain was the table's latency).
+static_assert(kTableDegree == 7, "the table's Estrin schemes are written for degree 7");
+inline double tableFunction(const double* row, int functions, int f, double x) {
+  const double x2 = x * x, x4 = x2 * x2;
+  auto c = [row, functions, f](int i) { return row[i * functions + f]; };
+  const double p01 = c(0) + c(1) * x, p23 = c(2) + c(3) * x, p45 = c(4) + c(5) * x, p67 = c(6) + c(7) * x;
+  return (p01 + p23 * x2) + (p45 + p67 * x2) * x4;
+}
+
+
+// The table's polynomials for the widest instruction set this CPU has (as the batch picks its kernel).
+TablePolynomials widestTablePolynomials() {
+#if defined(__x86_64__)
+  if (batchPathAvailable(BatchPath::kAvx512)) return tablePolynomialsAvx512;
+  if (batchPathAvailable(BatchPath::kAvx2)) return tablePolynomialsAvx2;
+#endif
+  return tablePolynomialsGeneric;
+}
+
+// Stages 5-6 for identical chambers: q_1 = theta_0 + theta, q_n = 2 theta, and nothing per chamber needs to be looked
+// up or copied. kChambers > 0 is the chamber count as a compile-time constant, so that the compiler unrolls the loops
+// over the chambers (their control cost as much as their arithmetic); 0 takes it from the parameters.
+
+// The four per-chamber columns, the tip direction and the contact flag, from theta and q_1.
+template <int kChambers>
+__attribute__((always_inline)) inline void uniformColumns(int n, bool detail, double stretch, double bulge_m, double theta, double q1, FingerState& out) {
+  const double q = 2.0 * theta;
+  // With the count known at compile time, two numbers per store (a fixed-size map, which Eigen writes in packets);
+  // otherwise one plain loop (four run-time setConstant calls cost more than the stores). Distinct arrays:
+  // __restrict spares the compiler's run-time checks for overlap, which cost more than the stores.
+  double* __restrict stretch_out = out.stretch.data();
+  double* __restrict bulge_out = out.bulge_m.data();
+  double* __restrict half_out = out.half_angle_rad.data();
+  double* __restrict joint_out = out.joint_angle_rad.data();
+  if constexpr (kChambers > 0) {
+    using Column = Eigen::Map<Eigen::Matrix<double, kChambers, 1>, Eigen::Unaligned>;
+    if (detail) {
+      Column(stretch_out).setConstant(stretch);
+      Column(bulge_out).setConstant(bulge_m);
+    }
+    Column(half_out).setConstant(theta);
+    Column(joint_out).setConstant(q);
+  } else {
+    for (int i = 0; i < n; ++i) {
+      if (detail) {
+        stretch_out[i] = stretch;
+        bulge_out[i] = bulge_m;
+      }
+      half_out[i] = theta;
+      joint_out[i] = q;
+    }
+  }
+  joint_out[0] = q1;
+  out.tip_angle_rad = q1 + (n - 1) * q;
+  out.walls_in_contact = theta > 0.0;
+}
+
+// O_0 and O_1: the base segment's ends, the same for every pressure.
+inline void basePoints(const FingerParameters& parameters, double* __restrict points) {
+  points[0] = 0.0;
+  points[1] = 0.0;
+  points[2] = parameters.base_segment_length_m;
+  points[3] = 0.0;
+}
+
+// The shape from the half angle: firstJoint and uniformPoints (simd_math.hpp) are shared with the batch kernel, so
+// that both round alike.
+template <int kChambers>
+void jointsAndBackboneUniform(const FingerParameters& parameters, const FirstJointSeries& series, bool detail,
+                              double stretch, double bulge_m, const HalfAngle& h, FingerState& out) {
+  const int n = kChambers > 0 ? kChambers : parameters.chamber_count;
+  double* __restrict points = out.backbone_m.data();  // column-major 2 x (N+2)
+  basePoints(parameters, points);
+  double first_c, first_s;
+  const double q1 = firstJoint(parameters.base_wall_share, series, h.rad, h.tan, h.cos, h.sin, first_c, first_s);
+  std::array<double, kMaxChamberCount> dir_c, dir_s;
+  uniformPoints<kChambers>(first_c, first_s, h.cos, h.sin, n, parameters.base_segment_length_m,
+                           parameters.segment_length_m.data(), dir_c.data(), dir_s.data(), points + 4, points + 5, 2);
+  uniformColumns<kChambers>(n, detail, stretch, bulge_m, h.rad, q1, out);
+}
+
+// The shape from the table of identical chambers (row: the segment, x in [-1, 1]): the points and theta are its
+// polynomials (@p polynomials: the widest SIMD variant, table_kernel.hpp), so nothing of stages 4-6 runs.
+// @return false, writing nothing, for a theta a rounding error below 0 (the interpolant next to contact), where the
+// caller takes the rest shape instead.
+template <int kChambers>
+bool tableShape(const FingerParameters& parameters, TablePolynomials polynomials, const double* row, double x,
+                bool detail, double stretch, double bulge_m, FingerState& out) {
+  const int n = kChambers > 0 ? kChambers : parameters.chamber_count;
+  std::array<double, tableShapeFunctions(kChambers > 0 ? kChambers : kMaxChamberCount)> values;
+  polynomials(row, tableShapeFunctions(n), x, values.data());
+  const double theta = values[static_cast<std::size_t>(2 * n)];
+  if (!(theta >= 0.0)) return false;
+  double* __restrict points = out.backbone_m.data();
+  basePoints(parameters, points);
+  std::memcpy(points + 4, values.data(), sizeof(double) * static_cast<std::size_t>(2 * n));  // a constant size
+  uniformColumns<kChambers>(n, detail, stretch, bulge_m, theta, firstJointAngle(parameters.base_wall_share, theta),
+                            out);
+  return true;
+}
+
+// One instance per chamber count up to kUnrolledChambers (the fingers people build have a handful to a dozen
+// chambers), the run-time count above.
+constexpr int kUnrolledChambers = 16;
+template <class Writer, template <int> class Pick, std::size_t... kCounts>
+constexpr std::array<Writer, sizeof...(kCounts)> writersFor(std::index_sequence<kCounts...>) {
+  return {Pick<static_cast<int>(kCounts)>::value...};
+}
+template <class Writer, template <int> class Pick>
+Writer writerFor(int chamber_count) {
+  static constexpr std::array<Writer, kUnrolledChambers + 1> kWriters =
+      writersFor<Writer, Pick>(std::make_index_sequence<kUnrolledChambers + 1>{});
+  return kWriters[static_cast<std::size_t>(chamber_count <= kUnrolledChambers ? chamber_count : 0)];
+}
+
+using UniformWriter = void (*)(const FingerParameters&, const FirstJointSeries&, bool, double, double,
+                               const HalfAngle&, FingerState&);
+template <int kChambers>
+struct PickUniform {
+  static constexpr UniformWriter value = &jointsAndBackboneUniform<kChambers>;
+};
+UniformWriter uniformWriterFor(int chamber_count) { return writerFor<UniformWriter, PickUniform>(chamber_count); }
+
+using TableShapeWriter = bool (*)(const FingerParameters&, TablePolynomials, const double*, double, bool, double,
+                                  double, FingerState&);
+template <int kChambers>
+struct PickTableShape {
+  static constexpr TableShapeWriter value = &tableShape<kChambers>;
+};
+TableShapeWriter tableShapeWriterFor(int chamber_count) {
+  return writerFor<TableShapeWriter, PickTableShape>(chamber_count);
+}
+
 
 }  // namespace
 
@@ -95,7 +235,7 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     ChamberGroup g{parameters_.chamber_height_m[k], parameters_.wall_critical_height_m[k],
-                   parameters_.chamber_gap_m[k], parameters_.shear_modulus_pa[k], 0.0, {}, 0, 0, 0, 0};
+                   parameters_.chamber_gap_m[k], parameters_.shear_modulus_pa[k], 0.0, {}, 0, 0, 0, 0, 0, 0, {}};
     auto same = [&g](const ChamberGroup& o) {
       return o.chamber_height_m == g.chamber_height_m && o.wall_critical_height_m == g.wall_critical_height_m &&
              o.chamber_gap_m == g.chamber_gap_m && o.shear_modulus_pa == g.shear_modulus_pa;
@@ -111,6 +251,10 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
     contact_gauge_pa_ = std::min(contact_gauge_pa_, it->contact_gauge_pa);
   }
   if (options_.solver == SolverKind::kTable) {
+    if (groups_.size() == 1) {
+      table_shape_writer_ = tableShapeWriterFor(n);
+      table_polynomials_ = widestTablePolynomials();
+    }
     for (auto& g : groups_) buildTable(g);
   }
   scratch_.resize(groups_.size());
@@ -128,56 +272,106 @@ void FingerModel::buildTable(ChamberGroup& group) {
   const double u_begin = std::sqrt(group.contact_gauge_pa);
   const double u_end = std::sqrt(options_.table_max_gauge_pa);
   if (!(u_end > u_begin)) return;  // never in contact within the table's range: theta = 0 or robust above
-  auto exact = [&](double u) { return solveRobust(group, u * u, parameters_.atmospheric_pressure_pa).half; };
-  // e^(i q_1) as the robust solver's backbone forms it.
-  auto first = [&](const HalfAngle& h, double& c, double& s) {
-    firstJoint(parameters_.base_wall_share, first_joint_series_, h.rad, h.tan, h.cos, h.sin, c, s);
+  const int n = parameters_.chamber_count;
+  // Identical chambers: the table holds the published shape itself (points and theta), so that evaluate() runs
+  // no stage after the lookup. Unequal chambers: theta, cos and sin per group, composed by jointsAndBackbone.
+  const bool shape = groups_.size() == 1;
+  const int functions = shape ? tableShapeFunctions(n) : kTableTrigFunctions;
+  group.table_functions = functions;
+  group.table_theta = shape ? 2 * n : 0;
+  // The finger's length: a point error of e metres counts as e / length radians (the turn at the base that moves
+  // the tip as far), so that one tolerance in radians bounds both.
+  double length_m = parameters_.base_segment_length_m;
+  for (double z : parameters_.segment_length_m) length_m += z;
+  FingerState exact_state = restState(parameters_), table_state = exact_state;
+  // The exact functions at u: the robust chain, and for identical chambers the backbone evaluate() writes from it.
+  auto exact = [&](double u, double* f) {
+    const HalfAngle h = solveRobust(group, u * u, parameters_.atmospheric_pressure_pa).half;
+    if (shape) {
+      uniformWriterFor(n)(parameters_, first_joint_series_, false, 1.0, 0.0, h, exact_state);
+      std::copy(exact_state.backbone_m.data() + 4, exact_state.backbone_m.data() + 4 + 2 * n, f);
+      f[2 * n] = h.rad;
+      f[2 * n + 1] = 0.0;
+    } else {
+      f[0] = h.rad;
+      f[1] = h.cos;
+      f[2] = h.sin;
+    }
   };
+  std::vector<double> at(static_cast<std::size_t>(functions) * kTableNodes), want(static_cast<std::size_t>(functions));
   double achieved = 0.0;
   for (int segments = 8; segments <= kTableMaxSegments; segments *= 2) {
     const double width = (u_end - u_begin) / segments;
-    group.table.assign(static_cast<std::size_t>(segments) * kTableStride, 0.0);
+    group.table.assign(static_cast<std::size_t>(segments) * functions * kTableNodes, 0.0);
     for (int s = 0; s < segments; ++s) {
       const double u0 = u_begin + s * width;
       // One solve per node gives every function together.
-      std::array<std::array<double, kTableNodes>, kTableFunctions> at{};
-      for (int j = 0; j < kTableNodes; ++j) {
-        const auto k = static_cast<std::size_t>(j);
-        const HalfAngle h = exact(u0 + 0.5 * (chebyshevNode(j) + 1.0) * width);
-        at[0][k] = h.rad;
-        at[1][k] = h.cos;
-        at[2][k] = h.sin;
-        first(h, at[3][k], at[4][k]);
+      for (int j = 0; j < kTableNodes; ++j) exact(u0 + 0.5 * (chebyshevNode(j) + 1.0) * width, &at[j * functions]);
+      double* row = &group.table[static_cast<std::size_t>(s) * functions * kTableNodes];
+      for (int f = 0; f < functions; ++f) {
+        std::array<double, kTableNodes> values;
+        for (int j = 0; j < kTableNodes; ++j) values[static_cast<std::size_t>(j)] = at[j * functions + f];
+        const auto coefficients = monomialInterpolant(values);
+        for (int i = 0; i < kTableNodes; ++i) row[i * functions + f] = coefficients[static_cast<std::size_t>(i)];
       }
-      double* row = &group.table[static_cast<std::size_t>(s) * kTableStride];
-      for (int f = 0; f < kTableFunctions; ++f) {
-        const auto coefficients = monomialInterpolant(at[static_cast<std::size_t>(f)]);
-        for (int i = 0; i < kTableNodes; ++i) row[i * kTableFunctions + f] = coefficients[static_cast<std::size_t>(i)];
+    }
+    group.table_theta_only.resize(static_cast<std::size_t>(segments) * kTableNodes);
+    for (int s = 0; s < segments; ++s) {
+      for (int i = 0; i < kTableNodes; ++i) {
+        group.table_theta_only[static_cast<std::size_t>(s * kTableNodes + i)] =
+            group.table[static_cast<std::size_t>((s * kTableNodes + i) * functions + group.table_theta)];
       }
     }
     group.table_u_begin = u_begin;
     group.table_u_end = u_end;
     group.table_inv_width = 1.0 / width;
     group.table_segments = segments;
-    // Measure, do not assume: compare with the robust solver at 9 interior points of every segment
-    // (none of them an interpolation node) plus both ends.
+    // Measure, do not assume: compare what evaluate() publishes with the robust solver at 9 interior points of
+    // every segment (none of them an interpolation node) plus both ends.
     achieved = 0.0;
     for (int s = 0; s < segments; ++s) {
       for (int j = 0; j <= 10; ++j) {
         const double u = u_begin + (s + j / 10.0) * width;
         const double p = u * u;
-        const HalfAngle want = exact(u);
-        double want_first_c, want_first_s;
-        first(want, want_first_c, want_first_s);
-        const GroupResult got = solveGroup(group, p, false);
-        achieved = std::max({achieved, std::fabs(got.half.rad - want.rad), std::fabs(got.half.cos - want.cos),
-                             std::fabs(got.half.sin - want.sin), std::fabs(got.first_c - want_first_c),
-                             std::fabs(got.first_s - want_first_s)});
+        exact(u, want.data());
+        if (shape) {
+          int segment = 0;
+          double x = 0.0;
+          if (!tableSegment(group, p, segment, x) ||
+              !table_shape_writer_(parameters_, table_polynomials_, tableRow(group, segment), x, false, 1.0, 0.0,
+                                   table_state)) {
+            continue;  // at contact itself, or a theta a rounding below 0: evaluate() gives the rest shape there
+          }
+          achieved = std::max(achieved, std::fabs(table_state.half_angle_rad[0] - want[2 * n]));
+          for (int k = 0; k < 2 * n; ++k) {
+            achieved = std::max(achieved, std::fabs(table_state.backbone_m.data()[4 + k] - want[k]) / length_m);
+          }
+        } else {
+          const GroupResult got = solveGroup(group, p, false);
+          achieved = std::max({achieved, std::fabs(got.half.rad - want[0]), std::fabs(got.half.cos - want[1]),
+                               std::fabs(got.half.sin - want[2])});
+        }
       }
     }
     if (achieved <= options_.table_tolerance_rad) break;
   }
   table_error_rad_ = std::max(table_error_rad_, achieved);
+}
+
+inline bool FingerModel::tableSegment(const ChamberGroup& group, double gauge_pa, int& segment, double& x) {
+  if (!(gauge_pa > group.contact_gauge_pa) || group.table_segments == 0) return false;
+  const double u = std::sqrt(gauge_pa);
+  if (!(u <= group.table_u_end)) return false;
+  const double pos = (u - group.table_u_begin) * group.table_inv_width;
+  int s = static_cast<int>(pos);
+  s = std::min(std::max(s, 0), group.table_segments - 1);
+  x = 2.0 * (pos - s) - 1.0;
+  segment = s;
+  return true;
+}
+
+inline const double* FingerModel::tableRow(const ChamberGroup& group, int segment) {
+  return &group.table[static_cast<std::size_t>(segment) * static_cast<std::size_t>(group.table_functions) * kTableNodes];
 }
 
 WallSolution FingerModel::solveRobust(const ChamberGroup& group, double gauge_pa, double atmospheric_pa) {
@@ -204,9 +398,11 @@ FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, doub
       return r;
     }
     case SolverKind::kTable: {
-      const double u = std::sqrt(gauge_pa);
-      // Outside the table the robust chain answers, and it also gives the detail.
-      if (gauge_pa > group.contact_gauge_pa && (!(u <= group.table_u_end) || group.table_segments == 0)) {
+      int segment = 0;
+      double x = 0.0;
+      const bool in_table = tableSegment(group, gauge_pa, segment, x);
+      // Above the table the robust chain answers, and it also gives the detail.
+      if (!in_table && gauge_pa > group.contact_gauge_pa) {
         const WallSolution w = solveRobust(group, gauge_pa, p_o);
         return {1.0 + w.stretch_excess, w.bulge_m, w.half};
       }
@@ -215,34 +411,24 @@ FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, doub
         r.stretch = 1.0 + delta;
         r.bulge_m = bulge(delta, group.chamber_height_m);
       }
-      if (gauge_pa <= group.contact_gauge_pa) return r;  // walls apart: theta = 0 exactly
-      const double pos = (u - group.table_u_begin) * group.table_inv_width;
-      int s = static_cast<int>(pos);
-      s = std::min(std::max(s, 0), group.table_segments - 1);
-      const double x = 2.0 * (pos - s) - 1.0;
-      const double* row = &group.table[static_cast<std::size_t>(s) * kTableStride];
-      // Estrin's scheme for the degree-7 polynomials: pairs, then x^2 and x^4 combine them, three levels of
-      // independent products instead of Horner's chain of seven (the chain was the table's latency).
-      static_assert(kTableDegree == 7, "Estrin's scheme below is written for degree 7");
-      const double x2 = x * x, x4 = x2 * x2;
-      auto estrin = [row, x, x2, x4](int f) {
-        auto c = [row, f](int i) { return row[i * kTableFunctions + f]; };
-        const double p01 = c(0) + c(1) * x, p23 = c(2) + c(3) * x, p45 = c(4) + c(5) * x, p67 = c(6) + c(7) * x;
-        return (p01 + p23 * x2) + (p45 + p67 * x2) * x4;
-      };
-      double th = estrin(0), co = estrin(1), si = estrin(2), first_c = estrin(3), first_s = estrin(4);
+      if (!in_table) return r;  // walls apart: theta = 0 exactly
+      // The same coefficients as the row's theta, in the same order of operations: the same bits as evaluate().
+      const auto k = static_cast<std::size_t>(segment);
+      const double theta = tableFunction(&group.table_theta_only[k * kTableNodes], 1, 0, x);
       // Near contact the interpolant may dip a rounding error below 0: theta is 0 there by definition.
-      if (th < 0.0) {
-        th = 0.0;
-        co = first_c = 1.0;
-        si = first_s = 0.0;
+      if (!(theta > 0.0)) return r;
+      r.half.rad = theta;
+      // tan is not tabulated: jointsAndBackbone does not read it, and a shape table's shape comes from the table.
+      r.half.tan = std::numeric_limits<double>::quiet_NaN();
+      if (group.table_functions == kTableTrigFunctions) {
+        const double* row = &group.table[k * kTableTrigFunctions * kTableNodes];
+        r.half.cos = tableFunction(row, kTableTrigFunctions, 1, x);
+        r.half.sin = tableFunction(row, kTableTrigFunctions, 2, x);
+      } else {
+        // A shape table has no cos and sin: writeState takes the shape from it directly, and the callers that come
+        // here (tipAngleAt, jointAnglesAt) read theta only. NaN, so that nothing can use them unnoticed.
+        r.half.cos = r.half.sin = std::numeric_limits<double>::quiet_NaN();
       }
-      r.half.rad = th;
-      r.half.cos = co;
-      r.half.sin = si;
-      r.has_first = true;
-      r.first_c = first_c;
-      r.first_s = first_s;
       return r;
     }
   }
@@ -303,81 +489,6 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
   out.walls_in_contact = contact;
 }
 
-namespace {
-
-// Stages 5-6 for identical chambers: q_1 = theta_0 + theta, q_n = 2 theta, and nothing per chamber needs to be looked
-// up or copied. firstJoint and uniformPoints (simd_math.hpp) are shared with the batch kernel, so that both round alike.
-// kChambers > 0 is the chamber count as a compile-time constant, so that the compiler unrolls the loops over the
-// chambers (their control cost as much as their arithmetic); 0 takes it from the parameters. @p first: e^(i q_1) where
-// the solver has it (two numbers: the table), or null to compute it here.
-template <int kChambers>
-void jointsAndBackboneUniform(const FingerParameters& parameters, const FirstJointSeries& series, bool detail,
-                              double stretch, double bulge_m, const HalfAngle& h, const double* first, FingerState& out) {
-  const int n = kChambers > 0 ? kChambers : parameters.chamber_count;
-  double* __restrict points = out.backbone_m.data();  // column-major 2 x (N+2)
-  points[0] = 0.0;
-  points[1] = 0.0;
-  points[2] = parameters.base_segment_length_m;
-  points[3] = 0.0;
-  double first_c, first_s, q1;
-  if (first) {
-    first_c = first[0];
-    first_s = first[1];
-    q1 = firstJointAngle(parameters.base_wall_share, h.rad);
-  } else {
-    q1 = firstJoint(parameters.base_wall_share, series, h.rad, h.tan, h.cos, h.sin, first_c, first_s);
-  }
-  std::array<double, kMaxChamberCount> dir_c, dir_s;
-  uniformPoints<kChambers>(first_c, first_s, h.cos, h.sin, n, parameters.base_segment_length_m,
-                parameters.segment_length_m.data(), dir_c.data(), dir_s.data(), points + 4, points + 5, 2);
-  const double q = 2.0 * h.rad;
-  // The four per-chamber columns: with the count known at compile time, two numbers per store (a fixed-size map, which
-  // Eigen writes in packets); otherwise one plain loop (four run-time setConstant calls cost more than the stores).
-  // Distinct arrays: __restrict spares the compiler's run-time checks for overlap, which cost more than the stores.
-  double* __restrict stretch_out = out.stretch.data();
-  double* __restrict bulge_out = out.bulge_m.data();
-  double* __restrict half_out = out.half_angle_rad.data();
-  double* __restrict joint_out = out.joint_angle_rad.data();
-  if constexpr (kChambers > 0) {
-    using Column = Eigen::Map<Eigen::Matrix<double, kChambers, 1>, Eigen::Unaligned>;
-    if (detail) {
-      Column(stretch_out).setConstant(stretch);
-      Column(bulge_out).setConstant(bulge_m);
-    }
-    Column(half_out).setConstant(h.rad);
-    Column(joint_out).setConstant(q);
-  } else {
-    for (int i = 0; i < n; ++i) {
-      if (detail) {
-        stretch_out[i] = stretch;
-        bulge_out[i] = bulge_m;
-      }
-      half_out[i] = h.rad;
-      joint_out[i] = q;
-    }
-  }
-  joint_out[0] = q1;
-  out.tip_angle_rad = q1 + (n - 1) * q;
-  out.walls_in_contact = h.rad > 0.0;
-}
-
-// One instance per chamber count up to kUnrolledChambers (the fingers people build have a handful to a dozen
-// chambers), the run-time count above.
-using UniformWriter = void (*)(const FingerParameters&, const FirstJointSeries&, bool, double, double, const HalfAngle&,
-                               const double*, FingerState&);
-constexpr int kUnrolledChambers = 16;
-template <std::size_t... kCounts>
-constexpr std::array<UniformWriter, sizeof...(kCounts)> uniformWriters(std::index_sequence<kCounts...>) {
-  return {&jointsAndBackboneUniform<static_cast<int>(kCounts)>...};
-}
-constexpr std::array<UniformWriter, kUnrolledChambers + 1> kUniformWriters =
-    uniformWriters(std::make_index_sequence<kUnrolledChambers + 1>{});
-
-UniformWriter uniformWriterFor(int chamber_count) {
-  return kUniformWriters[static_cast<std::size_t>(chamber_count <= kUnrolledChambers ? chamber_count : 0)];
-}
-
-}  // namespace
 
 FingerState FingerModel::initialState() const {
   FingerState s = restState(parameters_);
@@ -396,11 +507,29 @@ bool FingerModel::writeState(double gauge_pa, FingerState& out) {
   };
   // Every group is solved and checked before anything is written, so a failure leaves the previous state whole.
   if (groups_.size() == 1) {
-    const GroupResult r = solveGroup(groups_[0], gauge_pa, detail);
+    const ChamberGroup& group = groups_[0];
+    int segment = 0;
+    double x = 0.0;
+    if (table_shape_writer_ && tableSegment(group, gauge_pa, segment, x)) {
+      // The table holds the shape: only the detail, when asked for, still runs stages 1-3 (their series).
+      double stretch = 1.0, bulge_m = 0.0;
+      if (detail) {
+        const double delta =
+            stretchExcess(energyGroup(gauge_pa, parameters_.atmospheric_pressure_pa, group.shear_modulus_pa));
+        stretch = 1.0 + delta;
+        bulge_m = bulge(delta, group.chamber_height_m);
+      }
+      if (table_shape_writer_(parameters_, table_polynomials_, tableRow(group, segment), x, detail, stretch, bulge_m,
+                              out)) {
+        out.gauge_pa = gauge_pa;
+        return true;
+      }
+      // theta a rounding error below 0 next to contact: solveGroup below gives theta = 0, the rest shape.
+    }
+    const GroupResult r = solveGroup(group, gauge_pa, detail);
     if (!finite(r)) return false;
-    const double first[2] = {r.first_c, r.first_s};
     uniformWriterFor(parameters_.chamber_count)(parameters_, first_joint_series_, detail, r.stretch, r.bulge_m, r.half,
-                                                r.has_first ? first : nullptr, out);
+                                                out);
     out.gauge_pa = gauge_pa;
     return true;
   }

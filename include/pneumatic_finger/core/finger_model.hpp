@@ -35,7 +35,8 @@ struct ModelOptions {
   SolverKind solver = SolverKind::kRobust;
   /// Upper end of the table solver's pressure range (Pa gauge); above it the robust solver answers.
   double table_max_gauge_pa = 3.0e5;
-  /// Largest |theta_table - theta_robust| the table may have on its check grid (rad); segments double until met.
+  /// Largest error the table may have on its check grid (rad, as tableMeasuredErrorRad() measures it); segments
+  /// double until met.
   double table_tolerance_rad = 5e-13;
   /// Compute and write each chamber's stretch and bulge even when the solver does not need them (the table solver
   /// skips the chain). false: the state's stretch and bulge hold NaN (not computed), and no evaluation writes them.
@@ -117,7 +118,9 @@ class FingerModel {
   /// Gauge pressure (Pa) at which the first wall pair touches (theta leaves 0).
   double contactGaugePa() const { return contact_gauge_pa_; }
 
-  /// Largest |theta_table - theta_robust| measured on the table's check grid (rad); 0 for other solvers.
+  /// The table's measured error on its check grid (rad): the largest |theta_table - theta_robust|, and for identical
+  /// chambers, whose table holds the backbone, also the largest point error divided by the finger's length (the
+  /// turn at the base that moves the tip as far). 0 for other solvers.
   double tableMeasuredErrorRad() const { return table_error_rad_; }
 
   /// Segments per distinct chamber in the table (0 for other solvers).
@@ -145,26 +148,36 @@ class FingerModel {
   struct ChamberGroup {
     double chamber_height_m, wall_critical_height_m, chamber_gap_m, shear_modulus_pa;
     double contact_gauge_pa;
-    // Table solver: per segment, 8 monomial coefficients (in the local variable x in [-1, 1]) for each of
-    // theta, cos(theta), sin(theta), interleaved so one segment is one cache line pair.
+    // Table solver: piecewise degree-7 polynomials in u = sqrt(P) (finger_model.cpp, buildTable). Per segment, the
+    // 8 monomial coefficients (in the local variable x in [-1, 1]) of every function, interleaved (coefficient i of
+    // function f at i * table_functions + f) so that one coefficient of all functions is one run of memory. The
+    // functions: for unequal chambers theta, cos theta, sin theta (the backbone is then composed per chamber); for
+    // identical chambers, the whole published shape: the points O_2..O_{N+1} (x, y), then theta, then a zero that
+    // rounds the count up to whole SIMD pairs.
     std::vector<double> table;
     double table_u_begin = 0.0, table_u_end = 0.0, table_inv_width = 0.0;
     int table_segments = 0;
+    int table_functions = 0;
+    int table_theta = 0;  // which function is theta
+    // theta's coefficients alone again, 8 per segment (one cache line): for the callers that want theta only
+    // (tipAngleAt, jointAnglesAt), which in the interleaved rows would touch 8 lines.
+    std::vector<double> table_theta_only;
   };
 
   struct GroupResult {
     double stretch, bulge_m;
     HalfAngle half;
-    /// e^(i q_1) of a finger of identical chambers (joint 1, with the base face's share), where the solver has it
-    /// without computing (the table's polynomials); otherwise has_first is false and the backbone computes it.
-    bool has_first = false;
-    double first_c = 1.0, first_s = 0.0;
   };
 
   /// The robust chain (stages 1-4) for one group of identical chambers.
   static WallSolution solveRobust(const ChamberGroup& group, double gauge_pa, double atmospheric_pa);
   GroupResult solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const;
   void buildTable(ChamberGroup& group);
+  /// Where @p gauge_pa falls in @p group's table: false outside it (at or below contact, above its range, or no
+  /// table), else the segment and the local variable x in [-1, 1].
+  static bool tableSegment(const ChamberGroup& group, double gauge_pa, int& segment, double& x);
+  /// The coefficients of @p group's table for @p segment.
+  static const double* tableRow(const ChamberGroup& group, int segment);
   /// Writes the state at @p gauge_pa into @p out; returns false, leaving @p out untouched, when the solver gave a
   /// non-finite stretch, bulge or half angle.
   bool writeState(double gauge_pa, FingerState& out);
@@ -175,6 +188,11 @@ class FingerModel {
   ModelOptions options_;
   FirstJointSeries first_joint_series_;  // joint 1's direction for identical chambers (stages.hpp)
   std::vector<ChamberGroup> groups_;
+  // The table solver with identical chambers: writes the state from the table's shape (finger_model.cpp,
+  // tableShape) with the polynomials of the widest instruction set the CPU has; null otherwise.
+  void (*table_polynomials_)(const double*, int, double, double*) = nullptr;
+  bool (*table_shape_writer_)(const FingerParameters&, void (*)(const double*, int, double, double*), const double*,
+                              double, bool, double, double, FingerState&) = nullptr;
   std::vector<int> group_of_chamber_;
   double contact_gauge_pa_ = 0.0;
   double table_error_rad_ = 0.0;
