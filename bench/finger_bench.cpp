@@ -17,6 +17,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -25,6 +26,7 @@
 #include "pneumatic_finger/core/stages.hpp"
 #include "reference_quad.hpp"
 #include "../src/core/simd_math.hpp"  // the arctangent of our own (internal), for its latency
+#include "../src/core/table_kernel.hpp"  // the table's polynomial variants (internal), per instruction set
 
 namespace pf = pneumatic_finger;
 
@@ -269,6 +271,33 @@ void benchStages(benchmark::State& state, int stage) {
                               : "joints + backbone (N = 7, general path)");
 }
 
+// The table solver's polynomials alone (table_kernel.hpp), per instruction set: what evaluate() runs for a finger of
+// identical chambers after the segment lookup. N = 7: 16 functions (14 point coordinates, theta and a zero), 8
+// coefficients each, over as many segments as the calibrated finger's table has, at x values that change every call.
+void benchTablePolynomials(benchmark::State& state, void (*polynomials)(const double*, int, double, double*),
+                           const char* label) {
+  pf::ModelOptions table_options;
+  table_options.solver = pf::SolverKind::kTable;
+  const int segments = pf::FingerModel(kParams, table_options).tableSegmentCount();
+  constexpr int kFunctions = 16;
+  std::vector<double> table(static_cast<std::size_t>(segments) * 8 * kFunctions);
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
+  for (double& c : table) c = coefficient(rng);
+  alignas(64) double out[kFunctions];
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const std::size_t segment = i % static_cast<std::size_t>(segments);
+    polynomials(&table[segment * 8 * kFunctions], kFunctions, -1.0 + 2.0 * static_cast<double>(i % 1000) / 1000.0, out);
+    benchmark::DoNotOptimize(out);
+    benchmark::ClobberMemory();
+    ++i;
+  }
+  state.counters["segments"] = segments;
+  state.counters["table_bytes"] = static_cast<double>(table.size() * sizeof(double));
+  state.SetLabel(label);
+}
+
 // Latency of the primitives the solvers chain together: each result feeds the next call, so this is the
 // dependent-chain latency that bounds a full evaluation, not the throughput.
 void benchPrimitive(benchmark::State& state, int which) {
@@ -362,6 +391,23 @@ int main(int argc, char** argv) {
   for (int stage = 1; stage <= 5; ++stage) {
     benchmark::RegisterBenchmark(("robust_stage/" + std::to_string(stage)).c_str(),
                                  [stage](benchmark::State& s) { benchStages(s, stage); });
+  }
+  struct TableVariant {
+    const char* name;
+    pf::BatchPath path;
+    void (*polynomials)(const double*, int, double, double*);
+    const char* label;
+  };
+  for (const TableVariant& v : std::vector<TableVariant>{
+           {"generic", pf::BatchPath::kGeneric, pf::tablePolynomialsGeneric, "pairs, baseline instruction set (SSE2)"},
+#if defined(__x86_64__)
+           {"avx2", pf::BatchPath::kAvx2, pf::tablePolynomialsAvx2, "packs of 4, AVX2"},
+           {"avx512", pf::BatchPath::kAvx512, pf::tablePolynomialsAvx512, "packs of 8, AVX-512"},
+#endif
+       }) {
+    if (!pf::batchPathAvailable(v.path)) continue;  // this CPU lacks it
+    benchmark::RegisterBenchmark((std::string("table_polynomials/") + v.name).c_str(),
+                                 [v](benchmark::State& s) { benchTablePolynomials(s, v.polynomials, v.label); });
   }
   for (int which = 0; which < 4; ++which) {
     benchmark::RegisterBenchmark(("latency/" + std::to_string(which)).c_str(),

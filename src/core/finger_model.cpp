@@ -33,20 +33,30 @@ double chebyshevNode(int j) { return std::cos(kPi * (j + 0.5) / kTableNodes); }
 // The interpolant through @p values (taken at the Chebyshev nodes) as monomial coefficients (index = power).
 // Degree 7 keeps the conversion well conditioned (|coefficients| grow by < 2^7).
 std::array<double, kTableNodes> monomialInterpolant(const std::array<double, kTableNodes>& values) {
+  using Square = std::array<std::array<double, kTableNodes>, kTableNodes>;
+  // T_k at the nodes, and the monomial coefficients of T_k (by T_{k+1} = 2x T_k - T_{k-1}): the same for every
+  // segment and function, so computed once (the cosines were most of a table's build time).
+  static const Square kChebyshevAtNodes = [] {
+    Square c{};
+    for (int k = 0; k < kTableNodes; ++k) {
+      for (int j = 0; j < kTableNodes; ++j) c[k][j] = std::cos(kPi * k * (j + 0.5) / kTableNodes);
+    }
+    return c;
+  }();
+  static const Square t = [] {
+    Square m{};
+    m[0][0] = 1.0;
+    m[1][1] = 1.0;
+    for (int k = 1; k + 1 < kTableNodes; ++k) {
+      for (int i = 0; i < kTableNodes; ++i) m[k + 1][i] = (i > 0 ? 2.0 * m[k][i - 1] : 0.0) - m[k - 1][i];
+    }
+    return m;
+  }();
   std::array<double, kTableNodes> cheb{};
   for (int k = 0; k < kTableNodes; ++k) {
     double sum = 0.0;
-    for (int j = 0; j < kTableNodes; ++j) sum += values[j] * std::cos(kPi * k * (j + 0.5) / kTableNodes);
+    for (int j = 0; j < kTableNodes; ++j) sum += values[j] * kChebyshevAtNodes[k][j];
     cheb[k] = (k == 0 ? 1.0 : 2.0) * sum / kTableNodes;
-  }
-  // Monomial coefficients of T_k by the recurrence T_{k+1} = 2x T_k - T_{k-1}.
-  std::array<std::array<double, kTableNodes>, kTableNodes> t{};
-  t[0][0] = 1.0;
-  t[1][1] = 1.0;
-  for (int k = 1; k + 1 < kTableNodes; ++k) {
-    for (int i = 0; i < kTableNodes; ++i) {
-      t[k + 1][i] = (i > 0 ? 2.0 * t[k][i - 1] : 0.0) - t[k - 1][i];
-    }
   }
   std::array<double, kTableNodes> mono{};
   for (int k = 0; k < kTableNodes; ++k) {
