@@ -273,7 +273,9 @@ TEST(TablePolynomials, EveryVariantGivesTheSameBitsAndMatchesQuadPrecision) {
     std::vector<double> row(static_cast<std::size_t>(8 * functions));
     // Coefficients that shrink with the power, as an interpolant's do, so that the sum is not all cancellation.
     for (int i = 0; i < 8; ++i) {
-      for (int f = 0; f < functions; ++f) row[static_cast<std::size_t>(i * functions + f)] = coefficient(rng) / (1 << i);
+      for (int f = 0; f < functions; ++f) {
+        row[static_cast<std::size_t>(i * functions + f)] = coefficient(rng) / (1 << i);
+      }
     }
     for (int trial = 0; trial < 200; ++trial) {
       const double x = trial == 0 ? -1.0 : trial == 1 ? 1.0 : local(rng);

@@ -76,7 +76,6 @@ inline double tableFunction(const double* row, int functions, int f, double x) {
   return (p01 + p23 * x2) + (p45 + p67 * x2) * x4;
 }
 
-
 // The table's polynomials for the widest instruction set this CPU has (as the batch picks its kernel).
 TablePolynomials widestTablePolynomials() {
 #if defined(__x86_64__)
@@ -92,7 +91,8 @@ TablePolynomials widestTablePolynomials() {
 
 // The four per-chamber columns, the tip direction and the contact flag, from theta and q_1.
 template <int kChambers>
-__attribute__((always_inline)) inline void uniformColumns(int n, bool detail, double stretch, double bulge_m, double theta, double q1, FingerState& out) {
+__attribute__((always_inline)) inline void uniformColumns(int n, bool detail, double stretch, double bulge_m,
+                                                          double theta, double q1, FingerState& out) {
   const double q = 2.0 * theta;
   // With the count known at compile time, two numbers per store (a fixed-size map, which Eigen writes in packets);
   // otherwise one plain loop (four run-time setConstant calls cost more than the stores). Distinct arrays:
@@ -199,7 +199,6 @@ struct PickTableShape {
 TableShapeWriter tableShapeWriterFor(int chamber_count) {
   return writerFor<TableShapeWriter, PickTableShape>(chamber_count);
 }
-
 
 }  // namespace
 
@@ -381,7 +380,8 @@ inline bool FingerModel::tableSegment(const ChamberGroup& group, double gauge_pa
 }
 
 inline const double* FingerModel::tableRow(const ChamberGroup& group, int segment) {
-  return &group.table[static_cast<std::size_t>(segment) * static_cast<std::size_t>(group.table_functions) * kTableNodes];
+  const auto stride = static_cast<std::size_t>(group.table_functions) * kTableNodes;
+  return &group.table[static_cast<std::size_t>(segment) * stride];
 }
 
 WallSolution FingerModel::solveRobust(const ChamberGroup& group, double gauge_pa, double atmospheric_pa) {
@@ -498,7 +498,6 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
   out.tip_angle_rad = tip_angle;
   out.walls_in_contact = contact;
 }
-
 
 FingerState FingerModel::initialState() const {
   FingerState s = restState(parameters_);
