@@ -11,10 +11,23 @@ bash "$ROOT/scripts/setup.sh" clang libclang-rt-14-dev  # libFuzzer and the sani
 mkdir -p "$OUT/corpus"
 cp "$ROOT/config/finger.yaml" "$OUT/corpus/seed_finger.yaml"
 printf 'chamber_count: 3\nchamber_gap_m: [0, 1e-5, 0.1]\nshear_modulus_pa: [1e-300, 1e12, 2e8]\n' >"$OUT/corpus/seed_lists.yaml"
-clang++ -std=c++17 -O1 -g -fsanitize=fuzzer,address,undefined -fno-sanitize-recover=undefined \
-  -fno-omit-frame-pointer -I"$ROOT/include" -isystem /usr/include/eigen3 \
-  "$ROOT/fuzz/fuzz_model.cpp" "$ROOT/src/core/parameters.cpp" "$ROOT/src/core/stages.cpp" "$ROOT/src/core/finger_model.cpp" \
-  "$ROOT/src/core/yaml_parameters.cpp" -lyaml-cpp -o "$OUT/fuzz_model"
+# The model's sources as the library builds them: each batch kernel with its own instruction set (the model picks the
+# widest the CPU has at run time), and no fused multiply-add anywhere (the kernels must round as the single evaluation).
+CXXFLAGS=(-std=c++17 -O1 -g -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
+  -fno-omit-frame-pointer -ffp-contract=off -Wno-psabi -Wno-unknown-warning-option -I"$ROOT/include" -isystem /usr/include/eigen3)
+OBJECTS=()
+for source in fuzz/fuzz_model src/core/parameters src/core/stages src/core/finger_model src/core/yaml_parameters src/core/tip_uncertainty \
+  src/core/batch_generic src/core/batch_avx2 src/core/batch_avx512; do
+  case "$source" in
+    *avx512) isa=(-mavx512f) ;;
+    *avx2) isa=(-mavx2) ;;
+    *) isa=() ;;
+  esac
+  object="$OUT/$(basename "$source").o"
+  clang++ "${CXXFLAGS[@]}" "${isa[@]}" -c "$ROOT/$source.cpp" -o "$object"
+  OBJECTS+=("$object")
+done
+clang++ -fsanitize=fuzzer,address,undefined "${OBJECTS[@]}" -lyaml-cpp -o "$OUT/fuzz_model"
 cd "$OUT"
 UBSAN_OPTIONS=halt_on_error=1:print_stacktrace=1 ASAN_OPTIONS=detect_leaks=1 \
   ./fuzz_model -max_total_time="$SECS" -jobs="$JOBS" -workers="$JOBS" -max_len=4096 -timeout=10 \

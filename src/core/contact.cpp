@@ -6,7 +6,25 @@
 #include <limits>
 #include <utility>
 
+#include "simd_math.hpp"
+
 namespace pneumatic_finger {
+
+namespace {
+
+// cos and sin of a joint or sample angle: the model's own series (simd_math.hpp, sinCosSmall; within 2 ulp of 1) on
+// [0, pi/2], where a closing finger's angles lie (theta, q_1 = (1 + s0) theta, q_n = 2 theta); glibc's outside it. The
+// series costs less than the two library calls, and the search runs it at every sample.
+inline void cosSin(double x, double& cos_x, double& sin_x) {
+  if (x >= 0.0 && x <= 1.5707963267948966) {
+    sinCosSmall(x, cos_x, sin_x);
+  } else {
+    cos_x = std::cos(x);
+    sin_x = std::sin(x);
+  }
+}
+
+}  // namespace
 
 namespace {
 
@@ -219,8 +237,7 @@ void ContactSolver::backbone(const JointAngles& q, BackbonePoints& points) const
   double dir_c = 1.0, dir_s = 0.0, rot_c = 1.0, rot_s = 0.0;
   for (int i = 0; i < n; ++i) {
     if (i == 0 || q[i] != q[i - 1]) {
-      rot_c = std::cos(q[i]);
-      rot_s = std::sin(q[i]);
+      cosSin(q[i], rot_c, rot_s);
     }
     const double c = dir_c * rot_c - dir_s * rot_s;
     dir_s = dir_s * rot_c + dir_c * rot_s;
@@ -340,9 +357,12 @@ ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, d
   for (int i = 0; i < frozen; ++i) {
     dir0 += frozen_q[i];
     const double z = par.segment_length_m[static_cast<std::size_t>(i)];
-    points.col(i + 2) = points.col(i + 1) + z * Vec(std::cos(dir0), std::sin(dir0));
+    double dir_c, dir_s;
+    cosSin(dir0, dir_c, dir_s);
+    points.col(i + 2) = points.col(i + 1) + z * Vec(dir_c, dir_s);
   }
-  const double dir0_c = frozen > 0 ? std::cos(dir0) : 1.0, dir0_s = frozen > 0 ? std::sin(dir0) : 0.0;
+  double dir0_c = 1.0, dir0_s = 0.0;
+  if (frozen > 0) cosSin(dir0, dir0_c, dir0_s);
   double speed = 0.0;  // V (m/rad)
   {
     double rest = length_m_ - par.base_segment_length_m;  // arc length from joint i (at O_i) to the tip
@@ -365,14 +385,14 @@ ContactSolver::Event ContactSolver::findEventUniform(const Obstacle& obstacle, d
   // with per_segment, each one's, indexed by segment).
   std::array<double, kMaxChamberCount + 1> per_segment;
   auto clearanceIn = [&](double theta, int first, int last, int& segment, bool each = false) {
-    const double c1 = std::cos(theta), s1 = std::sin(theta);
+    double c1, s1;
+    cosSin(theta, c1, s1);
     const double c2 = (c1 - s1) * (c1 + s1), s2 = 2.0 * s1 * c1;  // e^(2 i theta)
     // e^(i q_1), q_1 = theta_0 + theta; needed only while joint 1 is free.
     double q1_c = c1, q1_s = s1;
     if (share != 0.0 && frozen == 0) {
       const double q1 = share * theta + theta;
-      q1_c = std::cos(q1);
-      q1_s = std::sin(q1);
+      cosSin(q1, q1_c, q1_s);
     }
     double dc = dir0_c, ds = dir0_s;
     double c = INFINITY;
