@@ -272,14 +272,14 @@ void benchStages(benchmark::State& state, int stage) {
 }
 
 // The table solver's polynomials alone (table_kernel.hpp), per instruction set: what evaluate() runs for a finger of
-// identical chambers after the segment lookup. N = 7: 16 functions (14 point coordinates, theta and a zero), 8
+// identical chambers after the segment lookup. N = 7: 16 functions (theta, 14 point coordinates and a zero; 15 stored), 8
 // coefficients each, over as many segments as the calibrated finger's table has, at x values that change every call.
-void benchTablePolynomials(benchmark::State& state, void (*polynomials)(const double*, int, double, double*),
+void benchTablePolynomials(benchmark::State& state, void (*polynomials)(const double*, int, int, double, double*),
                            const char* label) {
   pf::ModelOptions table_options;
   table_options.solver = pf::SolverKind::kTable;
   const int segments = pf::FingerModel(kParams, table_options).tableSegmentCount();
-  constexpr int kFunctions = 16;
+  constexpr int kFunctions = 16, kLive = 15;  // theta and 14 point coordinates, padded to 16
   std::vector<double> table(static_cast<std::size_t>(segments) * 8 * kFunctions);
   std::mt19937_64 rng(7);
   std::uniform_real_distribution<double> coefficient(-1.0, 1.0);
@@ -288,7 +288,8 @@ void benchTablePolynomials(benchmark::State& state, void (*polynomials)(const do
   std::size_t i = 0;
   for (auto _ : state) {
     const std::size_t segment = i % static_cast<std::size_t>(segments);
-    polynomials(&table[segment * 8 * kFunctions], kFunctions, -1.0 + 2.0 * static_cast<double>(i % 1000) / 1000.0, out);
+    polynomials(&table[segment * 8 * kFunctions], kFunctions, kLive, -1.0 + 2.0 * static_cast<double>(i % 1000) / 1000.0,
+                out);
     benchmark::DoNotOptimize(out);
     benchmark::ClobberMemory();
     ++i;
@@ -395,7 +396,7 @@ int main(int argc, char** argv) {
   struct TableVariant {
     const char* name;
     pf::BatchPath path;
-    void (*polynomials)(const double*, int, double, double*);
+    void (*polynomials)(const double*, int, int, double, double*);
     const char* label;
   };
   for (const TableVariant& v : std::vector<TableVariant>{

@@ -261,7 +261,7 @@ TEST(SinCosSmall, WithinTwoUlpOfQuadPrecision) {
 // The table solver's polynomials (table_kernel.hpp), one variant per instruction set: the same bits in every variant
 // this CPU runs, and each value within a few ulp of the polynomial evaluated in quad precision (Horner, __float128).
 TEST(TablePolynomials, EveryVariantGivesTheSameBitsAndMatchesQuadPrecision) {
-  std::vector<std::pair<const char*, void (*)(const double*, int, double, double*)>> variants = {
+  std::vector<std::pair<const char*, void (*)(const double*, int, int, double, double*)>> variants = {
       {"generic", pf::tablePolynomialsGeneric}};
 #if defined(__x86_64__)
   if (pf::batchPathAvailable(pf::BatchPath::kAvx2)) variants.emplace_back("avx2", pf::tablePolynomialsAvx2);
@@ -269,6 +269,7 @@ TEST(TablePolynomials, EveryVariantGivesTheSameBitsAndMatchesQuadPrecision) {
 #endif
   std::mt19937_64 rng(20261124);
   std::uniform_real_distribution<double> coefficient(-1.0, 1.0), local(-1.0, 1.0);
+  const double sentinel = -12345.0;
   for (int functions : {8, 16, 40}) {
     std::vector<double> row(static_cast<std::size_t>(8 * functions));
     // Coefficients that shrink with the power, as an interpolant's do, so that the sum is not all cancellation.
@@ -277,29 +278,37 @@ TEST(TablePolynomials, EveryVariantGivesTheSameBitsAndMatchesQuadPrecision) {
         row[static_cast<std::size_t>(i * functions + f)] = coefficient(rng) / (1 << i);
       }
     }
-    for (int trial = 0; trial < 200; ++trial) {
-      const double x = trial == 0 ? -1.0 : trial == 1 ? 1.0 : local(rng);
-      std::vector<double> want(static_cast<std::size_t>(functions));
-      variants[0].second(row.data(), functions, x, want.data());
-      for (int f = 0; f < functions; ++f) {
-        __float128 quad = 0;
-        for (int i = 7; i >= 0; --i) quad = quad * x + row[static_cast<std::size_t>(i * functions + f)];
-        // Estrin's scheme rounds each term c_i x^i at most 8 times (c7: c7 x, + c6, x^2, * x^2, + p45, x^4 (two),
-        // * x^4, + the rest), so its error is at most 8 eps sum |c_i x^i| (to first order).
-        double magnitude = 0.0;
-        for (int i = 0; i < 8; ++i) {
-          magnitude += std::fabs(row[static_cast<std::size_t>(i * functions + f)] * std::pow(x, i));
-        }
-        EXPECT_LE(std::fabs(static_cast<double>(quad - want[static_cast<std::size_t>(f)])),
-                  8.0 * std::numeric_limits<double>::epsilon() * magnitude)
-            << "f = " << f << ", x = " << x;
-      }
-      for (std::size_t v = 1; v < variants.size(); ++v) {
-        std::vector<double> got(static_cast<std::size_t>(functions));
-        variants[v].second(row.data(), functions, x, got.data());
+    // Every count of live functions in the last pack (the shape table writes 2 N + 1 of them into the state).
+    for (int live = functions - 7; live <= functions; ++live) {
+      for (int trial = 0; trial < 50; ++trial) {
+        const double x = trial == 0 ? -1.0 : trial == 1 ? 1.0 : local(rng);
+        std::vector<double> want(static_cast<std::size_t>(functions), sentinel);
+        variants[0].second(row.data(), functions, live, x, want.data());
         for (int f = 0; f < functions; ++f) {
-          EXPECT_TRUE(sameBits(got[static_cast<std::size_t>(f)], want[static_cast<std::size_t>(f)]))
-              << variants[v].first << ": f = " << f << ", x = " << x;
+          if (f >= live) {
+            EXPECT_TRUE(sameBits(want[static_cast<std::size_t>(f)], sentinel)) << "generic wrote past live: f = " << f;
+            continue;
+          }
+          __float128 quad = 0;
+          for (int i = 7; i >= 0; --i) quad = quad * x + row[static_cast<std::size_t>(i * functions + f)];
+          // Estrin's scheme rounds each term c_i x^i at most 8 times (c7: c7 x, + c6, x^2, * x^2, + p45, x^4 (two),
+          // * x^4, + the rest), so its error is at most 8 eps sum |c_i x^i| (to first order).
+          double magnitude = 0.0;
+          for (int i = 0; i < 8; ++i) {
+            magnitude += std::fabs(row[static_cast<std::size_t>(i * functions + f)] * std::pow(x, i));
+          }
+          EXPECT_LE(std::fabs(static_cast<double>(quad - want[static_cast<std::size_t>(f)])),
+                    8.0 * std::numeric_limits<double>::epsilon() * magnitude)
+              << "f = " << f << ", x = " << x;
+        }
+        for (std::size_t v = 1; v < variants.size(); ++v) {
+          std::vector<double> got(static_cast<std::size_t>(functions), sentinel);
+          variants[v].second(row.data(), functions, live, x, got.data());
+          for (int f = 0; f < functions; ++f) {
+            // Past live the sentinel must survive: the same bits as generic's untouched entries.
+            EXPECT_TRUE(sameBits(got[static_cast<std::size_t>(f)], want[static_cast<std::size_t>(f)]))
+                << variants[v].first << ": f = " << f << ", live = " << live << ", x = " << x;
+          }
         }
       }
     }

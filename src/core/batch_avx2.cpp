@@ -10,8 +10,8 @@ void batchUniformRobustAvx2(const UniformRobustSpec& spec, const double* gauge_p
   uniformRobustBatch<Pack4>(spec, gauge_pa, count, out);
 }
 
-void tablePolynomialsAvx2(const double* row, int functions, double x, double* out) {
-  tablePolynomials<Pack4>(row, functions, x, out);
+void tablePolynomialsAvx2(const double* row, int functions, int live, double x, double* out) {
+  tablePolynomials<Pack4>(row, functions, live, x, out);
 }
 
 }  // namespace pneumatic_finger

@@ -10,8 +10,8 @@ void batchUniformRobustAvx512(const UniformRobustSpec& spec, const double* gauge
   uniformRobustBatch<Pack8>(spec, gauge_pa, count, out);
 }
 
-void tablePolynomialsAvx512(const double* row, int functions, double x, double* out) {
-  tablePolynomials<Pack8>(row, functions, x, out);
+void tablePolynomialsAvx512(const double* row, int functions, int live, double x, double* out) {
+  tablePolynomials<Pack8>(row, functions, live, x, out);
 }
 
 }  // namespace pneumatic_finger

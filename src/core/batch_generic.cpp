@@ -10,8 +10,8 @@ void batchUniformRobustGeneric(const UniformRobustSpec& spec, const double* gaug
   uniformRobustBatch<Pack4>(spec, gauge_pa, count, out);
 }
 
-void tablePolynomialsGeneric(const double* row, int functions, double x, double* out) {
-  tablePolynomials<Pack2>(row, functions, x, out);
+void tablePolynomialsGeneric(const double* row, int functions, int live, double x, double* out) {
+  tablePolynomials<Pack2>(row, functions, live, x, out);
 }
 
 }  // namespace pneumatic_finger

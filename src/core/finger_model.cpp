@@ -19,7 +19,7 @@ namespace {
 
 constexpr int kTableDegree = 7;                   // per-segment polynomial degree
 constexpr int kTableNodes = kTableDegree + 1;     // Chebyshev nodes per segment
-// Unequal chambers: theta, cos theta, sin theta. Identical chambers: 2 N point coordinates, theta, and zeros up to
+// Unequal chambers: theta, cos theta, sin theta. Identical chambers: theta, the 2 N point coordinates, and zeros up to
 // whole packs of the widest SIMD variant (table_kernel.hpp).
 constexpr int kTableTrigFunctions = 3;
 constexpr int tableShapeFunctions(int chamber_count) {
@@ -148,21 +148,22 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, const FirstJoi
   uniformColumns<kChambers>(n, detail, stretch, bulge_m, h.rad, q1, out);
 }
 
-// The shape from the table of identical chambers (row: the segment, x in [-1, 1]): the points and theta are its
-// polynomials (@p polynomials: the widest SIMD variant, table_kernel.hpp), so nothing of stages 4-6 runs.
-// @return false, writing nothing, for a theta a rounding error below 0 (the interpolant next to contact), where the
-// caller takes the rest shape instead.
+// The shape from the table of identical chambers (row: the segment, x in [-1, 1]): theta and the points are its
+// polynomials (@p polynomials: the widest SIMD variant, table_kernel.hpp), so nothing of stages 4-6 runs. They are
+// written straight into the state's backbone from O_1's y on (theta there, then O_2..O_{N+1}), not into a buffer that
+// is then copied: the copy's loads of the polynomials' fresh vector stores cost more than the polynomials' own stores.
+// basePoints then writes O_0 and O_1 over theta.
+// @return false for a theta a rounding error below 0 (the interpolant next to contact), where the caller writes the
+// rest shape over the points written here.
 template <int kChambers>
 bool tableShape(const FingerParameters& parameters, TablePolynomials polynomials, const double* row, double x,
                 bool detail, double stretch, double bulge_m, FingerState& out) {
   const int n = kChambers > 0 ? kChambers : parameters.chamber_count;
-  std::array<double, tableShapeFunctions(kChambers > 0 ? kChambers : kMaxChamberCount)> values;
-  polynomials(row, tableShapeFunctions(n), x, values.data());
-  const double theta = values[static_cast<std::size_t>(2 * n)];
+  double* __restrict points = out.backbone_m.data();  // column-major 2 x (N+2)
+  polynomials(row, tableShapeFunctions(n), 2 * n + 1, x, points + 3);
+  const double theta = points[3];
   if (!(theta >= 0.0)) return false;
-  double* __restrict points = out.backbone_m.data();
   basePoints(parameters, points);
-  std::memcpy(points + 4, values.data(), sizeof(double) * static_cast<std::size_t>(2 * n));  // a constant size
   uniformColumns<kChambers>(n, detail, stretch, bulge_m, theta, firstJointAngle(parameters.base_wall_share, theta),
                             out);
   return true;
@@ -244,7 +245,7 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     ChamberGroup g{parameters_.chamber_height_m[k], parameters_.wall_critical_height_m[k],
-                   parameters_.chamber_gap_m[k], parameters_.shear_modulus_pa[k], 0.0, {}, 0, 0, 0, 0, 0, 0, {}};
+                   parameters_.chamber_gap_m[k], parameters_.shear_modulus_pa[k], 0.0, {}, 0, 0, 0, 0, 0, {}};
     auto same = [&g](const ChamberGroup& o) {
       return o.chamber_height_m == g.chamber_height_m && o.wall_critical_height_m == g.wall_critical_height_m &&
              o.chamber_gap_m == g.chamber_gap_m && o.shear_modulus_pa == g.shear_modulus_pa;
@@ -287,7 +288,6 @@ void FingerModel::buildTable(ChamberGroup& group) {
   const bool shape = groups_.size() == 1;
   const int functions = shape ? tableShapeFunctions(n) : kTableTrigFunctions;
   group.table_functions = functions;
-  group.table_theta = shape ? 2 * n : 0;
   // The finger's length: a point error of e metres counts as e / length radians (the turn at the base that moves
   // the tip as far), so that one tolerance in radians bounds both.
   double length_m = parameters_.base_segment_length_m;
@@ -298,9 +298,8 @@ void FingerModel::buildTable(ChamberGroup& group) {
     const HalfAngle h = solveRobust(group, u * u, parameters_.atmospheric_pressure_pa).half;
     if (shape) {
       uniformWriterFor(n)(parameters_, first_joint_series_, false, 1.0, 0.0, h, exact_state);
-      std::copy(exact_state.backbone_m.data() + 4, exact_state.backbone_m.data() + 4 + 2 * n, f);
-      f[2 * n] = h.rad;
-      f[2 * n + 1] = 0.0;
+      f[0] = h.rad;
+      std::copy(exact_state.backbone_m.data() + 4, exact_state.backbone_m.data() + 4 + 2 * n, f + 1);
     } else {
       f[0] = h.rad;
       f[1] = h.cos;
@@ -327,8 +326,9 @@ void FingerModel::buildTable(ChamberGroup& group) {
     group.table_theta_only.resize(static_cast<std::size_t>(segments) * kTableNodes);
     for (int s = 0; s < segments; ++s) {
       for (int i = 0; i < kTableNodes; ++i) {
+        // theta is function 0.
         group.table_theta_only[static_cast<std::size_t>(s * kTableNodes + i)] =
-            group.table[static_cast<std::size_t>((s * kTableNodes + i) * functions + group.table_theta)];
+            group.table[static_cast<std::size_t>((s * kTableNodes + i) * functions)];
       }
     }
     group.table_u_begin = u_begin;
@@ -351,9 +351,9 @@ void FingerModel::buildTable(ChamberGroup& group) {
                                    table_state)) {
             continue;  // at contact itself, or a theta a rounding below 0: evaluate() gives the rest shape there
           }
-          achieved = std::max(achieved, std::fabs(table_state.half_angle_rad[0] - want[2 * n]));
+          achieved = std::max(achieved, std::fabs(table_state.half_angle_rad[0] - want[0]));
           for (int k = 0; k < 2 * n; ++k) {
-            achieved = std::max(achieved, std::fabs(table_state.backbone_m.data()[4 + k] - want[k]) / length_m);
+            achieved = std::max(achieved, std::fabs(table_state.backbone_m.data()[4 + k] - want[1 + k]) / length_m);
           }
         } else {
           const GroupResult got = solveGroup(group, p, false);
@@ -508,7 +508,36 @@ FingerState FingerModel::initialState() const {
   return s;
 }
 
-bool FingerModel::writeState(double gauge_pa, FingerState& out) {
+inline bool FingerModel::writeTableShape(double gauge_pa, FingerState& out) {
+  const ChamberGroup& group = groups_[0];
+  int segment = 0;
+  double x = 0.0;
+  if (!tableSegment(group, gauge_pa, segment, x)) return false;
+  // The table holds the shape: only the detail, when asked for, still runs stages 1-3 (their series).
+  double stretch = 1.0, bulge_m = 0.0;
+  const bool detail = options_.chamber_detail;
+  if (detail) {
+    const double delta =
+        stretchExcess(energyGroup(gauge_pa, parameters_.atmospheric_pressure_pa, group.shear_modulus_pa));
+    stretch = 1.0 + delta;
+    bulge_m = bulge(delta, group.chamber_height_m);
+  }
+  if (!table_shape_writer_(parameters_, table_polynomials_, tableRow(group, segment), x, detail, stretch, bulge_m,
+                           out)) {
+    return false;  // theta a rounding error below 0 next to contact: solveGroup gives theta = 0, the rest shape
+  }
+  out.gauge_pa = gauge_pa;
+  return true;
+}
+
+// The table's shape first, inline in evaluate(); the other paths in a function of their own (noinline), whose prologue
+// and register saves would otherwise cost the table path about a tenth of its time.
+inline bool FingerModel::writeState(double gauge_pa, FingerState& out) {
+  if (table_shape_writer_ && writeTableShape(gauge_pa, out)) return true;
+  return writeSolvedState(gauge_pa, out);
+}
+
+__attribute__((noinline)) bool FingerModel::writeSolvedState(double gauge_pa, FingerState& out) {
   const bool detail = options_.chamber_detail;
   auto finite = [](const GroupResult& r) {
     return std::isfinite(r.stretch) && std::isfinite(r.bulge_m) && std::isfinite(r.half.rad) &&
@@ -517,24 +546,6 @@ bool FingerModel::writeState(double gauge_pa, FingerState& out) {
   // Every group is solved and checked before anything is written, so a failure leaves the previous state whole.
   if (groups_.size() == 1) {
     const ChamberGroup& group = groups_[0];
-    int segment = 0;
-    double x = 0.0;
-    if (table_shape_writer_ && tableSegment(group, gauge_pa, segment, x)) {
-      // The table holds the shape: only the detail, when asked for, still runs stages 1-3 (their series).
-      double stretch = 1.0, bulge_m = 0.0;
-      if (detail) {
-        const double delta =
-            stretchExcess(energyGroup(gauge_pa, parameters_.atmospheric_pressure_pa, group.shear_modulus_pa));
-        stretch = 1.0 + delta;
-        bulge_m = bulge(delta, group.chamber_height_m);
-      }
-      if (table_shape_writer_(parameters_, table_polynomials_, tableRow(group, segment), x, detail, stretch, bulge_m,
-                              out)) {
-        out.gauge_pa = gauge_pa;
-        return true;
-      }
-      // theta a rounding error below 0 next to contact: solveGroup below gives theta = 0, the rest shape.
-    }
     const GroupResult r = solveGroup(group, gauge_pa, detail);
     if (!finite(r)) return false;
     uniformWriterFor(parameters_.chamber_count)(parameters_, first_joint_series_, detail, r.stretch, r.bulge_m, r.half,

@@ -13,26 +13,46 @@ namespace pneumatic_finger {
 constexpr int kTablePackFunctions = 8;
 
 /// One of the variants below.
-using TablePolynomials = void (*)(const double* row, int functions, double x, double* out);
+using TablePolynomials = void (*)(const double* row, int functions, int live, double x, double* out);
 
-/// Writes function f's value at @p x into out[f] for f < @p functions (a multiple of kTablePackFunctions), where
-/// coefficient i of function f is row[i * functions + f].
-void tablePolynomialsGeneric(const double* row, int functions, double x, double* out);
-void tablePolynomialsAvx2(const double* row, int functions, double x, double* out);
-void tablePolynomialsAvx512(const double* row, int functions, double x, double* out);
+/// Writes function f's value at @p x into out[f] for f < @p live, where coefficient i of function f is
+/// row[i * functions + f] (@p functions a multiple of kTablePackFunctions, live <= functions). Nothing is written at
+/// out[live] and beyond, so that @p out may be the state's own array, with padding functions that have no place in it.
+void tablePolynomialsGeneric(const double* row, int functions, int live, double x, double* out);
+void tablePolynomialsAvx2(const double* row, int functions, int live, double x, double* out);
+void tablePolynomialsAvx512(const double* row, int functions, int live, double x, double* out);
 
 namespace {  // NOLINT(build/namespaces): internal linkage per instruction set (simd_math.hpp)
 
 typedef double Pack2 __attribute__((vector_size(16)));
 
-/// Estrin's scheme, as tableFunction: pairs, then x^2 and x^4 combine them (three levels of independent products
-/// instead of Horner's chain of seven).
+/// The first @p count lanes of @p value to out[0..count): one masked store where the instruction set has one.
 template <class T>
-inline void tablePolynomials(const double* row, int functions, double x, double* out) {
+inline void storeFirst(double* out, T value, int count) {
+#if defined(__AVX512F__)
+  if constexpr (lanesOf<T>() == 8) {
+    _mm512_mask_storeu_pd(out, static_cast<__mmask8>((1u << count) - 1u), reinterpret_cast<__m512d>(value));
+    return;
+  }
+#endif
+#if defined(__AVX2__)
+  if constexpr (lanesOf<T>() == 4) {
+    const __m256i lane = _mm256_set_epi64x(3, 2, 1, 0);
+    _mm256_maskstore_pd(out, _mm256_cmpgt_epi64(_mm256_set1_epi64x(count), lane), reinterpret_cast<__m256d>(value));
+    return;
+  }
+#endif
+  for (int i = 0; i < count; ++i) out[i] = value[i];
+}
+
+/// Estrin's scheme, as tableFunction: pairs, then x^2 and x^4 combine them (three levels of independent products
+/// instead of Horner's chain of seven). Whole packs are stored whole; the last one only up to @p live.
+template <class T>
+inline void tablePolynomials(const double* row, int functions, int live, double x, double* out) {
   constexpr int kLanes = lanesOf<T>();
   static_assert(kTablePackFunctions % kLanes == 0, "whole packs");
   const double x2 = x * x, x4 = x2 * x2;
-  for (int f = 0; f < functions; f += kLanes) {
+  for (int f = 0; f < live; f += kLanes) {
     auto c = [row, functions, f](int i) {
       T v;
       __builtin_memcpy(&v, row + i * functions + f, sizeof v);
@@ -40,7 +60,11 @@ inline void tablePolynomials(const double* row, int functions, double x, double*
     };
     const T value =
         ((c(0) + c(1) * x) + (c(2) + c(3) * x) * x2) + ((c(4) + c(5) * x) + (c(6) + c(7) * x) * x2) * x4;
-    __builtin_memcpy(out + f, &value, sizeof value);
+    if (live - f >= kLanes) {
+      __builtin_memcpy(out + f, &value, sizeof value);
+    } else {
+      storeFirst(out + f, value, live - f);
+    }
   }
 }
 

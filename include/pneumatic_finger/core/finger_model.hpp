@@ -152,13 +152,12 @@ class FingerModel {
     // 8 monomial coefficients (in the local variable x in [-1, 1]) of every function, interleaved (coefficient i of
     // function f at i * table_functions + f) so that one coefficient of all functions is one run of memory. The
     // functions: for unequal chambers theta, cos theta, sin theta (the backbone is then composed per chamber); for
-    // identical chambers, the whole published shape: the points O_2..O_{N+1} (x, y), then theta, then a zero that
-    // rounds the count up to whole SIMD pairs.
+    // identical chambers, the whole published shape: theta, then the points O_2..O_{N+1} (x, y), then zeros that
+    // round the count up to whole SIMD packs. Either way theta is function 0.
     std::vector<double> table;
     double table_u_begin = 0.0, table_u_end = 0.0, table_inv_width = 0.0;
     int table_segments = 0;
     int table_functions = 0;
-    int table_theta = 0;  // which function is theta
     // theta's coefficients alone again, 8 per segment (one cache line): for the callers that want theta only
     // (tipAngleAt, jointAnglesAt), which in the interleaved rows would touch 8 lines.
     std::vector<double> table_theta_only;
@@ -181,6 +180,11 @@ class FingerModel {
   /// Writes the state at @p gauge_pa into @p out; returns false, leaving @p out untouched, when the solver gave a
   /// non-finite stretch, bulge or half angle.
   bool writeState(double gauge_pa, FingerState& out);
+  /// writeState's table path (identical chambers, table_shape_writer_ set): false where the table does not answer
+  /// (outside its range, or theta a rounding error below 0 next to contact; the points may then be written).
+  bool writeTableShape(double gauge_pa, FingerState& out);
+  /// writeState's other paths: the solver per group, then the joints and backbone.
+  bool writeSolvedState(double gauge_pa, FingerState& out);
   /// The rest shape, with NaN for stretch and bulge when the options leave them out (chamber_detail false).
   FingerState initialState() const;
 
@@ -190,8 +194,8 @@ class FingerModel {
   std::vector<ChamberGroup> groups_;
   // The table solver with identical chambers: writes the state from the table's shape (finger_model.cpp,
   // tableShape) with the polynomials of the widest instruction set the CPU has; null otherwise.
-  void (*table_polynomials_)(const double*, int, double, double*) = nullptr;
-  bool (*table_shape_writer_)(const FingerParameters&, void (*)(const double*, int, double, double*), const double*,
+  void (*table_polynomials_)(const double*, int, int, double, double*) = nullptr;
+  bool (*table_shape_writer_)(const FingerParameters&, void (*)(const double*, int, int, double, double*), const double*,
                               double, bool, double, double, FingerState&) = nullptr;
   std::vector<int> group_of_chamber_;
   double contact_gauge_pa_ = 0.0;
