@@ -133,19 +133,21 @@ inline void basePoints(const FingerParameters& parameters, double* __restrict po
 }
 
 // The shape from the half angle: firstJoint and uniformPoints (simd_math.hpp) are shared with the batch kernel, so
-// that both round alike.
+// that both round alike. theta and its cosine, sine and tangent come as four numbers, not a HalfAngle: in registers,
+// not through memory (a struct's fields stored by one function and loaded by the next wait for each other).
 template <int kChambers>
 void jointsAndBackboneUniform(const FingerParameters& parameters, const FirstJointSeries& series, bool detail,
-                              double stretch, double bulge_m, const HalfAngle& h, FingerState& out) {
+                              double stretch, double bulge_m, double theta, double cos_half, double sin_half,
+                              double tan_half, FingerState& out) {
   const int n = kChambers > 0 ? kChambers : parameters.chamber_count;
   double* __restrict points = out.backbone_m.data();  // column-major 2 x (N+2)
   basePoints(parameters, points);
   double first_c, first_s;
-  const double q1 = firstJoint(parameters.base_wall_share, series, h.rad, h.tan, h.cos, h.sin, first_c, first_s);
+  const double q1 = firstJoint(parameters.base_wall_share, series, theta, tan_half, cos_half, sin_half, first_c, first_s);
   std::array<double, kMaxChamberCount> dir_c, dir_s;
-  uniformPoints<kChambers>(first_c, first_s, h.cos, h.sin, n, parameters.base_segment_length_m,
+  uniformPoints<kChambers>(first_c, first_s, cos_half, sin_half, n, parameters.base_segment_length_m,
                            parameters.segment_length_m.data(), dir_c.data(), dir_s.data(), points + 4, points + 5, 2);
-  uniformColumns<kChambers>(n, detail, stretch, bulge_m, h.rad, q1, out);
+  uniformColumns<kChambers>(n, detail, stretch, bulge_m, theta, q1, out);
 }
 
 // The shape from the table of identical chambers (row: the segment, x in [-1, 1]): theta and the points are its
@@ -183,8 +185,8 @@ Writer writerFor(int chamber_count) {
   return kWriters[static_cast<std::size_t>(chamber_count <= kUnrolledChambers ? chamber_count : 0)];
 }
 
-using UniformWriter = void (*)(const FingerParameters&, const FirstJointSeries&, bool, double, double,
-                               const HalfAngle&, FingerState&);
+using UniformWriter = void (*)(const FingerParameters&, const FirstJointSeries&, bool, double, double, double, double,
+                               double, double, FingerState&);
 template <int kChambers>
 struct PickUniform {
   static constexpr UniformWriter value = &jointsAndBackboneUniform<kChambers>;
@@ -297,7 +299,7 @@ void FingerModel::buildTable(ChamberGroup& group) {
   auto exact = [&](double u, double* f) {
     const HalfAngle h = solveRobust(group, u * u, parameters_.atmospheric_pressure_pa).half;
     if (shape) {
-      uniformWriterFor(n)(parameters_, first_joint_series_, false, 1.0, 0.0, h, exact_state);
+      uniformWriterFor(n)(parameters_, first_joint_series_, false, 1.0, 0.0, h.rad, h.cos, h.sin, h.tan, exact_state);
       f[0] = h.rad;
       std::copy(exact_state.backbone_m.data() + 4, exact_state.backbone_m.data() + 4 + 2 * n, f + 1);
     } else {
@@ -546,10 +548,27 @@ __attribute__((noinline)) bool FingerModel::writeSolvedState(double gauge_pa, Fi
   // Every group is solved and checked before anything is written, so a failure leaves the previous state whole.
   if (groups_.size() == 1) {
     const ChamberGroup& group = groups_[0];
+    const UniformWriter writer = uniformWriterFor(parameters_.chamber_count);
+    if (options_.solver == SolverKind::kRobust) {
+      // The robust chain's usual path (solveWall's, simd_math.hpp) inline, its numbers in registers from the pressure
+      // to the writer: the same operations as solveWall, so the same bits. Its outputs are finite by construction
+      // (s <= 1/20, D <= 1e6). The other paths go through solveGroup below.
+      const double two_over_b = 2.0 / group.wall_critical_height_m;
+      double delta = 0.0, h = 0.0, m = 0.0, theta = 0.0, cos_half = 1.0, sin_half = 0.0, tan_half = 0.0;
+      int iterations = 0;
+      if (wallStagesBySeries(gauge_pa, parameters_.atmospheric_pressure_pa, group.shear_modulus_pa,
+                             group.chamber_height_m, group.chamber_gap_m, two_over_b, delta, h, m) &&
+          (!(h > group.chamber_gap_m) ||
+           usualWallHalfAngle(h, group.chamber_gap_m, two_over_b, m, theta, cos_half, sin_half, tan_half, iterations))) {
+        writer(parameters_, first_joint_series_, detail, 1.0 + delta, h, theta, cos_half, sin_half, tan_half, out);
+        out.gauge_pa = gauge_pa;
+        return true;
+      }
+    }
     const GroupResult r = solveGroup(group, gauge_pa, detail);
     if (!finite(r)) return false;
-    uniformWriterFor(parameters_.chamber_count)(parameters_, first_joint_series_, detail, r.stretch, r.bulge_m, r.half,
-                                                out);
+    writer(parameters_, first_joint_series_, detail, r.stretch, r.bulge_m, r.half.rad, r.half.cos, r.half.sin,
+           r.half.tan, out);
     out.gauge_pa = gauge_pa;
     return true;
   }

@@ -280,6 +280,38 @@ inline int wallHalfAngle(T d, T m, T v, M active, T& rad, T& cos_half, T& sin_ha
   return steps < 1 ? 1 : steps;
 }
 
+/// Stages 2-3 of one wall where their series hold (P >= 0 and s = sqrt(g/3) <= kStretchSeriesLimit): the stretch excess,
+/// the bulge, and, where the walls touch (h > c), stage 4's m = 2 sqrt(h c)/b from the series too (bulgeRootSeries: no
+/// square root of h after the series; else m = 0). Written once for solveWall (stages.cpp) and for the model's
+/// evaluation (finger_model.cpp), which inlines it so that nothing passes through memory between the stages.
+/// @return false beyond the series' limit (or for P < 0, NaN), where stages.cpp runs the stages one by one
+inline bool wallStagesBySeries(double gauge_pa, double atmospheric_pa, double shear_modulus_pa, double chamber_height_m,
+                               double gap_m, double two_over_b, double& stretch_excess, double& bulge_m, double& m) {
+  const double s_sq =
+      stretchSeriesArgumentSquared(gauge_pa, atmospheric_pa, 1.0 / (3.0 * atmospheric_pa * shear_modulus_pa));
+  if (!(gauge_pa >= 0.0 && s_sq <= kStretchSeriesLimit * kStretchSeriesLimit)) return false;
+  const double s = __builtin_sqrt(s_sq);
+  stretchAndBulgeSeries(s, chamber_height_m, stretch_excess, bulge_m);
+  m = bulge_m > gap_m ? (__builtin_sqrt(chamber_height_m * gap_m) * two_over_b) * (__builtin_sqrt(s) * bulgeRootSeries(s))
+                      : 0.0;
+  return true;
+}
+
+/// Stage 4 of one touching wall in its usual form (H = 2h/b < 1e200, m > 0, D <= 1e6): D = H (H - 2k)/(H + m), then
+/// wallHalfAngle from quarterPowerStart (stages.cpp, halfAngleOfWall, explains the forms). Shared like
+/// wallStagesBySeries.
+/// @return false, writing nothing, for the rare forms (no gap, a huge bulge), which halfAngleOfWall takes
+inline bool usualWallHalfAngle(double bulge_m, double gap_m, double two_over_b, double m, double& rad,
+                               double& cos_half, double& sin_half, double& tan_half, int& iterations) {
+  const double big_h = bulge_m * two_over_b;
+  // (h c underflows to 0 only for c < 1e-154 m, where m < 1e-75 and dropping it changes nothing.)
+  const double num = big_h * ((bulge_m - gap_m) * two_over_b), den = big_h + m;
+  const double d = num / den;
+  if (!(big_h < 1e200 && m > 0.0 && d <= 1e6)) return false;
+  iterations = wallHalfAngle(d, m, quarterPowerStart(num, den, d, m), true, rad, cos_half, sin_half, tan_half);
+  return true;
+}
+
 /// cos(x) and sin(x) for 0 <= x <= pi/2 by their Taylor series to x^22 and x^23 (the first term left out is below
 /// 2e-18 there), as polynomials in z = x^2 by Estrin's scheme: pairs of coefficients, then z^2, z^4 and z^8 combine
 /// them, a tree five products deep instead of Horner's chain of eleven. For x <= 1/8 (joint 1's base half angle stays

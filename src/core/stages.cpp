@@ -145,24 +145,21 @@ HalfAngle halfAngleFromTan(double t, int iterations) {
 // start from a relative error of m D/2 (2e-3 at the validated range's top) to one of order (m D)^2 (2e-5 there), close
 // enough for one Halley step. A step of size s leaves an error of order s^3; t needs m * error < ulp(t).
 HalfAngle halfAngleOfWall(double bulge_m, double gap_m, double two_over_b, double m) {
+  HalfAngle out;
+  if (usualWallHalfAngle(bulge_m, gap_m, two_over_b, m, out.rad, out.cos, out.sin, out.tan, out.iterations)) return out;
+  // The rare forms.
   const double big_h = bulge_m * two_over_b;
   if (!(big_h < 1e200)) {  // tan(theta) ~ H > 1e200: theta = pi/2 to the last bit
-    HalfAngle out;
     out.rad = kHalfPi;
     out.cos = 0.0;
     out.sin = 1.0;
     out.tan = std::numeric_limits<double>::infinity();
     return out;
   }
-  // (h c underflows to 0 only for c < 1e-154 m, where m < 1e-75 and dropping it changes nothing.)
-  const double num = big_h * ((bulge_m - gap_m) * two_over_b), den = big_h + m;
-  const double d = num / den;
+  const double d = big_h * ((bulge_m - gap_m) * two_over_b) / (big_h + m);
   int iterations = 0;
   if (!(m > 0.0)) return halfAngleFromTan(d, iterations);  // c = 0: eq 15 is h = (b/2) tan(theta)
-  if (d > 1e6) return halfAngleFromTan(tanHalfAngleLargeBulge(d, m, iterations), iterations);
-  HalfAngle out;
-  out.iterations = wallHalfAngle(d, m, quarterPowerStart(num, den, d, m), true, out.rad, out.cos, out.sin, out.tan);
-  return out;
+  return halfAngleFromTan(tanHalfAngleLargeBulge(d, m, iterations), iterations);  // D > 1e6
 }
 
 }  // namespace
@@ -178,16 +175,11 @@ WallSolution solveWall(double gauge_pa, double atmospheric_pa, double shear_modu
   WallSolution w;
   // Stages 2-3 by their series in s = sqrt(g/3) where it is short (simd_math.hpp), else stage by stage. The batch
   // kernel takes the same branch per pressure (batch_kernel.hpp).
-  const double s_sq =
-      stretchSeriesArgumentSquared(gauge_pa, atmospheric_pa, 1.0 / (3.0 * atmospheric_pa * shear_modulus_pa));
-  if (gauge_pa >= 0.0 && s_sq <= kStretchSeriesLimit * kStretchSeriesLimit) {
-    const double s = std::sqrt(s_sq);
-    stretchAndBulgeSeries(s, chamber_height_m, w.stretch_excess, w.bulge_m);
-    if (!(w.bulge_m > gap_m)) return w;  // walls not in contact: theta = 0
-    // m = 2 sqrt(h c)/b from the series too (bulgeRootSeries): no square root of h after the series.
-    const double two_over_b = 2.0 / wall_critical_height_m;
-    const double m = (std::sqrt(chamber_height_m * gap_m) * two_over_b) * (std::sqrt(s) * bulgeRootSeries(s));
-    w.half = halfAngleOfWall(w.bulge_m, gap_m, two_over_b, m);
+  const double two_over_b = 2.0 / wall_critical_height_m;
+  double m = 0.0;
+  if (wallStagesBySeries(gauge_pa, atmospheric_pa, shear_modulus_pa, chamber_height_m, gap_m, two_over_b,
+                         w.stretch_excess, w.bulge_m, m)) {
+    if (w.bulge_m > gap_m) w.half = halfAngleOfWall(w.bulge_m, gap_m, two_over_b, m);  // else apart: theta = 0
     return w;
   }
   w.stretch_excess = stretchExcess(energyGroup(gauge_pa, atmospheric_pa, shear_modulus_pa));
