@@ -391,11 +391,29 @@ WallSolution FingerModel::solveRobust(const ChamberGroup& group, double gauge_pa
                    group.wall_critical_height_m);
 }
 
+// The robust chain's usual path (solveWall's, simd_math.hpp) inline, its numbers in registers from the pressure to
+// the caller: the same operations as solveWall, so the same bits, and finite by construction (s <= 1/20, D <= 1e6).
+// false where solveWall's other paths must answer. theta, cos, sin, tan stay as set where the walls are apart.
+inline bool FingerModel::usualWall(const ChamberGroup& group, double gauge_pa, double atmospheric_pa,
+                                   double& stretch_excess, double& bulge_m, HalfAngle& half) {
+  const double two_over_b = 2.0 / group.wall_critical_height_m;
+  double m = 0.0;
+  return wallStagesBySeries(gauge_pa, atmospheric_pa, group.shear_modulus_pa, group.chamber_height_m,
+                            group.chamber_gap_m, two_over_b, stretch_excess, bulge_m, m) &&
+         (!(bulge_m > group.chamber_gap_m) || usualWallHalfAngle(bulge_m, group.chamber_gap_m, two_over_b, m, half.rad,
+                                                                 half.cos, half.sin, half.tan, half.iterations));
+}
+
 FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const {
   GroupResult r{1.0, 0.0, HalfAngle{}};
   const double p_o = parameters_.atmospheric_pressure_pa;
   switch (options_.solver) {
     case SolverKind::kRobust: {
+      double delta = 0.0;
+      if (usualWall(group, gauge_pa, p_o, delta, r.bulge_m, r.half)) {
+        r.stretch = 1.0 + delta;
+        return r;
+      }
       const WallSolution w = solveRobust(group, gauge_pa, p_o);
       return {1.0 + w.stretch_excess, w.bulge_m, w.half};
     }
@@ -550,17 +568,11 @@ __attribute__((noinline)) bool FingerModel::writeSolvedState(double gauge_pa, Fi
     const ChamberGroup& group = groups_[0];
     const UniformWriter writer = uniformWriterFor(parameters_.chamber_count);
     if (options_.solver == SolverKind::kRobust) {
-      // The robust chain's usual path (solveWall's, simd_math.hpp) inline, its numbers in registers from the pressure
-      // to the writer: the same operations as solveWall, so the same bits. Its outputs are finite by construction
-      // (s <= 1/20, D <= 1e6). The other paths go through solveGroup below.
-      const double two_over_b = 2.0 / group.wall_critical_height_m;
-      double delta = 0.0, h = 0.0, m = 0.0, theta = 0.0, cos_half = 1.0, sin_half = 0.0, tan_half = 0.0;
-      int iterations = 0;
-      if (wallStagesBySeries(gauge_pa, parameters_.atmospheric_pressure_pa, group.shear_modulus_pa,
-                             group.chamber_height_m, group.chamber_gap_m, two_over_b, delta, h, m) &&
-          (!(h > group.chamber_gap_m) ||
-           usualWallHalfAngle(h, group.chamber_gap_m, two_over_b, m, theta, cos_half, sin_half, tan_half, iterations))) {
-        writer(parameters_, first_joint_series_, detail, 1.0 + delta, h, theta, cos_half, sin_half, tan_half, out);
+      double delta = 0.0, bulge_m = 0.0;
+      HalfAngle half;
+      if (usualWall(group, gauge_pa, parameters_.atmospheric_pressure_pa, delta, bulge_m, half)) {
+        writer(parameters_, first_joint_series_, detail, 1.0 + delta, bulge_m, half.rad, half.cos, half.sin, half.tan,
+               out);
         out.gauge_pa = gauge_pa;
         return true;
       }

@@ -170,6 +170,9 @@ class FingerModel {
 
   /// The robust chain (stages 1-4) for one group of identical chambers.
   static WallSolution solveRobust(const ChamberGroup& group, double gauge_pa, double atmospheric_pa);
+  /// solveRobust's usual path inline (finger_model.cpp); false where solveRobust must answer.
+  static bool usualWall(const ChamberGroup& group, double gauge_pa, double atmospheric_pa, double& stretch_excess,
+                        double& bulge_m, HalfAngle& half);
   GroupResult solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const;
   void buildTable(ChamberGroup& group);
   /// Where @p gauge_pa falls in @p group's table: false outside it (at or below contact, above its range, or no
