@@ -394,7 +394,7 @@ WallSolution FingerModel::solveRobust(const ChamberGroup& group, double gauge_pa
 // The robust chain's usual path (solveWall's, simd_math.hpp) inline, its numbers in registers from the pressure to
 // the caller: the same operations as solveWall, so the same bits, and finite by construction (s <= 1/20, D <= 1e6).
 // false where solveWall's other paths must answer. theta, cos, sin, tan stay as set where the walls are apart.
-inline bool FingerModel::usualWall(const ChamberGroup& group, double gauge_pa, double atmospheric_pa,
+__attribute__((always_inline)) inline bool FingerModel::usualWall(const ChamberGroup& group, double gauge_pa, double atmospheric_pa,
                                    double& stretch_excess, double& bulge_m, HalfAngle& half) {
   const double two_over_b = 2.0 / group.wall_critical_height_m;
   double m = 0.0;
