@@ -261,7 +261,8 @@ solver without the state: `tipAngleAt` solves the half angles and sums them, and
 
 The table's polynomials alone, per instruction set (N = 7: 16 functions of one segment at one x; every variant gives
 the same bits, test/test_batch.cpp). `evaluate()` runs the widest this CPU has ({table_widest}); the rest of a table
-evaluation (the √P and the segment, the columns, the copy into the state) is the same for all. The calibrated
+evaluation (the √P and the segment, the columns) is the same for all; every variant writes θ and the points straight
+into the state. The calibrated
 finger's table has {runs[f"table_polynomials/{table_widest}"]["segments"]:.0f} segments
 ({runs[f"table_polynomials/{table_widest}"]["table_bytes"] / 1024:.0f} KB).
 
@@ -323,14 +324,17 @@ Each verdict is computed by `scripts/benchmarks.py` from the figures above; the 
   and division; θ's D with one division and its start with another beside it, one Halley division (the start is
   corrected for the gap), cos θ's division, and the `atan` (for tan θ ≤ 1/8 a short series with no division). Joint
   1's direction is a series in tan θ too, so it runs beside the `atan`, and the backbone of identical chambers is built
-  in segment 1's frame from the powers of e^(2iθ) (no chain of rotations), then turned once per point. The solver
+  in segment 1's frame from the powers of e^(2iθ) (no chain of rotations), then turned once per point. The chain's
+  numbers stay in registers from the pressure to the state: the usual path of stages 2–4 is inline in the evaluation
+  (`wallStagesBySeries`, `usualWallHalfAngle`), not a function that returns a struct for the next to load. The solver
   alone, without writing a state, takes {runs["robust_stage/3"]["real_time"]:.0f} ns (`tipAngleAt`); the state (46
   numbers for N = 7, and the backbone's products) is the rest. Two independent models evaluated alternately
   take {pair_ns:.0f} ns per evaluation (`robust_pair/validated`), against {robust_ns:.0f} ns one model at a time: the
   CPU {"does not overlap" if pair_ns > 0.9 * robust_ns else "overlaps"} one evaluation with the next.
-  The target is stated for a 2.0 GHz Xeon, which this page cannot measure: the same number of cycles at 2.0 GHz would
-  take {robust_ns * mhz / 2000:.0f} ns (clock ratio alone; the two cores' work per cycle differs, so this is an
-  estimate, not a measurement). {history}
+  The target is stated for a 2.0 GHz Xeon, which this page cannot measure. In cycles, this run took
+  {robust_ns * mhz / 1000:.0f} per evaluation against the target's {TARGET_ROBUST_NS * 2:.0f} at 2.0 GHz: the same cycles
+  there would take {robust_ns * mhz / 2000:.0f} ns (clock ratio alone; the two cores' work per cycle differs, so this is
+  an estimate, not a measurement). {history}
 - **Batch ≥ {TARGET_BATCH_PER_S / 1e6:.0f} M full-finger evaluations/s on one core (robust, 1e-12 rad):**
   {verdict(best_batch >= TARGET_BATCH_PER_S)}: {best_batch / 1e6:.1f} M/s with the {best_batch_key} packs (the widest this
   CPU has), every output written, at {fmt_err(runs[f"batch/{best_batch_key}"]["max_theta_error_rad"])} rad.
@@ -342,13 +346,14 @@ Each verdict is computed by `scripts/benchmarks.py` from the figures above; the 
   {ratio(table_ns, TARGET_TABLE_NS)}, with the {table_widest} polynomials. For identical chambers the table holds
   the shape itself, so an evaluation is a √P, the segment, {table_widest_ns:.0f} ns of polynomials (the table above)
   and the state's columns; no stage of the chain runs. The target is stated for a 2.0 GHz Xeon, which this page
-  cannot measure. By the clock ratio alone (an estimate: the cores' work per cycle differs) the same cycles would take
-  {table_ns * mhz / 2000:.0f} ns there; {table_estimates}. {table_history} The tip angle alone (`tipAngleAt`, θ's polynomial only)
+  cannot measure. In cycles, this run took {table_ns * mhz / 1000:.0f} per evaluation against the target's
+  {TARGET_TABLE_NS * 2:.0f} at 2.0 GHz: by the clock ratio alone (an estimate: the cores' work per cycle differs) the same
+  cycles would take {table_ns * mhz / 2000:.0f} ns there; {table_estimates}. {table_history} The tip angle alone (`tipAngleAt`, θ's polynomial only)
   takes {runs["robust_stage/4"]["real_time"]:.0f} ns.
 - **Contact solve ≤ {TARGET_CONTACT_NS:.0f} ns per finger and obstacle:** {verdict(contact_ns <= TARGET_CONTACT_NS)}:
   {contact_ns:.0f} ns with one touch found from scratch, {ratio(contact_ns, TARGET_CONTACT_NS)}, about
   {contact_ns / robust_ns:.0f} free evaluations: the free model at the pressure, about seven backbone samples of the
-  half-angle search (one sincos each, two while joint 1 turns by (1 + s₀)θ: {runs["contact/3"]["real_time"]:.0f} ns with
+  half-angle search (one cosine and sine each, by the model's own series, two while joint 1 turns by (1 + s₀)θ: {runs["contact/3"]["real_time"]:.0f} ns with
   an inert base face, s₀ = 0, in the same run), the closed-form pressure of the touch, and the output. Unequal chambers, or
   the paper and table solvers, take the general path (a √P grid and bisection, each step a model solve), several
   times slower. A `ContactTracker`, which keeps the touch
