@@ -272,8 +272,9 @@ void benchStages(benchmark::State& state, int stage) {
 }
 
 // The table solver's polynomials alone (table_kernel.hpp), per instruction set: what evaluate() runs for a finger of
-// identical chambers after the segment lookup. N = 7: 16 functions (theta, 14 point coordinates and a zero; 15 stored), 8
-// coefficients each, over as many segments as the calibrated finger's table has, at x values that change every call.
+// identical chambers after the segment lookup. N = 7: 16 functions (theta, 14 point coordinates and a zero; 15
+// stored), 8 coefficients each, over as many segments as the calibrated finger's table has, at x values that change
+// every call.
 void benchTablePolynomials(benchmark::State& state, void (*polynomials)(const double*, int, int, double, double*),
                            const char* label) {
   pf::ModelOptions table_options;
@@ -288,8 +289,8 @@ void benchTablePolynomials(benchmark::State& state, void (*polynomials)(const do
   std::size_t i = 0;
   for (auto _ : state) {
     const std::size_t segment = i % static_cast<std::size_t>(segments);
-    polynomials(&table[segment * 8 * kFunctions], kFunctions, kLive, -1.0 + 2.0 * static_cast<double>(i % 1000) / 1000.0,
-                out);
+    const double x = -1.0 + 2.0 * static_cast<double>(i % 1000) / 1000.0;
+    polynomials(&table[segment * 8 * kFunctions], kFunctions, kLive, x, out);
     benchmark::DoNotOptimize(out);
     benchmark::ClobberMemory();
     ++i;

@@ -14,10 +14,11 @@ printf 'chamber_count: 3\nchamber_gap_m: [0, 1e-5, 0.1]\nshear_modulus_pa: [1e-3
 # The model's sources as the library builds them: each batch kernel with its own instruction set (the model picks the
 # widest the CPU has at run time), and no fused multiply-add anywhere (the kernels must round as the single evaluation).
 CXXFLAGS=(-std=c++17 -O1 -g -fsanitize=fuzzer-no-link,address,undefined -fno-sanitize-recover=undefined
-  -fno-omit-frame-pointer -ffp-contract=off -Wno-psabi -Wno-unknown-warning-option -I"$ROOT/include" -isystem /usr/include/eigen3)
+  -fno-omit-frame-pointer -ffp-contract=off -Wno-psabi -Wno-unknown-warning-option -I"$ROOT/include"
+  -isystem /usr/include/eigen3)
 OBJECTS=()
-for source in fuzz/fuzz_model src/core/parameters src/core/stages src/core/finger_model src/core/yaml_parameters src/core/tip_uncertainty \
-  src/core/batch_generic src/core/batch_avx2 src/core/batch_avx512; do
+for source in fuzz/fuzz_model src/core/parameters src/core/stages src/core/finger_model src/core/yaml_parameters \
+  src/core/tip_uncertainty src/core/batch_generic src/core/batch_avx2 src/core/batch_avx512; do
   case "$source" in
     *avx512) isa=(-mavx512f) ;;
     *avx2) isa=(-mavx2) ;;

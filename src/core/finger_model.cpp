@@ -143,7 +143,8 @@ void jointsAndBackboneUniform(const FingerParameters& parameters, const FirstJoi
   double* __restrict points = out.backbone_m.data();  // column-major 2 x (N+2)
   basePoints(parameters, points);
   double first_c, first_s;
-  const double q1 = firstJoint(parameters.base_wall_share, series, theta, tan_half, cos_half, sin_half, first_c, first_s);
+  const double q1 =
+      firstJoint(parameters.base_wall_share, series, theta, tan_half, cos_half, sin_half, first_c, first_s);
   std::array<double, kMaxChamberCount> dir_c, dir_s;
   uniformPoints<kChambers>(first_c, first_s, cos_half, sin_half, n, parameters.base_segment_length_m,
                            parameters.segment_length_m.data(), dir_c.data(), dir_s.data(), points + 4, points + 5, 2);
@@ -394,8 +395,9 @@ WallSolution FingerModel::solveRobust(const ChamberGroup& group, double gauge_pa
 // The robust chain's usual path (solveWall's, simd_math.hpp) inline, its numbers in registers from the pressure to
 // the caller: the same operations as solveWall, so the same bits, and finite by construction (s <= 1/20, D <= 1e6).
 // false where solveWall's other paths must answer. theta, cos, sin, tan stay as set where the walls are apart.
-__attribute__((always_inline)) inline bool FingerModel::usualWall(const ChamberGroup& group, double gauge_pa, double atmospheric_pa,
-                                   double& stretch_excess, double& bulge_m, HalfAngle& half) {
+__attribute__((always_inline)) inline bool FingerModel::usualWall(const ChamberGroup& group, double gauge_pa,
+                                                                  double atmospheric_pa, double& stretch_excess,
+                                                                  double& bulge_m, HalfAngle& half) {
   const double two_over_b = 2.0 / group.wall_critical_height_m;
   double m = 0.0;
   return wallStagesBySeries(gauge_pa, atmospheric_pa, group.shear_modulus_pa, group.chamber_height_m,

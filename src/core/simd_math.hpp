@@ -280,10 +280,11 @@ inline int wallHalfAngle(T d, T m, T v, M active, T& rad, T& cos_half, T& sin_ha
   return steps < 1 ? 1 : steps;
 }
 
-/// Stages 2-3 of one wall where their series hold (P >= 0 and s = sqrt(g/3) <= kStretchSeriesLimit): the stretch excess,
-/// the bulge, and, where the walls touch (h > c), stage 4's m = 2 sqrt(h c)/b from the series too (bulgeRootSeries: no
-/// square root of h after the series; else m = 0). Written once for solveWall (stages.cpp) and for the model's
-/// evaluation (finger_model.cpp), which inlines it so that nothing passes through memory between the stages.
+/// Stages 2-3 of one wall where their series hold (P >= 0 and s = sqrt(g/3) <= kStretchSeriesLimit): the stretch
+/// excess, the bulge, and, where the walls touch (h > c), stage 4's m = 2 sqrt(h c)/b from the series too
+/// (bulgeRootSeries: no square root of h after the series; else m = 0). Written once for solveWall (stages.cpp) and
+/// for the model's evaluation (finger_model.cpp), which inlines it so that nothing passes through memory between the
+/// stages.
 /// @return false beyond the series' limit (or for P < 0, NaN), where stages.cpp runs the stages one by one
 inline bool wallStagesBySeries(double gauge_pa, double atmospheric_pa, double shear_modulus_pa, double chamber_height_m,
                                double gap_m, double two_over_b, double& stretch_excess, double& bulge_m, double& m) {
@@ -292,8 +293,9 @@ inline bool wallStagesBySeries(double gauge_pa, double atmospheric_pa, double sh
   if (!(gauge_pa >= 0.0 && s_sq <= kStretchSeriesLimit * kStretchSeriesLimit)) return false;
   const double s = __builtin_sqrt(s_sq);
   stretchAndBulgeSeries(s, chamber_height_m, stretch_excess, bulge_m);
-  m = bulge_m > gap_m ? (__builtin_sqrt(chamber_height_m * gap_m) * two_over_b) * (__builtin_sqrt(s) * bulgeRootSeries(s))
-                      : 0.0;
+  m = bulge_m > gap_m
+          ? (__builtin_sqrt(chamber_height_m * gap_m) * two_over_b) * (__builtin_sqrt(s) * bulgeRootSeries(s))
+          : 0.0;
   return true;
 }
 

@@ -198,8 +198,8 @@ class FingerModel {
   // The table solver with identical chambers: writes the state from the table's shape (finger_model.cpp,
   // tableShape) with the polynomials of the widest instruction set the CPU has; null otherwise.
   void (*table_polynomials_)(const double*, int, int, double, double*) = nullptr;
-  bool (*table_shape_writer_)(const FingerParameters&, void (*)(const double*, int, int, double, double*), const double*,
-                              double, bool, double, double, FingerState&) = nullptr;
+  bool (*table_shape_writer_)(const FingerParameters&, void (*)(const double*, int, int, double, double*),
+                              const double*, double, bool, double, double, FingerState&) = nullptr;
   std::vector<int> group_of_chamber_;
   double contact_gauge_pa_ = 0.0;
   double table_error_rad_ = 0.0;
