@@ -406,6 +406,32 @@ __attribute__((always_inline)) inline bool FingerModel::usualWall(const ChamberG
                                                                  half.cos, half.sin, half.tan, half.iterations));
 }
 
+// The same coefficients as the row's theta, in the same order of operations: the same bits as evaluate().
+inline double FingerModel::tableTheta(const ChamberGroup& group, int segment, double x) {
+  return tableFunction(&group.table_theta_only[static_cast<std::size_t>(segment) * kTableNodes], 1, 0, x);
+}
+
+// solveGroup's theta alone, in registers (tipAngleAt, jointAnglesAt): the usual paths inline, the rest through
+// solveGroup.
+__attribute__((always_inline)) inline double FingerModel::halfAngleOf(const ChamberGroup& group,
+                                                                      double gauge_pa) const {
+  if (options_.solver == SolverKind::kTable) {
+    int segment = 0;
+    double x = 0.0;
+    if (tableSegment(group, gauge_pa, segment, x)) {
+      const double theta = tableTheta(group, segment, x);
+      return theta > 0.0 ? theta : 0.0;  // a rounding error below 0 next to contact: 0 by definition
+    }
+    if (!(gauge_pa > group.contact_gauge_pa)) return 0.0;  // walls apart (or NaN, as solveGroup)
+  }
+  if (options_.solver != SolverKind::kPaper) {  // robust, and the table above its range
+    double delta = 0.0, bulge_m = 0.0;
+    HalfAngle half;
+    if (usualWall(group, gauge_pa, parameters_.atmospheric_pressure_pa, delta, bulge_m, half)) return half.rad;
+  }
+  return solveGroup(group, gauge_pa, false).half.rad;
+}
+
 FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const {
   GroupResult r{1.0, 0.0, HalfAngle{}};
   const double p_o = parameters_.atmospheric_pressure_pa;
@@ -444,9 +470,8 @@ FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, doub
         r.bulge_m = bulge(delta, group.chamber_height_m);
       }
       if (!in_table) return r;  // walls apart: theta = 0 exactly
-      // The same coefficients as the row's theta, in the same order of operations: the same bits as evaluate().
       const auto k = static_cast<std::size_t>(segment);
-      const double theta = tableFunction(&group.table_theta_only[k * kTableNodes], 1, 0, x);
+      const double theta = tableTheta(group, segment, x);
       // Near contact the interpolant may dip a rounding error below 0: theta is 0 there by definition.
       if (!(theta > 0.0)) return r;
       r.half.rad = theta;
@@ -627,7 +652,7 @@ const FingerState& FingerModel::evaluate(double gauge_pa) {
 
 bool FingerModel::jointAnglesAt(double gauge_pa, double* q, double* half_angle_rad) const {
   std::array<double, kMaxChamberCount> theta;
-  for (std::size_t g = 0; g < groups_.size(); ++g) theta[g] = solveGroup(groups_[g], gauge_pa, false).half.rad;
+  for (std::size_t g = 0; g < groups_.size(); ++g) theta[g] = halfAngleOf(groups_[g], gauge_pa);
   // eq 37: q_n = theta_{n-1} + theta_n; theta_0 = s0 theta_1, the passive base segment's face.
   double previous = parameters_.base_wall_share * theta[static_cast<std::size_t>(group_of_chamber_[0])];
   for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
@@ -644,7 +669,7 @@ double FingerModel::tipAngleAt(double gauge_pa) const {
   // Theta_N = sum_n q_n = theta_0 + 2 sum_n theta_n - theta_N. The half angles live on the stack (at most the largest
   // chamber_count), not in the model's scratch, so that const methods are safe to call from several threads.
   std::array<double, kMaxChamberCount> theta;
-  for (std::size_t g = 0; g < groups_.size(); ++g) theta[g] = solveGroup(groups_[g], gauge_pa, false).half.rad;
+  for (std::size_t g = 0; g < groups_.size(); ++g) theta[g] = halfAngleOf(groups_[g], gauge_pa);
   double sum = 0.0, last = 0.0;
   for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
     last = theta[static_cast<std::size_t>(group_of_chamber_[k])];

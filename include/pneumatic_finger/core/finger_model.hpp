@@ -174,6 +174,10 @@ class FingerModel {
   static bool usualWall(const ChamberGroup& group, double gauge_pa, double atmospheric_pa, double& stretch_excess,
                         double& bulge_m, HalfAngle& half);
   GroupResult solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const;
+  /// solveGroup's half angle alone (finger_model.cpp).
+  double halfAngleOf(const ChamberGroup& group, double gauge_pa) const;
+  /// The table's theta in @p segment at @p x (table_theta_only).
+  static double tableTheta(const ChamberGroup& group, int segment, double x);
   void buildTable(ChamberGroup& group);
   /// Where @p gauge_pa falls in @p group's table: false outside it (at or below contact, above its range, or no
   /// table), else the segment and the local variable x in [-1, 1].
