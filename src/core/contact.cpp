@@ -24,10 +24,6 @@ inline void cosSin(double x, double& cos_x, double& sin_x) {
   }
 }
 
-}  // namespace
-
-namespace {
-
 using Vec = Eigen::Vector2d;
 
 double cross(const Vec& a, const Vec& b) { return a.x() * b.y() - a.y() * b.x(); }

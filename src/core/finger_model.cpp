@@ -411,8 +411,8 @@ inline double FingerModel::tableTheta(const ChamberGroup& group, int segment, do
   return tableFunction(&group.table_theta_only[static_cast<std::size_t>(segment) * kTableNodes], 1, 0, x);
 }
 
-// solveGroup's theta alone, in registers (tipAngleAt, jointAnglesAt): the usual paths inline, the rest through
-// solveGroup.
+// solveGroup's theta alone, in registers (tipAngleAt, jointAnglesAt): the usual paths inline, the rest by solveRobust
+// (the paper solver by solveGroup).
 __attribute__((always_inline)) inline double FingerModel::halfAngleOf(const ChamberGroup& group,
                                                                       double gauge_pa) const {
   if (options_.solver == SolverKind::kTable) {
@@ -424,12 +424,12 @@ __attribute__((always_inline)) inline double FingerModel::halfAngleOf(const Cham
     }
     if (!(gauge_pa > group.contact_gauge_pa)) return 0.0;  // walls apart (or NaN, as solveGroup)
   }
-  if (options_.solver != SolverKind::kPaper) {  // robust, and the table above its range
-    double delta = 0.0, bulge_m = 0.0;
-    HalfAngle half;
-    if (usualWall(group, gauge_pa, parameters_.atmospheric_pressure_pa, delta, bulge_m, half)) return half.rad;
-  }
-  return solveGroup(group, gauge_pa, false).half.rad;
+  if (options_.solver == SolverKind::kPaper) return solveGroup(group, gauge_pa, false).half.rad;
+  // Robust, and the table above its range: as solveGroup takes them, without its other outputs.
+  double delta = 0.0, bulge_m = 0.0;
+  HalfAngle half;
+  if (usualWall(group, gauge_pa, parameters_.atmospheric_pressure_pa, delta, bulge_m, half)) return half.rad;
+  return solveRobust(group, gauge_pa, parameters_.atmospheric_pressure_pa).half.rad;
 }
 
 FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const {
@@ -578,7 +578,7 @@ inline bool FingerModel::writeTableShape(double gauge_pa, FingerState& out) {
 }
 
 // The table's shape first, inline in evaluate(); the other paths in a function of their own (noinline), whose prologue
-// and register saves would otherwise cost the table path about a tenth of its time.
+// and register saves the table path would otherwise pay on every call.
 inline bool FingerModel::writeState(double gauge_pa, FingerState& out) {
   if (table_shape_writer_ && writeTableShape(gauge_pa, out)) return true;
   return writeSolvedState(gauge_pa, out);
@@ -604,7 +604,14 @@ __attribute__((noinline)) bool FingerModel::writeSolvedState(double gauge_pa, Fi
         return true;
       }
     }
-    const GroupResult r = solveGroup(group, gauge_pa, detail);
+    // The rest (the robust solver's rare paths straight to solveRobust, not through solveGroup's usualWall again).
+    GroupResult r;
+    if (options_.solver == SolverKind::kRobust) {
+      const WallSolution w = solveRobust(group, gauge_pa, parameters_.atmospheric_pressure_pa);
+      r = {1.0 + w.stretch_excess, w.bulge_m, w.half};
+    } else {
+      r = solveGroup(group, gauge_pa, detail);
+    }
     if (!finite(r)) return false;
     writer(parameters_, first_joint_series_, detail, r.stretch, r.bulge_m, r.half.rad, r.half.cos, r.half.sin,
            r.half.tan, out);
