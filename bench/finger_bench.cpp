@@ -46,9 +46,11 @@ struct ModelVariant : Variant {
     o.solver = kind;
     o.chamber_detail = detail;
     model = std::make_unique<pf::FingerModel>(kParams, o);
+    workspace = std::make_unique<pf::FingerWorkspace>(*model);
   }
-  const pf::FingerState& evaluate(double p) override { return model->evaluate(p); }
+  const pf::FingerState& evaluate(double p) override { return model->evaluate(p, *workspace); }
   std::unique_ptr<pf::FingerModel> model;
+  std::unique_ptr<pf::FingerWorkspace> workspace;
 };
 
 // What a user might write instead: the robust stages 1-3, then eq 16-22's quartic handed to a general polynomial
@@ -355,9 +357,10 @@ void benchBatch(benchmark::State& state, pf::BatchPath path, bool backbone_only)
   pf::BatchBuffers rows(count, kParams.chamber_count);
   pf::BatchOutputs out = rows.outputs();
   if (backbone_only) out = pf::BatchOutputs{nullptr, nullptr, nullptr, nullptr, rows.backbone_m.data(), nullptr, nullptr};
-  pf::FingerModel model(kParams);
+  const pf::FingerModel model(kParams);
+  pf::FingerWorkspace workspace(model);
   for (auto _ : state) {
-    model.evaluateMany(pressures.data(), count, out, path);
+    model.evaluateMany(pressures.data(), count, out, workspace, path);
     benchmark::DoNotOptimize(rows.backbone_m.data());
     benchmark::ClobberMemory();
   }

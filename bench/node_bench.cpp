@@ -82,6 +82,7 @@ int main(int argc, char** argv) {
   pf::RawParameterMap raw;
   if (!config.empty()) pf::loadRawParametersFromYamlFile(config, raw);
   pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
+  pf::FingerWorkspace ws(model);
   const int n = model.chamberCount();
 
   ros::Publisher pressure_pub = nh.advertise<sensor_msgs::FluidPressure>("bench/pressure", 2000);
@@ -132,7 +133,7 @@ int main(int argc, char** argv) {
     if (measuring && (now - t0).toSec() >= seconds) break;
     // A new pressure every message (a slow sine over 0..2 kg/cm^2), so the model's cache never answers.
     const double gauge = pf::kPaPerKgfPerCm2 * (1.0 - std::cos(0.001 * static_cast<double>(k++)));
-    const pf::FingerState& s = model.evaluate(gauge);
+    const pf::FingerState& s = model.evaluate(gauge, ws);
     const ros::Time stamp = ros::Time::now();
     {
       std::lock_guard<std::mutex> lock(g_mutex);

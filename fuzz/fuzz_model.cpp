@@ -41,8 +41,9 @@ extern "C" int LLVMFuzzerTestOneInput(const uint8_t* data, size_t size) {
     options.solver = solver;
     options.table_max_gauge_pa = 3e5;
     pf::FingerModel model(params, options);
+    pf::FingerWorkspace ws(model);
     for (double p : numbers) {
-      const pf::FingerState& s = model.evaluate(p);
+      const pf::FingerState& s = model.evaluate(p, ws);
       if (!std::isfinite(p)) {
         if (s.status != pf::EvaluationStatus::kNotFinite) __builtin_trap();
         continue;

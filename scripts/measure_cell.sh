@@ -64,4 +64,4 @@ print(f"  robot_state_publisher against the finger nodes publishing the frames: 
       f" p50 latency {la:.0f} us against {lb:.0f} us")
 PY
 cat "$out" >&2
-/usr/bin/python3 "$ROOT/scripts/readme_block.py" "$ROOT/docs/CELL.md" "bash scripts/measure_cell.sh" <"$out"
+/usr/bin/python3 "$ROOT/scripts/measured_block.py" "$ROOT/docs/CELL.md" "bash scripts/measure_cell.sh" <"$out"

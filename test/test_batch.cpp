@@ -73,10 +73,10 @@ using Rows = pf::BatchBuffers;
 bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // Compares row i of a batch with evaluate() on a fresh model (no cache in play); returns how many values differ.
-int compareRow(pf::FingerModel& single, const Rows& rows, std::size_t i, double gauge_pa, const std::string& what) {
+int compareRow(const pf::FingerModel& single, pf::FingerWorkspace& single_ws, const Rows& rows, std::size_t i, double gauge_pa, const std::string& what) {
   const int n = single.chamberCount();
   const auto un = static_cast<std::size_t>(n);
-  const pf::FingerState& s = single.evaluate(gauge_pa);
+  const pf::FingerState& s = single.evaluate(gauge_pa, single_ws);
   int differ = 0;
   auto check = [&](double got, double want, const char* field, std::size_t k) {
     if (!sameBits(got, want)) {
@@ -115,6 +115,7 @@ void expectEveryPathMatchesEvaluate(const pf::FingerParameters& params, pf::Solv
   pf::ModelOptions options;
   options.solver = solver;
   pf::FingerModel batch(params, options);
+  pf::FingerWorkspace batch_ws(batch);
   const std::vector<double> pressures = batchPressures(batch);
   int paths_run = 0;
   for (pf::BatchPath path : {pf::BatchPath::kBest, pf::BatchPath::kScalar, pf::BatchPath::kGeneric,
@@ -122,18 +123,19 @@ void expectEveryPathMatchesEvaluate(const pf::FingerParameters& params, pf::Solv
     if (!pf::batchPathAvailable(path)) continue;  // this CPU lacks it; the generic pack runs the same code
     ++paths_run;
     Rows rows(pressures.size(), params.chamber_count);
-    batch.evaluateMany(pressures.data(), pressures.size(), rows.outputs(), path);
+    batch.evaluateMany(pressures.data(), pressures.size(), rows.outputs(), batch_ws, path);
     int differ = 0;
     for (std::size_t i = 0; i < pressures.size(); ++i) {
       pf::FingerModel single(params, options);
-      differ += compareRow(single, rows, i, pressures[i], std::string(pf::batchPathName(path)) + "/" +
+      pf::FingerWorkspace single_ws(single);
+      differ += compareRow(single, single_ws, rows, i, pressures[i], std::string(pf::batchPathName(path)) + "/" +
                                                           pf::solverName(solver));
     }
     EXPECT_EQ(differ, 0) << pf::batchPathName(path) << ": values that differ from evaluate()";
   }
   EXPECT_GE(paths_run, 3);
-  // The batch neither reads nor writes the model's cached state.
-  EXPECT_EQ(batch.computationCount(), 0);
+  // The batch neither reads nor writes the workspace's cached state.
+  EXPECT_EQ(batch_ws.computationCount(), 0);
 }
 
 }  // namespace

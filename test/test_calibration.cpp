@@ -21,9 +21,10 @@ double largestError(const std::vector<pf::Residual>& r) {
 // Measurements made by the model itself at the given parameters.
 std::vector<pf::Measurement> synthetic(const pf::FingerParameters& truth, const std::vector<double>& pressures) {
   pf::FingerModel model(truth);
+  pf::FingerWorkspace ws(model);
   std::vector<pf::Measurement> out;
   for (double p : pressures) {
-    const pf::FingerState& s = model.evaluate(p);
+    const pf::FingerState& s = model.evaluate(p, ws);
     out.push_back({0, p, std::vector<double>(s.joint_angle_rad.data(), s.joint_angle_rad.data() + 7), NAN});
   }
   return out;
@@ -145,9 +146,10 @@ namespace {
 std::vector<pf::Measurement> syntheticTipCsv(const pf::FingerParameters& truth, const std::vector<double>& pressures,
                                              bool position) {
   pf::FingerModel model(truth);
+  pf::FingerWorkspace ws(model);
   std::string csv = position ? "# tip in the finger's frame\ngauge_pa,tip_x_m,tip_y_m\n" : "gauge_pa,tip_angle_rad\n";
   for (double p : pressures) {
-    const pf::FingerState& s = model.evaluate(p);
+    const pf::FingerState& s = model.evaluate(p, ws);
     csv += pf::formatExact(p) + "," +
            (position ? pf::formatExact(s.tip().x()) + "," + pf::formatExact(s.tip().y()) : pf::formatExact(s.tip_angle_rad)) +
            "\n";

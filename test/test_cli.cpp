@@ -226,12 +226,6 @@ TEST(CalibrateCli, MalformedDataExitsTwoNamingTheLine) {
   EXPECT_NE(r.err.find("bad.csv:2: 'oops' in column joint_2_rad"), std::string::npos) << r.err;
 }
 
-TEST(Cli, ReadmeParameterTableIsTheGeneratedOne) {
-  const CliRun r = run("--parameters");
-  EXPECT_NE(readFile(std::string(PACKAGE_SOURCE_DIR) + "/README.md").find(r.out), std::string::npos)
-      << "README.md's parameter table differs from `finger_model --parameters`: run scripts/update_readme_tables.py";
-}
-
 TEST(UrdfCli, GeneratedUrdfPassesCheckUrdfWithPrefixedNames) {
   const std::string file = testing::TempDir() + "/finger.urdf";
   const std::string gen = std::string(FINGER_URDF_EXE) + " --prefix finger_b_ --parent flange --xyz 0,0.02,0.01 --rpy 0,0,2.0944 -o " + file;
@@ -275,13 +269,6 @@ TEST(UrdfCli, InvalidPrefixIsRefused) {
   const std::string cmd = std::string(FINGER_URDF_EXE) + " --prefix 'bad name' >/dev/null 2>&1";
   const int raw = std::system(cmd.c_str());
   EXPECT_EQ(WEXITSTATUS(raw), 2);
-}
-
-TEST(Cli, ReadmeNodeParameterTableIsTheGeneratedOne) {
-  const CliRun r = runShell(std::string(FINGER_NODE_EXE) + " --parameters");
-  ASSERT_EQ(r.status, 0);
-  EXPECT_NE(readFile(std::string(PACKAGE_SOURCE_DIR) + "/README.md").find(r.out), std::string::npos)
-      << "README.md's node parameter table differs from `finger_node --parameters`: run scripts/update_readme_tables.py";
 }
 
 TEST(Cli, EveryKeyOutOfRangeIsRefusedByBothToolsNamingIt) {

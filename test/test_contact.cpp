@@ -44,8 +44,9 @@ double distanceToSegment(const Disk& d, std::pair<double, double> a, std::pair<d
 Reference reference(const pf::FingerParameters& params, double pressure, const Disk& disk) {
   const int n = params.chamber_count;
   pf::FingerModel model(params);
+  pf::FingerWorkspace ws(model);
   auto free = [&](double p) {
-    const pf::FingerState& s = model.evaluate(p);
+    const pf::FingerState& s = model.evaluate(p, ws);
     return std::vector<double>(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n);
   };
   Reference r;
@@ -123,6 +124,7 @@ TEST(Contact, TurningBaseFaceMatchesTheReference) {
   raw["base_wall_share"] = {{0.3}, false};
   const pf::FingerParameters finger = pf::FingerParameters::fromRaw(raw);
   pf::FingerModel model(finger);
+  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   const std::vector<Disk> disks = {{0.02, 0.0035, 0.003}, {0.0388324, 0.00650505, 0.003},
                                    {0.0632674, 0.0211602, 0.006}, {0.075, 0.035, 0.01}};
@@ -137,6 +139,7 @@ TEST(Contact, TurningBaseFaceMatchesTheReference) {
 
 TEST(Contact, MatchesTheIndependentReferenceForDisksAcrossTheFinger) {
   pf::FingerModel model(kFinger);
+  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   // Disks on the strain-limited side that the curling finger reaches first with segment 3, 5, 6 and 7 (found by
   // placing them 0.1 mm from a segment's middle at 1.2e5 Pa), one it never reaches, and one wide one.
@@ -156,6 +159,7 @@ TEST(Contact, UnequalChambersTakeTheGeneralPathAndMatchTheReference) {
   pf::FingerParameters params = kFinger;
   params.chamber_gap_m.back() *= 1.2;
   pf::FingerModel model(params);
+  pf::FingerWorkspace ws(model);
   ASSERT_EQ(model.distinctChamberCount(), 2);
   const pf::ContactSolver solver(model);
   int touched = 0;
@@ -167,6 +171,7 @@ TEST(Contact, UnequalChambersTakeTheGeneralPathAndMatchTheReference) {
 
 TEST(Contact, NoJointPassesItsFreeAngleNothingPenetratesAndNoJointGoesBack) {
   pf::FingerModel model(kFinger);
+  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   for (const pf::Obstacle& obstacle :
        {pf::Obstacle::disk(0.07, 0.03, 0.004), pf::Obstacle::ellipse(0.07, 0.035, 0.008, 0.004, 0.3),
@@ -191,6 +196,7 @@ TEST(Contact, NoJointPassesItsFreeAngleNothingPenetratesAndNoJointGoesBack) {
 
 TEST(Contact, ARoundEllipseIsTheDisk) {
   pf::FingerModel model(kFinger);
+  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   const pf::ContactState disk = solver.solve(2e5, pf::Obstacle::disk(0.07, 0.03, 0.004));
   const pf::ContactState ellipse = solver.solve(2e5, pf::Obstacle::ellipse(0.07, 0.03, 0.004, 0.004, 1.0));
@@ -200,13 +206,14 @@ TEST(Contact, ARoundEllipseIsTheDisk) {
 
 TEST(Contact, AnObstacleOutOfReachLeavesTheFreeFinger) {
   pf::FingerModel model(kFinger);
+  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   // 85 mm of finger; a disk whose nearest point is 85.001 mm from the mount.
   const pf::ContactState s = solver.solve(196133.0, pf::Obstacle::disk(0.0, 0.090001, 0.005));
   EXPECT_EQ(s.status, pf::ContactState::Status::kFree);
   EXPECT_TRUE(std::isnan(s.first_touch_gauge_pa));
   EXPECT_EQ(s.touches, 0);
-  const pf::FingerState& free = model.evaluate(196133.0);
+  const pf::FingerState& free = model.evaluate(196133.0, ws);
   for (int i = 0; i < 7; ++i) EXPECT_EQ(s.joint_angle_rad[i], free.joint_angle_rad[i]);
   EXPECT_NEAR((s.backbone_m - free.backbone_m).cwiseAbs().maxCoeff(), 0.0, 1e-15);
 }
@@ -214,8 +221,9 @@ TEST(Contact, AnObstacleOutOfReachLeavesTheFreeFinger) {
 TEST(Contact, JustOutOfReachOfTheCurlingFingerIsNoTouch) {
   // A disk that the free finger at 2 kg/cm^2 misses by 1 um: no contact, the free finger.
   pf::FingerModel model(kFinger);
+  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
-  const pf::FingerState& s = model.evaluate(196133.0);
+  const pf::FingerState& s = model.evaluate(196133.0, ws);
   const Eigen::Vector2d tip = s.tip();
   const Eigen::Vector2d ahead(std::cos(s.tip_angle_rad), std::sin(s.tip_angle_rad));
   const double r = 0.003;
@@ -232,6 +240,7 @@ TEST(Contact, JustOutOfReachOfTheCurlingFingerIsNoTouch) {
 
 TEST(Contact, AnObstacleOverlappingTheStraightFingerIsReportedNotSolved) {
   pf::FingerModel model(kFinger);
+  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   const pf::ContactState s = solver.solve(1e5, pf::Obstacle::disk(0.04, 0.001, 0.002));
   EXPECT_EQ(s.status, pf::ContactState::Status::kOverlapsAtRest);
@@ -251,9 +260,10 @@ TEST(Contact, BadObstaclesAreNamed) {
 // touch at once and joints 1..4 freeze; joints 5..7 go on.
 TEST(Contact, ATouchExactlyAtAJointFreezesTheJointsUpToIt) {
   pf::FingerModel model(kFinger);
+  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   const double pj = 1.2e5;
-  auto joint4 = [&](double p) { return Eigen::Vector2d(model.evaluate(p).backbone_m.col(4)); };
+  auto joint4 = [&](double p) { return Eigen::Vector2d(model.evaluate(p, ws).backbone_m.col(4)); };
   const Eigen::Vector2d apex = joint4(pj);
   const Eigen::Vector2d v = (joint4(pj * (1 + 1e-6)) - joint4(pj * (1 - 1e-6))).normalized();
   const Eigen::Vector2d w(-v.y(), v.x());
@@ -277,9 +287,10 @@ TEST(Contact, ATouchExactlyAtAJointFreezesTheJointsUpToIt) {
 // touch (the finger reached the object), and every joint freezes there.
 TEST(Contact, AGrazingTouchCounts) {
   pf::FingerModel model(kFinger);
+  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   const double pg = 1.2e5;
-  auto tip = [&](double p) { return Eigen::Vector2d(model.evaluate(p).tip()); };
+  auto tip = [&](double p) { return Eigen::Vector2d(model.evaluate(p, ws).tip()); };
   const Eigen::Vector2d t0 = tip(pg);
   const Eigen::Vector2d tangent = (tip(pg * (1 + 1e-6)) - tip(pg * (1 - 1e-6))).normalized();
   Eigen::Vector2d normal(-tangent.y(), tangent.x());
@@ -300,6 +311,7 @@ TEST(Contact, AGrazingTouchCounts) {
 // solver answers, bit for bit.
 TEST(Contact, TheTrackerAnswersTheSolverBitForBitInAnyOrder) {
   pf::FingerModel model(kFinger);
+  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   for (const pf::Obstacle& obstacle : {pf::Obstacle::disk(0.0388324, 0.00650505, 0.003),
                                        pf::Obstacle::disk(0.075, 0.035, 0.01), pf::Obstacle::disk(0.0, 0.2, 0.01),

@@ -122,12 +122,13 @@ const std::vector<double> kGauges = {0.0, 3e4, 98066.5, 150000.0, 196133.0, 2800
 
 TEST_F(FingerNodeTest, JointStatesEqualTheCoreModel) {
   pf::FingerModel model(packageParameters());
+  pf::FingerWorkspace ws(model);
   for (double p : kGauges) {
     const ros::Time stamp = publishAndWait(p);
     std::lock_guard<std::mutex> lock(listener_->mutex);
     ASSERT_TRUE(listener_->joint_states.count(stamp)) << "no joint_states for P = " << p;
     const auto& js = listener_->joint_states[stamp];
-    const pf::FingerState& want = model.evaluate(p);
+    const pf::FingerState& want = model.evaluate(p, ws);
     ASSERT_EQ(js.position.size(), 7u);
     for (int i = 0; i < 7; ++i) {
       EXPECT_EQ(js.name[static_cast<std::size_t>(i)], kPrefix + "joint_" + std::to_string(i + 1));
@@ -139,6 +140,7 @@ TEST_F(FingerNodeTest, JointStatesEqualTheCoreModel) {
 
 TEST_F(FingerNodeTest, TipFrameResolvesFromTheParentAndEqualsTheModel) {
   pf::FingerModel model(packageParameters());
+  pf::FingerWorkspace ws(model);
   tf2::Quaternion mount_q;
   mount_q.setRPY(kMountRpy[0], kMountRpy[1], kMountRpy[2]);
   const tf2::Transform mount(mount_q, tf2::Vector3(kMountXyz[0], kMountXyz[1], kMountXyz[2]));
@@ -146,7 +148,7 @@ TEST_F(FingerNodeTest, TipFrameResolvesFromTheParentAndEqualsTheModel) {
     const ros::Time stamp = publishAndWait(p);
     geometry_msgs::TransformStamped got;
     ASSERT_NO_THROW(got = buffer_->lookupTransform("tool0", kPrefix + "tip", stamp, ros::Duration(5))) << "P = " << p;
-    const pf::FingerState& want = model.evaluate(p);
+    const pf::FingerState& want = model.evaluate(p, ws);
     tf2::Quaternion yaw;
     yaw.setRPY(0, 0, want.tip_angle_rad);
     const tf2::Transform expected = mount * tf2::Transform(yaw, tf2::Vector3(want.tip().x(), want.tip().y(), 0));
@@ -169,6 +171,7 @@ TEST_F(FingerNodeTest, TipFrameResolvesFromTheParentAndEqualsTheModel) {
 
 TEST_F(FingerNodeTest, FingerStateCarriesTheModel) {
   pf::FingerModel model(packageParameters());
+  pf::FingerWorkspace ws(model);
   const pf::TipUncertainty bars =
       pf::tipUncertaintyFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml");
   ASSERT_EQ(bars.gauge_pa.size(), 4u);
@@ -177,7 +180,7 @@ TEST_F(FingerNodeTest, FingerStateCarriesTheModel) {
     std::lock_guard<std::mutex> lock(listener_->mutex);
     ASSERT_TRUE(listener_->finger_states.count(stamp));
     const auto& s = listener_->finger_states[stamp];
-    const pf::FingerState& want = model.evaluate(p);
+    const pf::FingerState& want = model.evaluate(p, ws);
     EXPECT_EQ(s.header.frame_id, kPrefix + "segment_0");
     // The same core on the same pressure: every number is the same bits.
     EXPECT_EQ(s.gauge_pa, p);
@@ -298,13 +301,14 @@ TEST_F(FingerNodeTest, ReconfigureAppliesLiveValidatesAndRepublishesTheUrdf) {
   raw["shear_modulus_pa"] = {{2.0e8}, false};
   const pf::FingerParameters softer = pf::FingerParameters::fromRaw(raw);
   pf::FingerModel model(softer);
+  pf::FingerWorkspace ws(model);
   const ros::Time stamp = publishAndWait(150000.0);
   {
     std::lock_guard<std::mutex> lock(listener_->mutex);
     ASSERT_TRUE(listener_->joint_states.count(stamp));
     for (int i = 0; i < 7; ++i) {
       EXPECT_EQ(listener_->joint_states[stamp].position[static_cast<std::size_t>(i)],
-                model.evaluate(150000.0).joint_angle_rad[i]);
+                model.evaluate(150000.0, ws).joint_angle_rad[i]);
     }
     // The calibration's error bar belonged to the calibrated actuator: no longer published as if it applied.
     ASSERT_TRUE(listener_->finger_states.count(stamp));
@@ -315,7 +319,7 @@ TEST_F(FingerNodeTest, ReconfigureAppliesLiveValidatesAndRepublishesTheUrdf) {
   ASSERT_TRUE(nh_->getParam("robot_description", xml));
   const urdf::ModelInterfaceSharedPtr urdf = urdf::parseURDF(xml);
   ASSERT_TRUE(urdf);
-  EXPECT_EQ(urdf->getJoint(kPrefix + "joint_1")->limits->upper, model.evaluate(294199.5).joint_angle_rad[0]);
+  EXPECT_EQ(urdf->getJoint(kPrefix + "joint_1")->limits->upper, model.evaluate(294199.5, ws).joint_angle_rad[0]);
   // A value outside its range is refused, like a bad rosparam: the old value stays, and so does the model.
   now = reconfigure(*nh_, {{"chamber_gap_m", -1.0}});
   EXPECT_EQ(now["chamber_gap_m"], package.chamber_gap_m[0]);
@@ -325,7 +329,7 @@ TEST_F(FingerNodeTest, ReconfigureAppliesLiveValidatesAndRepublishesTheUrdf) {
   {
     std::lock_guard<std::mutex> lock(listener_->mutex);
     ASSERT_TRUE(listener_->joint_states.count(after));
-    EXPECT_EQ(listener_->joint_states[after].position[3], model.evaluate(120000.0).joint_angle_rad[3]);
+    EXPECT_EQ(listener_->joint_states[after].position[3], model.evaluate(120000.0, ws).joint_angle_rad[3]);
   }
   // Back to the package's actuator for the other tests.
   reconfigure(*nh_, {{"shear_modulus_pa", package.shear_modulus_pa[0]}});
@@ -335,8 +339,9 @@ TEST_F(FingerNodeTest, InverseServiceRoundTrips) {
   ros::ServiceClient client = nh_->serviceClient<pf::PressureForTipAngle>("pressure_for_tip_angle");
   ASSERT_TRUE(client.waitForExistence(ros::Duration(10)));
   pf::FingerModel model(packageParameters());
+  pf::FingerWorkspace ws(model);
   pf::PressureForTipAngle srv;
-  srv.request.tip_angle_rad = model.evaluate(123456.0).tip_angle_rad;
+  srv.request.tip_angle_rad = model.evaluate(123456.0, ws).tip_angle_rad;
   ASSERT_TRUE(client.call(srv));
   EXPECT_TRUE(srv.response.success) << srv.response.message;
   EXPECT_NEAR(srv.response.gauge_pa, 123456.0, 1e-6);
@@ -356,6 +361,7 @@ TEST_F(FingerNodeTest, InverseServiceRoundTrips) {
 TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing) {
   const pf::FingerParameters params = packageParameters();
   pf::FingerModel model(params);
+  pf::FingerWorkspace ws(model);
   ros::Publisher object_pub = nh_->advertise<pf::GraspObject>("grasp_object", 1, true);
   const Eigen::Isometry3d parent_from_finger =
       Eigen::Translation3d(kMountXyz[0], kMountXyz[1], kMountXyz[2]) *
@@ -391,7 +397,7 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
   ros::Time stamp = waitForStatus(pf::FingerModelState::OBJECT_OUT_OF_REACH, "far");
   {
     std::lock_guard<std::mutex> lock(listener_->mutex);
-    const pf::FingerState& free = model.evaluate(196133.0);
+    const pf::FingerState& free = model.evaluate(196133.0, ws);
     const auto& s = listener_->finger_states[stamp];
     for (int i = 0; i < 7; ++i) EXPECT_EQ(listener_->joint_states[stamp].position[static_cast<std::size_t>(i)], free.joint_angle_rad[i]);
     EXPECT_TRUE(std::isnan(s.touch_gauge_pa));
@@ -427,7 +433,7 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
   object_pub.publish(none);
   stamp = waitForStatus(pf::FingerModelState::OBJECT_NONE, "");
   std::lock_guard<std::mutex> lock(listener_->mutex);
-  const pf::FingerState& free = model.evaluate(196133.0);
+  const pf::FingerState& free = model.evaluate(196133.0, ws);
   for (int i = 0; i < 7; ++i) EXPECT_EQ(listener_->joint_states[stamp].position[static_cast<std::size_t>(i)], free.joint_angle_rad[i]);
 }
 

@@ -219,7 +219,8 @@ TEST_F(FaultTest, VacuumPublishesTheStraightFinger) {
 
 TEST_F(FaultTest, AbsurdPressureIsClampedToTheModelRange) {
   pf::FingerModel model(packageParameters());
-  const pf::FingerState& at_max = model.evaluate(294199.5);
+  pf::FingerWorkspace ws(model);
+  const pf::FingerState& at_max = model.evaluate(294199.5, ws);
   for (double absurd : {1e12, 1e300}) {
     const auto js = sendGoodAndWait(absurd);
     expectFinite(js);
@@ -271,6 +272,7 @@ TEST_F(FaultTest, BurstAtTenKilohertzEndsInTheLastPressureWithTimeOnlyMovingForw
     first = joints_.size();
   }
   pf::FingerModel model(packageParameters());
+  pf::FingerWorkspace ws(model);
   const ros::WallTime start = ros::WallTime::now();
   double last_gauge = 0;
   for (int i = 1; i <= 10000; ++i) {
@@ -280,7 +282,7 @@ TEST_F(FaultTest, BurstAtTenKilohertzEndsInTheLastPressureWithTimeOnlyMovingForw
     while ((ros::WallTime::now() - start).toSec() < i * 1e-4) {
     }
   }
-  const double want = model.evaluate(last_gauge).joint_angle_rad[6];
+  const double want = model.evaluate(last_gauge, ws).joint_angle_rad[6];
   const ros::WallTime deadline = ros::WallTime::now() + ros::WallDuration(20);
   auto joint7 = [] {
     const auto js = lastJoints();
@@ -315,8 +317,9 @@ TEST_F(FaultTest, RegulatorPublisherRestartIsFollowed) {
   advertise();      // ... and comes back
   const auto js = sendGoodAndWait(160000);
   pf::FingerModel model(packageParameters());
+  pf::FingerWorkspace ws(model);
   ASSERT_EQ(js.position.size(), 7u);
-  EXPECT_NEAR(js.position[3], model.evaluate(160000).joint_angle_rad[3], 1e-12);
+  EXPECT_NEAR(js.position[3], model.evaluate(160000, ws).joint_angle_rad[3], 1e-12);
 }
 
 int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "finger_node_faults_test", 2); }

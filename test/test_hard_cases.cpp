@@ -29,8 +29,9 @@ pf_test::FingerError worstOver(const pf::FingerParameters& params, pf::SolverKin
   pf::ModelOptions options;
   options.solver = solver;
   pf::FingerModel model(params, options);
+  pf::FingerWorkspace ws(model);
   pf_test::FingerError worst;
-  for (double p : pressures) worst.merge(pf_test::fingerError(model.evaluate(p), pf_test::referenceFinger(params, p)));
+  for (double p : pressures) worst.merge(pf_test::fingerError(model.evaluate(p, ws), pf_test::referenceFinger(params, p)));
   return worst;
 }
 
@@ -90,8 +91,9 @@ TEST(HardCase, ContactCrossing) {
   pressures.push_back(pc);
   expectRobustExact(worstOver(kPaper, pf::SolverKind::kRobust, pressures));
   pf::FingerModel model(kPaper);
-  EXPECT_EQ(model.evaluate(pc * (1 - 1e-12)).half_angle_rad[0], 0.0);
-  EXPECT_GT(model.evaluate(pc * (1 + 1e-12)).half_angle_rad[0], 0.0);
+  pf::FingerWorkspace ws(model);
+  EXPECT_EQ(model.evaluate(pc * (1 - 1e-12), ws).half_angle_rad[0], 0.0);
+  EXPECT_GT(model.evaluate(pc * (1 + 1e-12), ws).half_angle_rad[0], 0.0);
   // For the same (double) bulge, the robust solver keeps the relative accuracy of theta right down to the
   // crossing, where theta is 1e-17 rad: it forms h - c directly, exactly. Recorded: the paper's quartic keeps its
   // absolute error near 1e-16 rad but loses its relative accuracy (its constant term 16 h^2 (h^2 - c^2) cancels):
@@ -146,7 +148,8 @@ TEST(HardCase, LargePressureHalfAngleNearHalfPi) {
   const std::vector<double> pressures = {1e7, 1e8, 1e9, 1e10, 1e12, 1e15, 1e20, 1e50, 1e100, 1e200, 1e300, DBL_MAX};
   expectRobustExact(worstOver(kPaper, pf::SolverKind::kRobust, pressures));
   pf::FingerModel model(kPaper);
-  EXPECT_EQ(model.evaluate(DBL_MAX).half_angle_rad[0], M_PI_2);
+  pf::FingerWorkspace ws(model);
+  EXPECT_EQ(model.evaluate(DBL_MAX, ws).half_angle_rad[0], M_PI_2);
   // Recorded: the paper solver has no root (NaN) from 1e9 Pa on, where theta > 1.5688 rad.
   const auto chamber = pf_test::chambersOf(kPaper)[0];
   const double b = kPaper.wall_critical_height_m[0], c = kPaper.chamber_gap_m[0];
@@ -180,23 +183,24 @@ TEST(HardCase, NearlyBiquadraticQuartic) {
 // stay finite; non-physical geometry is refused with the key named.
 TEST(HardCase, BadPressureInput) {
   pf::FingerModel model(kPaper);
-  const pf::FingerState before = model.evaluate(150000);
+  pf::FingerWorkspace ws(model);
+  const pf::FingerState before = model.evaluate(150000, ws);
   for (double bad : {NAN, INFINITY, -INFINITY}) {
-    const pf::FingerState& s = model.evaluate(bad);
+    const pf::FingerState& s = model.evaluate(bad, ws);
     EXPECT_EQ(s.status, pf::EvaluationStatus::kNotFinite);
     EXPECT_EQ(s.joint_angle_rad, before.joint_angle_rad);
     EXPECT_EQ(s.backbone_m, before.backbone_m);
   }
-  const pf::FingerState& vacuum = model.evaluate(-50000);
+  const pf::FingerState& vacuum = model.evaluate(-50000, ws);
   EXPECT_EQ(vacuum.status, pf::EvaluationStatus::kVacuum);
   EXPECT_TRUE(vacuum.joint_angle_rad.isZero(0));
   EXPECT_EQ(vacuum.tip().y(), 0.0);
   for (double absurd : {1e12, -1e300, 5e-324, -5e-324}) {
-    const pf::FingerState& s = model.evaluate(absurd);
+    const pf::FingerState& s = model.evaluate(absurd, ws);
     EXPECT_TRUE(s.backbone_m.allFinite()) << absurd;
     EXPECT_TRUE(s.joint_angle_rad.allFinite()) << absurd;
   }
-  EXPECT_EQ(model.evaluate(150000).status, pf::EvaluationStatus::kOk);
+  EXPECT_EQ(model.evaluate(150000, ws).status, pf::EvaluationStatus::kOk);
 }
 
 TEST(HardCase, NonPhysicalGeometryIsRefusedNamingTheKey) {

@@ -80,10 +80,11 @@ TEST(NoAllocation, EvaluationNeverAllocates) {
       pf::ModelOptions options;
       options.solver = solver;
       pf::FingerModel model(params, options);
+      pf::FingerWorkspace ws(model);
       const long before = g_allocations.load();
       double sink = 0;
-      for (double p = -1e3; p < 1e6; p += 997) sink += model.evaluate(p).tip().y();
-      for (double p : {1e9, 1e300, double(NAN)}) sink += model.evaluate(p).tip().y();
+      for (double p = -1e3; p < 1e6; p += 997) sink += model.evaluate(p, ws).tip().y();
+      for (double p : {1e9, 1e300, double(NAN)}) sink += model.evaluate(p, ws).tip().y();
       sink += model.tipAngleAt(2e5);
       EXPECT_EQ(g_allocations.load(), before) << pf::solverName(solver);
       EXPECT_TRUE(std::isfinite(sink) || solver == pf::SolverKind::kPaper);

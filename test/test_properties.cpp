@@ -7,7 +7,6 @@
 #include <cstring>
 #include <random>
 #include <string>
-#include <thread>
 #include <utility>
 #include <vector>
 
@@ -22,12 +21,13 @@ const pf::FingerParameters kPaper = pf::FingerParameters::defaults();
 
 TEST(Property, HalfAngleIsZeroBelowContactAndPositiveAbove) {
   pf::FingerModel model(kPaper);
+  pf::FingerWorkspace ws(model);
   const double pc = model.contactGaugePa();
   ASSERT_GT(pc, 0.0);
-  for (double f : {0.0, 0.5, 0.9, 0.999999}) EXPECT_EQ(model.evaluate(pc * f).half_angle_rad[0], 0.0) << f;
-  for (double f : {1.000001, 1.1, 2.0, 10.0}) EXPECT_GT(model.evaluate(pc * f).half_angle_rad[0], 0.0) << f;
-  EXPECT_FALSE(model.evaluate(pc * 0.5).walls_in_contact);
-  EXPECT_TRUE(model.evaluate(pc * 2).walls_in_contact);
+  for (double f : {0.0, 0.5, 0.9, 0.999999}) EXPECT_EQ(model.evaluate(pc * f, ws).half_angle_rad[0], 0.0) << f;
+  for (double f : {1.000001, 1.1, 2.0, 10.0}) EXPECT_GT(model.evaluate(pc * f, ws).half_angle_rad[0], 0.0) << f;
+  EXPECT_FALSE(model.evaluate(pc * 0.5, ws).walls_in_contact);
+  EXPECT_TRUE(model.evaluate(pc * 2, ws).walls_in_contact);
 }
 
 TEST(Property, HalfAngleIsNonDecreasingInPressure) {
@@ -35,9 +35,10 @@ TEST(Property, HalfAngleIsNonDecreasingInPressure) {
     pf::ModelOptions options;
     options.solver = solver;
     pf::FingerModel model(kPaper, options);
+    pf::FingerWorkspace ws(model);
     double prev = -1;
     for (double p = 0; p <= 4e5; p += 37.0) {
-      const double theta = model.evaluate(p).half_angle_rad[0];
+      const double theta = model.evaluate(p, ws).half_angle_rad[0];
       EXPECT_GE(theta, prev) << pf::solverName(solver) << " at P = " << p;
       prev = theta;
     }
@@ -46,8 +47,9 @@ TEST(Property, HalfAngleIsNonDecreasingInPressure) {
 
 TEST(Property, TipDirectionIsTheSumOfJointAngles) {
   pf::FingerModel model(kPaper);
+  pf::FingerWorkspace ws(model);
   for (double p : {3e4, 1e5, 2e5, 5e5, 2e6}) {
-    const pf::FingerState& s = model.evaluate(p);
+    const pf::FingerState& s = model.evaluate(p, ws);
     const int n = model.chamberCount();
     const Eigen::Vector2d last = s.backbone_m.col(n + 1) - s.backbone_m.col(n);
     const double direction = std::atan2(last.y(), last.x());
@@ -69,14 +71,15 @@ TEST(Property, NoNaNForAnyFiniteInput) {
       models.emplace_back(pf::FingerParameters::fromRaw(raw));
     }
   }
-  for (auto& model : models) {
+  for (const auto& model : models) {
+    pf::FingerWorkspace ws(model);
     for (int i = 0; i < 20000; ++i) {
       double p;
       do {
         const std::uint64_t bits = rng();
         std::memcpy(&p, &bits, sizeof p);
       } while (!std::isfinite(p));
-      const pf::FingerState& s = model.evaluate(p);
+      const pf::FingerState& s = model.evaluate(p, ws);
       ASSERT_TRUE(s.backbone_m.allFinite() && s.joint_angle_rad.allFinite() && s.stretch.allFinite() &&
                   s.bulge_m.allFinite())
           << "P = " << p;
@@ -90,10 +93,11 @@ TEST(Property, ListOfEqualValuesEqualsItsScalar) {
   list["chamber_gap_m"] = {std::vector<double>(7, 4e-5), true};
   list["shear_modulus_pa"] = {std::vector<double>(7, kPaper.shear_modulus_pa[0]), true};
   pf::FingerModel a(pf::FingerParameters::fromRaw(scalar)), b(pf::FingerParameters::fromRaw(list));
+  pf::FingerWorkspace a_ws(a), b_ws(b);
   EXPECT_EQ(b.distinctChamberCount(), 1);
   for (double p : {0.0, 5e4, 1e5, 2e5}) {
-    const pf::FingerState sa = a.evaluate(p);
-    const pf::FingerState& sb = b.evaluate(p);
+    const pf::FingerState sa = a.evaluate(p, a_ws);
+    const pf::FingerState& sb = b.evaluate(p, b_ws);
     EXPECT_EQ(sa.joint_angle_rad, sb.joint_angle_rad);  // bit for bit
     EXPECT_EQ(sa.backbone_m, sb.backbone_m);
   }
@@ -113,36 +117,39 @@ TEST(Property, IdenticalChambersAreSolvedOnce) {
 
 TEST(Property, UnchangedPressureIsNotRecomputed) {
   pf::FingerModel model(kPaper);
-  const long before = model.computationCount();
-  model.evaluate(1e5);
-  model.evaluate(1e5);
-  model.evaluate(1e5);
-  EXPECT_EQ(model.computationCount(), before + 1);
-  model.evaluate(1.5e5);
-  EXPECT_EQ(model.computationCount(), before + 2);
-  model.evaluate(NAN);  // refused: no computation, and the next good value is computed afresh
-  model.evaluate(1.5e5);
-  EXPECT_EQ(model.computationCount(), before + 3);
+  pf::FingerWorkspace ws(model);
+  const long before = ws.computationCount();
+  model.evaluate(1e5, ws);
+  model.evaluate(1e5, ws);
+  model.evaluate(1e5, ws);
+  EXPECT_EQ(ws.computationCount(), before + 1);
+  model.evaluate(1.5e5, ws);
+  EXPECT_EQ(ws.computationCount(), before + 2);
+  model.evaluate(NAN, ws);  // refused: no computation, and the next good value is computed afresh
+  model.evaluate(1.5e5, ws);
+  EXPECT_EQ(ws.computationCount(), before + 3);
 }
 
 TEST(Property, TableSolverErrorIsMeasuredAndWithinTolerance) {
   pf::ModelOptions options;
   options.solver = pf::SolverKind::kTable;
   pf::FingerModel table(kPaper, options);
+  pf::FingerWorkspace table_ws(table);
   EXPECT_GT(table.tableSegmentCount(), 0);
   EXPECT_GT(table.tableMeasuredErrorRad(), 0.0);  // measured, so never exactly 0 for a real interpolant
   EXPECT_LE(table.tableMeasuredErrorRad(), options.table_tolerance_rad);
   // Against the quad reference on a grid the table builder never saw (offset primes), inside its range.
   pf_test::FingerError worst;
   for (double p = 13.0; p <= options.table_max_gauge_pa; p += 997.0) {
-    worst.merge(pf_test::fingerError(table.evaluate(p), pf_test::referenceFinger(kPaper, p)));
+    worst.merge(pf_test::fingerError(table.evaluate(p, table_ws), pf_test::referenceFinger(kPaper, p)));
   }
   EXPECT_LE(worst.half_angle_rad, pf_test::kAngleTolerance);
   EXPECT_LE(worst.point_m, pf_test::kPointTolerance);
   RecordProperty("table_max_half_angle_error_rad", pf_test::scientific(worst.half_angle_rad));
   // Outside its range it hands over to the robust solver.
   pf::FingerModel robust(kPaper);
-  EXPECT_EQ(table.evaluate(1e6).half_angle_rad[0], robust.evaluate(1e6).half_angle_rad[0]);
+  pf::FingerWorkspace robust_ws(robust);
+  EXPECT_EQ(table.evaluate(1e6, table_ws).half_angle_rad[0], robust.evaluate(1e6, robust_ws).half_angle_rad[0]);
 }
 
 TEST(Property, TableSolverHoldsItsBoundForOtherFingers) {
@@ -169,11 +176,12 @@ TEST(Property, TableSolverHoldsItsBoundForOtherFingers) {
     pf::ModelOptions options;
     options.solver = pf::SolverKind::kTable;
     pf::FingerModel table(params, options);
+    pf::FingerWorkspace table_ws(table);
     EXPECT_GT(table.tableSegmentCount(), 0) << name;
     EXPECT_LE(table.tableMeasuredErrorRad(), options.table_tolerance_rad) << name;
     pf_test::FingerError worst;
     for (double p = 13.0; p <= options.table_max_gauge_pa; p += 2999.0) {
-      worst.merge(pf_test::fingerError(table.evaluate(p), pf_test::referenceFinger(params, p)));
+      worst.merge(pf_test::fingerError(table.evaluate(p, table_ws), pf_test::referenceFinger(params, p)));
     }
     EXPECT_LE(worst.half_angle_rad, pf_test::kAngleTolerance) << name;
     EXPECT_LE(worst.joint_angle_rad, pf_test::kAngleTolerance) << name;
@@ -193,9 +201,10 @@ TEST(Property, WithoutChamberDetailStretchAndBulgeAreNaNNotPlaceholders) {
       lean.solver = full.solver = solver;
       lean.chamber_detail = false;
       pf::FingerModel lean_model(params, lean), full_model(params, full);
+      pf::FingerWorkspace lean_model_ws(lean_model), full_model_ws(full_model);
       for (double p : {0.0, 5e4, 1.5e5, 2.5e5, 1e6, -1e4}) {
-        const pf::FingerState& a = lean_model.evaluate(p);
-        const pf::FingerState& b = full_model.evaluate(p);
+        const pf::FingerState& a = lean_model.evaluate(p, lean_model_ws);
+        const pf::FingerState& b = full_model.evaluate(p, full_model_ws);
         for (int i = 0; i < params.chamber_count; ++i) {
           EXPECT_TRUE(std::isnan(a.stretch[i]) && std::isnan(a.bulge_m[i])) << "P = " << p;
           EXPECT_TRUE(std::isfinite(b.stretch[i]) && std::isfinite(b.bulge_m[i])) << "P = " << p;
@@ -212,8 +221,9 @@ TEST(Property, WithoutChamberDetailStretchAndBulgeAreNaNNotPlaceholders) {
 
 TEST(Property, InverseModelRoundTrips) {
   pf::FingerModel model(kPaper);
+  pf::FingerWorkspace ws(model);
   for (double p : {1e4, 5e4, 1e5, 1.5e5, 2e5}) {
-    const double tip = model.evaluate(p).tip_angle_rad;
+    const double tip = model.evaluate(p, ws).tip_angle_rad;
     double back = 0;
     std::string why;
     ASSERT_TRUE(model.gaugeForTipAngle(tip, 1e6, back, why)) << why;
@@ -232,7 +242,8 @@ TEST(Property, InverseModelBisectsForUnequalChambers) {
   pf::RawParameterMap raw;
   raw["chamber_gap_m"] = {{3e-5, 4e-5, 5e-5, 6e-5, 7e-5, 8e-5, 9e-5}, true};
   pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
-  const double tip = model.evaluate(1.2e5).tip_angle_rad;
+  pf::FingerWorkspace ws(model);
+  const double tip = model.evaluate(1.2e5, ws).tip_angle_rad;
   double back = 0;
   std::string why;
   ASSERT_TRUE(model.gaugeForTipAngle(tip, 1e6, back, why)) << why;
@@ -251,9 +262,10 @@ TEST(Property, SolverFailureIsAStatusAndNeverANonFiniteNumber) {
       pf::RawParameterMap raw;
       raw["chamber_gap_m"] = {{gap}, false};
       pf::FingerModel model(pf::FingerParameters::fromRaw(raw), options);
+      pf::FingerWorkspace ws(model);
       for (double p : {1e5, 1e9, 2e5, 3e9, 1e300, 1.5e5}) {
-        const Eigen::VectorXd before = model.state().joint_angle_rad;
-        const pf::FingerState& s = model.evaluate(p);
+        const Eigen::VectorXd before = ws.state().joint_angle_rad;
+        const pf::FingerState& s = model.evaluate(p, ws);
         const bool all_finite = s.stretch.allFinite() && s.bulge_m.allFinite() && s.half_angle_rad.allFinite() &&
                                 s.joint_angle_rad.allFinite() && s.backbone_m.allFinite() && std::isfinite(s.tip_angle_rad);
         EXPECT_TRUE(all_finite) << pf::solverName(solver) << " c = " << gap << " P = " << p;
@@ -270,29 +282,3 @@ TEST(Property, SolverFailureIsAStatusAndNeverANonFiniteNumber) {
   EXPECT_GT(failures, 0) << "the paper solver's known failures were not reached: the test would prove nothing";
 }
 
-// tipAngleAt and gaugeForTipAngle may run in other threads while one thread evaluates (the node's inverse service
-// under a multi-threaded spinner): each thread gets exactly what it gets alone.
-TEST(Property, ConstMethodsAreSafeBesideEvaluate) {
-  pf::RawParameterMap unequal;
-  unequal["chamber_gap_m"] = {{1e-5, 2e-5, 3e-5, 4e-5, 5e-5, 6e-5, 7e-5}, true};
-  pf::FingerModel model(pf::FingerParameters::fromRaw(unequal));
-  pf::FingerModel alone(pf::FingerParameters::fromRaw(unequal));
-  std::vector<double> pressures;
-  for (int i = 0; i < 200; ++i) pressures.push_back(1e3 * i);
-  std::vector<double> want;
-  for (double p : pressures) want.push_back(alone.tipAngleAt(p));
-  std::vector<std::vector<double>> got(3, std::vector<double>(pressures.size()));
-  std::vector<std::thread> threads;
-  for (std::size_t k = 0; k < got.size(); ++k) {
-    threads.emplace_back([&, k] {
-      for (int round = 0; round < 20; ++round) {
-        for (std::size_t i = 0; i < pressures.size(); ++i) got[k][i] = model.tipAngleAt(pressures[i]);
-      }
-    });
-  }
-  for (int round = 0; round < 200; ++round) {
-    for (double p : pressures) model.evaluate(p + round);
-  }
-  for (auto& t : threads) t.join();
-  for (std::size_t k = 0; k < got.size(); ++k) EXPECT_EQ(got[k], want) << "thread " << k;
-}

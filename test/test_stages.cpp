@@ -126,7 +126,8 @@ TEST(Stage5JointAngles, AreSumsOfNeighbouringHalfAngles) {
   raw["chamber_count"] = {{4}, false};
   raw["chamber_gap_m"] = {{0.0, 2e-5, 5e-5, 1e-4}, true};
   pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
-  const pf::FingerState& s = model.evaluate(150000);
+  pf::FingerWorkspace ws(model);
+  const pf::FingerState& s = model.evaluate(150000, ws);
   // Joint 1: the base face's half angle theta_0 = s0 theta_1 (docs/MODEL.md stage 5) and chamber 1's.
   const double s0 = model.parameters().base_wall_share;
   ASSERT_GT(s0, 0.0);
@@ -137,8 +138,9 @@ TEST(Stage5JointAngles, AreSumsOfNeighbouringHalfAngles) {
 
 TEST(Stage6Backbone, WholeFingerMatchesReferenceOverDenseSweep) {
   pf::FingerModel model(kPaper);
+  pf::FingerWorkspace ws(model);
   pf_test::FingerError worst;
-  for (double p : kSweep) worst.merge(pf_test::fingerError(model.evaluate(p), pf_test::referenceFinger(kPaper, p)));
+  for (double p : kSweep) worst.merge(pf_test::fingerError(model.evaluate(p, ws), pf_test::referenceFinger(kPaper, p)));
   EXPECT_TRUE(worst.finite);
   EXPECT_LE(worst.half_angle_rad, pf_test::kAngleTolerance);
   EXPECT_LE(worst.joint_angle_rad, pf_test::kAngleTolerance);
@@ -155,10 +157,11 @@ TEST(Stage6Backbone, UnequalChambersMatchReference) {
   raw["shear_modulus_pa"] = {{1e8, 2e8, 3e8, 2.2e8, 2.2e8, 5e8, 1e9}, true};
   const pf::FingerParameters params = pf::FingerParameters::fromRaw(raw);
   pf::FingerModel model(params);
+  pf::FingerWorkspace ws(model);
   EXPECT_EQ(model.distinctChamberCount(), 7);
   pf_test::FingerError worst;
   for (double p : pf_test::pressureSweep(3e5, 60, 4)) {
-    worst.merge(pf_test::fingerError(model.evaluate(p), pf_test::referenceFinger(params, p)));
+    worst.merge(pf_test::fingerError(model.evaluate(p, ws), pf_test::referenceFinger(params, p)));
   }
   EXPECT_LE(worst.half_angle_rad, pf_test::kAngleTolerance);
   EXPECT_LE(worst.joint_angle_rad, pf_test::kAngleTolerance);
@@ -175,10 +178,11 @@ TEST(Stage5Joints, BaseWallShareMatchesReference) {
       if (unequal) raw["chamber_gap_m"] = {{3e-5, 1e-5, 3e-5, 5.2e-5, 8e-5, 1.2e-4, 2e-4}, true};
       const pf::FingerParameters params = pf::FingerParameters::fromRaw(raw);
       pf::FingerModel model(params);
+      pf::FingerWorkspace ws(model);
       pf_test::FingerError worst;
       double ratio = 0.0;
       for (double p : pf_test::pressureSweep(3e5, 60, 4)) {
-        const pf::FingerState& s = model.evaluate(p);
+        const pf::FingerState& s = model.evaluate(p, ws);
         worst.merge(pf_test::fingerError(s, pf_test::referenceFinger(params, p)));
         if (!unequal && s.half_angle_rad[0] > 0) ratio = s.joint_angle_rad[0] / s.half_angle_rad[0];
       }
@@ -192,7 +196,7 @@ TEST(Stage5Joints, BaseWallShareMatchesReference) {
       }
       // The thread-safe forms agree with the state.
       const double p = 1.5e5;
-      const pf::FingerState& s = model.evaluate(p);
+      const pf::FingerState& s = model.evaluate(p, ws);
       std::vector<double> q(static_cast<std::size_t>(params.chamber_count));
       ASSERT_TRUE(model.jointAnglesAt(p, q.data()));
       for (int i = 0; i < params.chamber_count; ++i) EXPECT_EQ(q[static_cast<std::size_t>(i)], s.joint_angle_rad[i]);

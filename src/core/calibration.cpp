@@ -266,11 +266,12 @@ bool isFittableKey(const std::string& key) {
 
 std::vector<Residual> residuals(const FingerParameters& parameters, const std::vector<Measurement>& data) {
   FingerModel model(parameters);
+  FingerWorkspace ws(model);
   std::vector<Residual> out;
   const int n = parameters.chamber_count;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const Measurement& m : data) {
-    const FingerState& s = model.evaluate(m.gauge_pa);
+    const FingerState& s = model.evaluate(m.gauge_pa, ws);
     Residual r;
     r.gauge_pa = m.gauge_pa;
     r.model_joint_rad.assign(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n);

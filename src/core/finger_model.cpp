@@ -270,9 +270,21 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
     }
     for (auto& g : groups_) buildTable(g);
   }
-  scratch_.resize(groups_.size());
-  chamber_half_.resize(static_cast<std::size_t>(n));
-  state_ = initialState();
+  shape_ = static_cast<std::uint64_t>(n) << 32 | static_cast<std::uint64_t>(groups_.size());
+}
+
+FingerWorkspace::FingerWorkspace(const FingerModel& model)
+    : shape_(model.shape_),
+      state_(model.initialState()),
+      group_solutions_(model.groups_.size()),
+      chamber_half_(static_cast<std::size_t>(model.chamberCount())) {}
+
+// Out of line and cold, so that evaluate()'s check stays one comparison of two numbers.
+[[noreturn]] __attribute__((noinline, cold)) void FingerModel::refuseWorkspace(const FingerWorkspace& workspace) const {
+  throw std::invalid_argument("FingerModel: the workspace was made for a model of " +
+                              std::to_string(workspace.chamber_half_.size()) + " chambers in " +
+                              std::to_string(workspace.group_solutions_.size()) + " groups, not this one's " +
+                              std::to_string(group_of_chamber_.size()) + " in " + std::to_string(groups_.size()));
 }
 
 int FingerModel::tableSegmentCount() const {
@@ -359,7 +371,7 @@ void FingerModel::buildTable(ChamberGroup& group) {
             achieved = std::max(achieved, std::fabs(table_state.backbone_m.data()[4 + k] - want[1 + k]) / length_m);
           }
         } else {
-          const GroupResult got = solveGroup(group, p, false);
+          const ChamberGroupSolution got = solveGroup(group, p, false);
           achieved = std::max({achieved, std::fabs(got.half.rad - want[0]), std::fabs(got.half.cos - want[1]),
                                std::fabs(got.half.sin - want[2])});
         }
@@ -432,8 +444,8 @@ __attribute__((always_inline)) inline double FingerModel::halfAngleOf(const Cham
   return solveRobust(group, gauge_pa, parameters_.atmospheric_pressure_pa).half.rad;
 }
 
-FingerModel::GroupResult FingerModel::solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const {
-  GroupResult r{1.0, 0.0, HalfAngle{}};
+ChamberGroupSolution FingerModel::solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const {
+  ChamberGroupSolution r{1.0, 0.0, HalfAngle{}};
   const double p_o = parameters_.atmospheric_pressure_pa;
   switch (options_.solver) {
     case SolverKind::kRobust: {
@@ -555,7 +567,7 @@ FingerState FingerModel::initialState() const {
   return s;
 }
 
-inline bool FingerModel::writeTableShape(double gauge_pa, FingerState& out) {
+inline bool FingerModel::writeTableShape(double gauge_pa, FingerState& out) const {
   const ChamberGroup& group = groups_[0];
   int segment = 0;
   double x = 0.0;
@@ -579,14 +591,15 @@ inline bool FingerModel::writeTableShape(double gauge_pa, FingerState& out) {
 
 // The table's shape first, inline in evaluate(); the other paths in a function of their own (noinline), whose prologue
 // and register saves the table path would otherwise pay on every call.
-inline bool FingerModel::writeState(double gauge_pa, FingerState& out) {
+inline bool FingerModel::writeState(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const {
   if (table_shape_writer_ && writeTableShape(gauge_pa, out)) return true;
-  return writeSolvedState(gauge_pa, out);
+  return writeSolvedState(gauge_pa, workspace, out);
 }
 
-__attribute__((noinline)) bool FingerModel::writeSolvedState(double gauge_pa, FingerState& out) {
+__attribute__((noinline)) bool FingerModel::writeSolvedState(double gauge_pa, FingerWorkspace& workspace,
+                                                             FingerState& out) const {
   const bool detail = options_.chamber_detail;
-  auto finite = [](const GroupResult& r) {
+  auto finite = [](const ChamberGroupSolution& r) {
     return std::isfinite(r.stretch) && std::isfinite(r.bulge_m) && std::isfinite(r.half.rad) &&
            std::isfinite(r.half.cos) && std::isfinite(r.half.sin);
   };
@@ -605,7 +618,7 @@ __attribute__((noinline)) bool FingerModel::writeSolvedState(double gauge_pa, Fi
       }
     }
     // The rest (the robust solver's rare paths straight to solveRobust, not through solveGroup's usualWall again).
-    GroupResult r;
+    ChamberGroupSolution r;
     if (options_.solver == SolverKind::kRobust) {
       const WallSolution w = solveRobust(group, gauge_pa, parameters_.atmospheric_pressure_pa);
       r = {1.0 + w.stretch_excess, w.bulge_m, w.half};
@@ -619,42 +632,44 @@ __attribute__((noinline)) bool FingerModel::writeSolvedState(double gauge_pa, Fi
     return true;
   }
   for (std::size_t g = 0; g < groups_.size(); ++g) {
-    scratch_[g] = solveGroup(groups_[g], gauge_pa, detail);
-    if (!finite(scratch_[g])) return false;
+    workspace.group_solutions_[g] = solveGroup(groups_[g], gauge_pa, detail);
+    if (!finite(workspace.group_solutions_[g])) return false;
   }
   for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
-    const GroupResult& r = scratch_[static_cast<std::size_t>(group_of_chamber_[k])];
+    const ChamberGroupSolution& r = workspace.group_solutions_[static_cast<std::size_t>(group_of_chamber_[k])];
     const auto i = static_cast<Eigen::Index>(k);
     if (detail) {
       out.stretch[i] = r.stretch;
       out.bulge_m[i] = r.bulge_m;
     }
-    chamber_half_[k] = r.half;
+    workspace.chamber_half_[k] = r.half;
   }
-  jointsAndBackbone(parameters_, chamber_half_.data(), out);
+  jointsAndBackbone(parameters_, workspace.chamber_half_.data(), out);
   out.gauge_pa = gauge_pa;
   return true;
 }
 
-const FingerState& FingerModel::evaluate(double gauge_pa) {
+const FingerState& FingerModel::evaluate(double gauge_pa, FingerWorkspace& ws) const {
+  if (__builtin_expect(ws.shape_ != shape_, 0)) refuseWorkspace(ws);
+  FingerState& state = ws.state_;
   if (!std::isfinite(gauge_pa)) {
-    state_.status = EvaluationStatus::kNotFinite;
-    has_last_ = false;  // the next finite pressure recomputes and resets the status
-    return state_;
+    state.status = EvaluationStatus::kNotFinite;
+    ws.has_last_ = false;  // the next finite pressure recomputes and resets the status
+    return state;
   }
-  if (has_last_ && gauge_pa == last_gauge_pa_) return state_;  // unchanged pressure: nothing to do
+  if (ws.has_last_ && gauge_pa == ws.last_gauge_pa_) return state;  // unchanged pressure: nothing to do
   const bool vacuum = gauge_pa < 0.0;
-  ++computations_;
-  if (!writeState(vacuum ? 0.0 : gauge_pa, state_)) {
-    state_.status = EvaluationStatus::kSolverFailure;
-    has_last_ = false;
-    return state_;
+  ++ws.computations_;
+  if (!writeState(vacuum ? 0.0 : gauge_pa, ws, state)) {
+    state.status = EvaluationStatus::kSolverFailure;
+    ws.has_last_ = false;
+    return state;
   }
-  state_.gauge_pa = gauge_pa;
-  state_.status = vacuum ? EvaluationStatus::kVacuum : EvaluationStatus::kOk;
-  has_last_ = true;
-  last_gauge_pa_ = gauge_pa;
-  return state_;
+  state.gauge_pa = gauge_pa;
+  state.status = vacuum ? EvaluationStatus::kVacuum : EvaluationStatus::kOk;
+  ws.has_last_ = true;
+  ws.last_gauge_pa_ = gauge_pa;
+  return state;
 }
 
 bool FingerModel::jointAnglesAt(double gauge_pa, double* q, double* half_angle_rad) const {
@@ -816,7 +831,8 @@ BatchKernel batchKernel(BatchPath path) {
 
 }  // namespace
 
-void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out, BatchPath path) {
+void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out,
+                               FingerWorkspace& workspace, BatchPath path) const {
   if (path != BatchPath::kScalar && !batchPathAvailable(path)) {
     throw std::invalid_argument(std::string("evaluateMany: the batch path '") + batchPathName(path) +
                                 "' is not available on this CPU or build");
@@ -831,7 +847,9 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
     batchKernel(path)(spec, gauge_pa, count, out);
     return;
   }
-  if (batch_state_.stretch.size() == 0) batch_state_ = initialState();
+  if (workspace.shape_ != shape_) refuseWorkspace(workspace);
+  FingerState& state = workspace.batch_state_;
+  if (state.stretch.size() == 0) state = initialState();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto row = [n, nan](const Eigen::VectorXd& from, double* to, std::size_t i, bool answered) {
     if (!to) return;
@@ -843,11 +861,11 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
     EvaluationStatus status = !std::isfinite(p) ? EvaluationStatus::kNotFinite
                               : p < 0.0         ? EvaluationStatus::kVacuum
                                                 : EvaluationStatus::kOk;
-    if (status != EvaluationStatus::kNotFinite && !writeState(p < 0.0 ? 0.0 : p, batch_state_)) {
+    if (status != EvaluationStatus::kNotFinite && !writeState(p < 0.0 ? 0.0 : p, workspace, state)) {
       status = EvaluationStatus::kSolverFailure;
     }
     const bool answered = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum;
-    const FingerState& s = batch_state_;
+    const FingerState& s = state;
     row(s.stretch, out.stretch, i, answered);
     row(s.bulge_m, out.bulge_m, i, answered);
     row(s.half_angle_rad, out.half_angle_rad, i, answered);

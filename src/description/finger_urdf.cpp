@@ -142,7 +142,8 @@ urdf::ModelInterface fingerUrdfModel(const FingerParameters& p, const FingerUrdf
   // Upper joint limits: the model's joint angles at the top of its pressure range (the finger cannot bend further
   // there); lower limits 0: vacuum is outside the model, which then shows the straight finger.
   FingerModel model(p);
-  const FingerState& at_max = model.evaluate(o.max_gauge_pa);
+  FingerWorkspace ws(model);
+  const FingerState& at_max = model.evaluate(o.max_gauge_pa, ws);
 
   urdf::ModelInterface m;
   m.name_ = o.prefix + "pneumatic_finger";

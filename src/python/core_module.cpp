@@ -8,7 +8,6 @@
 
 #include <cmath>
 #include <memory>
-#include <mutex>
 #include <string>
 #include <vector>
 
@@ -92,10 +91,11 @@ class PyFingerModel {
     const py::capsule owner(rows, [](void* r) { delete static_cast<pf::BatchBuffers*>(r); });
     const double* gauges = p.data();
     {
-      // The loop runs in C++ without the GIL; evaluate() keeps a cache, so one call at a time per model.
+      // The loop runs in C++ without the GIL. The model is const; each call has its own workspace, so calls from
+      // several Python threads run at once.
       py::gil_scoped_release release;
-      std::lock_guard<std::mutex> lock(mutex_);
-      model_->evaluateMany(gauges, static_cast<std::size_t>(count), rows->outputs());
+      pf::FingerWorkspace workspace(*model_);
+      model_->evaluateMany(gauges, static_cast<std::size_t>(count), rows->outputs(), workspace);
     }
     auto view = [&owner](std::vector<double>& v, std::vector<py::ssize_t> shape) {
       return Array(std::move(shape), v.data(), owner);
@@ -181,8 +181,7 @@ class PyFingerModel {
   static constexpr double kDefaultMaxGaugePa = 3 * 98066.5;  // the node's max_gauge_pa default (3 kg/cm^2)
 
  private:
-  std::unique_ptr<pf::FingerModel> model_;
-  std::mutex mutex_;
+  std::unique_ptr<const pf::FingerModel> model_;
 };
 
 // The calibration of finger_calibrate: fit keys of a parameter file to measured joint angles, tip angles or tip

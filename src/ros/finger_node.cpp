@@ -350,6 +350,7 @@ void FingerNode::buildModel(ros::NodeHandle& nh) {
   options.solver = settings_.solver;
   options.table_max_gauge_pa = settings_.urdf.max_gauge_pa;
   model_ = std::make_unique<FingerModel>(settings_.finger, options);
+  workspace_ = std::make_unique<FingerWorkspace>(*model_);
   // The URDF, for rviz and for anyone who reads the chain (planners): the same names as joint_states and tf. Its
   // joint limits follow the actuator, so it is republished when the actuator changes.
   nh.setParam(settings_.description_param, fingerUrdf(settings_.finger, settings_.urdf));
@@ -475,7 +476,7 @@ void FingerNode::onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg) {
 
 bool FingerNode::publishAt(double gauge_pa, const ros::Time& stamp, bool clamped) {
   const ros::Time now = ros::Time::now();
-  const FingerState& state = model_->evaluate(gauge_pa);
+  const FingerState& state = model_->evaluate(gauge_pa, *workspace_);
   ContactState contact;
   bool failed = state.status == EvaluationStatus::kSolverFailure;
   // The contact rule only with a section within reach: otherwise the free finger is the answer, at no extra cost.
@@ -791,7 +792,7 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("above the validated range", c.out_of_range);
   status.add("solver failures (last state kept)", c.solver_failures);
   status.add("skipped by max_rate_hz or same instant", c.throttled);
-  status.add("model evaluations (unchanged pressures reuse the last)", model_->computationCount());
+  status.add("model evaluations (unchanged pressures reuse the last)", workspace_->computationCount());
   if (!input_.lastProblem().empty()) status.add("last problem", input_.lastProblem());
   status.add("tip error bar", tip_uncertainty_.empty()
                                    ? std::string("none (NaN in finger_state)")

@@ -49,7 +49,8 @@ void printParameterTable() {
 }
 
 // With @p times, each row starts with its time (s): the time mode.
-void printCsv(pf::FingerModel& model, const std::vector<double>& pressures, const pf::Obstacle* obstacle,
+void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::vector<double>& pressures,
+              const pf::Obstacle* obstacle,
               const std::vector<double>& times = {}) {
   const pf::ContactSolver contact(model);
   bool warned_overlap = false;
@@ -63,7 +64,7 @@ void printCsv(pf::FingerModel& model, const std::vector<double>& pressures, cons
   for (std::size_t row = 0; row < pressures.size(); ++row) {
     const double p = pressures[row];
     if (!times.empty()) out << pf::formatExact(times[row]) << ',';
-    const pf::FingerState& s = model.evaluate(p);
+    const pf::FingerState& s = model.evaluate(p, ws);
     if (s.status == pf::EvaluationStatus::kVacuum && !warned) {
       std::cerr << "finger_model: warning: gauge pressure " << pf::formatExact(p)
                 << " Pa is negative (vacuum), outside the model; printing the straight finger\n";
@@ -166,6 +167,7 @@ int main(int argc, char** argv) {
       }
     }
     pf::FingerModel model(finger, options);
+    pf::FingerWorkspace ws(model);
     pf::Obstacle obstacle = pf::Obstacle::disk(0, 0, 1);
     if (!disk.empty()) {
       const std::vector<std::string> f = pf::splitFields(disk);
@@ -175,7 +177,7 @@ int main(int argc, char** argv) {
                                     pf::parseFiniteOption("--obstacle-disk R", f[2]));
       if (!obstacle.problem().empty()) throw pf::ParameterError("--obstacle-disk: " + obstacle.problem());
     }
-    printCsv(model, pressures, disk.empty() ? nullptr : &obstacle, times);
+    printCsv(model, ws, pressures, disk.empty() ? nullptr : &obstacle, times);
     return 0;
   });
 }

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -79,31 +80,62 @@ struct BatchBuffers {
   BatchOutputs outputs();
 };
 
-/// Threads: tipAngleAt(), gaugeForTipAngle() and the accessors of fixed data (parameters(), contactGaugePa(), ...)
-/// read only what the constructor built, so any number of threads may call them at once, also while another thread
-/// runs evaluate() (test: Property.ConstMethodsAreSafeBesideEvaluate). evaluate() and state() share the cached state:
-/// call them from one thread.
+/// One distinct chamber geometry's solve at one pressure: stages 1-4 (a FingerWorkspace's scratch).
+struct ChamberGroupSolution {
+  double stretch, bulge_m;
+  HalfAngle half;
+};
+
+class FingerModel;
+
+/// What evaluations write, beside the model that they read (Pinocchio's Data beside its Model): the state of the last
+/// evaluate(), the unchanged-pressure cache, and the scratch of unequal chambers and of a batch's one-at-a-time path.
+/// All of it is sized at construction, so evaluation never allocates. The caller owns it; one per thread.
+class FingerWorkspace {
+ public:
+  /// A workspace sized for @p model, at the rest shape.
+  explicit FingerWorkspace(const FingerModel& model);
+
+  /// The state of the last evaluate() with this workspace (the rest shape before any).
+  const FingerState& state() const { return state_; }
+
+  /// How many evaluate() calls did real work (the rest were answered from the cache of the unchanged pressure).
+  long computationCount() const { return computations_; }
+
+ private:
+  friend class FingerModel;
+  std::uint64_t shape_;  // the model's chamber and group counts, which size the scratch below
+  FingerState state_;
+  bool has_last_ = false;
+  double last_gauge_pa_ = 0.0;
+  long computations_ = 0;
+  std::vector<ChamberGroupSolution> group_solutions_;  // per distinct chamber geometry
+  std::vector<HalfAngle> chamber_half_;                // per chamber
+  FingerState batch_state_;                            // evaluateMany's one-at-a-time path
+};
+
+/// The finger's model: everything fixed at construction (the parameters, the chamber groups, the table), and const
+/// after it. Every method is const, so any number of threads may share one model, each with its own FingerWorkspace
+/// (test: Concurrency.*, run under ThreadSanitizer by scripts/test.sh).
 class FingerModel {
  public:
   /// Builds the model; the table solver also builds, and measures, its table here.
   explicit FingerModel(const FingerParameters& parameters, const ModelOptions& options = ModelOptions());
 
-  /// Evaluates the finger at @p gauge_pa. Returns the model's own state, which stays valid until the next call.
-  /// The same pressure as the previous call returns at once. NaN/inf: status kNotFinite and the previous numbers;
-  /// negative: status kVacuum and the rest shape.
-  const FingerState& evaluate(double gauge_pa);
+  /// Evaluates the finger at @p gauge_pa into @p workspace, and returns its state (valid until the workspace's next
+  /// evaluation). The same pressure as the workspace's previous call returns at once. NaN/inf: status kNotFinite and
+  /// the previous numbers; negative: status kVacuum and the rest shape.
+  /// @throws std::invalid_argument when @p workspace was sized for a model of another shape
+  const FingerState& evaluate(double gauge_pa, FingerWorkspace& workspace) const;
 
   /// Evaluates @p count pressures into @p out: for each finite pressure the numbers evaluate() gives, bit for bit;
   /// for a NaN or infinite one, NaN in every output and status kNotFinite (a batch has no "previous state"). The
-  /// cached state and the unchanged-pressure cache are neither read nor written. With the robust solver and
+  /// workspace's state and unchanged-pressure cache are neither read nor written. With the robust solver and
   /// identical chambers the pressures go through in packs of 4 or 8 (SIMD across pressures, src/core/batch_kernel.hpp);
   /// otherwise one at a time. Used by the Python API and the design sweeps, so that a whole array costs one call.
-  /// Call from one thread per model (the one-at-a-time path uses the model's scratch).
-  void evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out,
-                    BatchPath path = BatchPath::kBest);
-
-  /// The state of the last evaluation (the rest shape before any).
-  const FingerState& state() const { return state_; }
+  /// The one-at-a-time path uses @p workspace's scratch.
+  void evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out, FingerWorkspace& workspace,
+                    BatchPath path = BatchPath::kBest) const;
 
   const FingerParameters& parameters() const { return parameters_; }
   const ModelOptions& options() const { return options_; }
@@ -111,9 +143,6 @@ class FingerModel {
 
   /// Number of distinct chamber geometries solved per pressure (1 for identical chambers).
   int distinctChamberCount() const { return static_cast<int>(groups_.size()); }
-
-  /// How many evaluations did real work (the rest were answered from the cache of the unchanged pressure).
-  long computationCount() const { return computations_; }
 
   /// Gauge pressure (Pa) at which the first wall pair touches (theta leaves 0).
   double contactGaugePa() const { return contact_gauge_pa_; }
@@ -163,17 +192,12 @@ class FingerModel {
     std::vector<double> table_theta_only;
   };
 
-  struct GroupResult {
-    double stretch, bulge_m;
-    HalfAngle half;
-  };
-
   /// The robust chain (stages 1-4) for one group of identical chambers.
   static WallSolution solveRobust(const ChamberGroup& group, double gauge_pa, double atmospheric_pa);
   /// solveRobust's usual path inline (finger_model.cpp); false where solveRobust must answer.
   static bool usualWall(const ChamberGroup& group, double gauge_pa, double atmospheric_pa, double& stretch_excess,
                         double& bulge_m, HalfAngle& half);
-  GroupResult solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const;
+  ChamberGroupSolution solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const;
   /// solveGroup's half angle alone (finger_model.cpp).
   double halfAngleOf(const ChamberGroup& group, double gauge_pa) const;
   /// The table's theta in @p segment at @p x (table_theta_only).
@@ -186,14 +210,17 @@ class FingerModel {
   static const double* tableRow(const ChamberGroup& group, int segment);
   /// Writes the state at @p gauge_pa into @p out; returns false, leaving @p out untouched, when the solver gave a
   /// non-finite stretch, bulge or half angle.
-  bool writeState(double gauge_pa, FingerState& out);
+  bool writeState(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const;
   /// writeState's table path (identical chambers, table_shape_writer_ set): false where the table does not answer
   /// (outside its range, or theta a rounding error below 0 next to contact; the points may then be written).
-  bool writeTableShape(double gauge_pa, FingerState& out);
+  bool writeTableShape(double gauge_pa, FingerState& out) const;
   /// writeState's other paths: the solver per group, then the joints and backbone.
-  bool writeSolvedState(double gauge_pa, FingerState& out);
+  bool writeSolvedState(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const;
+  /// Throws: @p workspace was sized for a model of another shape (evaluate(), evaluateMany()).
+  [[noreturn]] void refuseWorkspace(const FingerWorkspace& workspace) const;
   /// The rest shape, with NaN for stretch and bulge when the options leave them out (chamber_detail false).
   FingerState initialState() const;
+  friend class FingerWorkspace;
 
   FingerParameters parameters_;
   ModelOptions options_;
@@ -207,15 +234,7 @@ class FingerModel {
   std::vector<int> group_of_chamber_;
   double contact_gauge_pa_ = 0.0;
   double table_error_rad_ = 0.0;
-  FingerState state_;
-  bool has_last_ = false;
-  long computations_ = 0;
-  double last_gauge_pa_ = 0.0;
-  // Scratch for writeState (not for the const methods, which may run concurrently): per-group results and
-  // per-chamber half angles, sized at construction.
-  std::vector<GroupResult> scratch_;
-  std::vector<HalfAngle> chamber_half_;
-  FingerState batch_state_;  // evaluateMany's one-at-a-time path
+  std::uint64_t shape_ = 0;  // chamber count << 32 | group count: what a workspace must have been sized for
 };
 
 /// Gauge pressure (Pa) at which a chamber's bulge reaches its gap (the contact pressure): the inverse chain

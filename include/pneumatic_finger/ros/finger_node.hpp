@@ -91,7 +91,8 @@ class FingerNode {
   void onObjectTimer(const ros::TimerEvent&);
 
   NodeSettings settings_;
-  std::unique_ptr<FingerModel> model_;
+  std::unique_ptr<const FingerModel> model_;  // shared, const: the inverse service may run beside a pressure
+  std::unique_ptr<FingerWorkspace> workspace_;  // what the pressure callback's evaluations write
   ros::Subscriber pressure_sub_;
   ros::Publisher joint_states_pub_, finger_state_pub_;
   // The tip's error bar (the parameter file's tip_uncertainty) as a translucent sphere at the tip, republished only
