@@ -399,20 +399,21 @@ int main(int argc, char** argv) {
   }
   struct TableVariant {
     const char* name;
-    pf::BatchPath path;
-    void (*polynomials)(const double*, int, int, double, double*);
+    pf::InstructionSet set;
     const char* label;
   };
   for (const TableVariant& v : std::vector<TableVariant>{
-           {"generic", pf::BatchPath::kGeneric, pf::tablePolynomialsGeneric, "pairs, baseline instruction set (SSE2)"},
-#if defined(__x86_64__)
-           {"avx2", pf::BatchPath::kAvx2, pf::tablePolynomialsAvx2, "packs of 4, AVX2"},
-           {"avx512", pf::BatchPath::kAvx512, pf::tablePolynomialsAvx512, "packs of 8, AVX-512"},
-#endif
+           {"generic", pf::InstructionSet::kGeneric, "pairs, baseline instruction set (SSE2)"},
+           {"avx2", pf::InstructionSet::kAvx2, "packs of 4, AVX2"},
+           {"avx512", pf::InstructionSet::kAvx512, "packs of 8, AVX-512"},
        }) {
-    if (!pf::batchPathAvailable(v.path)) continue;  // this CPU lacks it
+    const pf::SimdKernels* kernels = pf::simdKernels(v.set);
+    if (!kernels) continue;  // this CPU lacks it
+    const pf::TablePolynomials polynomials = kernels->table_polynomials;
     benchmark::RegisterBenchmark((std::string("table_polynomials/") + v.name).c_str(),
-                                 [v](benchmark::State& s) { benchTablePolynomials(s, v.polynomials, v.label); });
+                                 [v, polynomials](benchmark::State& s) {
+                                   benchTablePolynomials(s, polynomials, v.label);
+                                 });
   }
   for (int which = 0; which < 4; ++which) {
     benchmark::RegisterBenchmark(("latency/" + std::to_string(which)).c_str(),

@@ -232,7 +232,7 @@ the variant returned NaN: its quartic root finder produced no root that satisfie
 - **robust**, the default: over the validated range, stages 1–3 by their power series in s = √(g/3) (exact to
   rounding up to s = 1/20, `scripts/wall_series.py`), then safeguarded Halley on Wang's relation, rewritten as a
   polynomial in (1+tan²θ)^¼ − 1; beyond it, safeguarded Halley on the stretch polynomial too (`src/core/stages.cpp`,
-  `src/core/simd_math.hpp`).
+  `src/core/wall_chain.hpp`).
 - **table**: piecewise degree-7 polynomials in √P, built at start-up. For identical chambers they are the published
   shape itself: the 2N point coordinates of the backbone and θ (16 functions for N = 7), evaluated as SIMD packs across
   the functions with the widest instruction set the CPU has (`src/core/table_kernel.hpp`; table below); for unequal
@@ -319,7 +319,7 @@ Each verdict is computed by `scripts/benchmarks.py` from the figures above; the 
   `atan` alone takes {lat["atan (glibc)"]:.0f} ns in glibc and {lat["atan (ours)"]:.0f} ns in ours (`src/core/simd_math.hpp`,
   the one the model uses: it has a pack form, which the batch needs), a square root {lat["sqrt"]:.0f} ns and a division
   {lat["division"]:.0f} ns (the table above). An evaluation is a dependent chain of them (`src/core/stages.cpp`,
-  `src/core/simd_math.hpp`): s from P with one square root; the stretch, the bulge and m = 2√(hc)/b by power series in
+  `src/core/wall_chain.hpp`): s from P with one square root; the stretch, the bulge and m = 2√(hc)/b by power series in
   s (one more square root, √s, runs beside them), which replace the cubic's Halley step and the bulge's square root
   and division; θ's D with one division and its start with another beside it, one Halley division (the start is
   corrected for the gap), cos θ's division, and the `atan` (for tan θ ≤ 1/8 a short series with no division). Joint

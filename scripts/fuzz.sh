@@ -17,7 +17,8 @@ CXXFLAGS=(-std=c++17 -O1 -g -fsanitize=fuzzer-no-link,address,undefined -fno-san
   -fno-omit-frame-pointer -ffp-contract=off -Wno-psabi -Wno-unknown-warning-option -I"$ROOT/include"
   -isystem /usr/include/eigen3)
 OBJECTS=()
-for source in fuzz/fuzz_model src/core/parameters src/core/stages src/core/finger_model src/core/yaml_parameters \
+for source in fuzz/fuzz_model src/core/parameters src/core/stages src/core/finger_model src/core/chamber_table \
+  src/core/finger_inverse src/core/batch_evaluation src/core/simd_kernels src/core/yaml_parameters \
   src/core/tip_uncertainty src/core/batch_generic src/core/batch_avx2 src/core/batch_avx512; do
   case "$source" in
     *avx512) isa=(-mavx512f) ;;

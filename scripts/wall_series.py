@@ -1,4 +1,4 @@
-"""Derives the power series of stages 2-4 in src/core/simd_math.hpp (stretchAndBulgeSeries, bulgeRootSeries) and
+"""Derives the power series of stages 2-4 in src/core/wall_chain.hpp (stretchAndBulgeSeries, bulgeRootSeries) and
 measures them.
 
 With s = sqrt(g/3), the stretch excess delta (the root of delta^2 (3 + delta) = g (1 + delta), docs/MODEL.md stage 2)
@@ -20,7 +20,7 @@ from fractions import Fraction
 
 import mpmath as mp
 
-LIMIT = Fraction(1, 20)  # kStretchSeriesLimit in src/core/simd_math.hpp
+LIMIT = Fraction(1, 20)  # kStretchSeriesLimit in src/core/wall_chain.hpp
 DELTA_TERMS = 13         # delta = s (c_0 + c_1 s + ... + c_12 s^12)
 BULGE_TERMS = 19         # h/L = s (c_0 + ... + c_18 s^18)
 ROOT_TERMS = 19          # sqrt(h/(L s)) = c_0 + ... + c_18 s^18

@@ -13,7 +13,7 @@
 
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/stages.hpp"
-#include "../src/core/simd_math.hpp"  // sinCosSmall (internal), tested directly
+#include "../src/core/joint_chain.hpp"  // firstJoint and sinCosSmall (internal), tested directly
 #include "../src/core/table_kernel.hpp"  // the table's polynomial variants (internal), tested directly
 
 namespace pf = pneumatic_finger;
@@ -73,7 +73,8 @@ using Rows = pf::BatchBuffers;
 bool sameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
 // Compares row i of a batch with evaluate() on a fresh model (no cache in play); returns how many values differ.
-int compareRow(const pf::FingerModel& single, pf::FingerWorkspace& single_ws, const Rows& rows, std::size_t i, double gauge_pa, const std::string& what) {
+int compareRow(const pf::FingerModel& single, pf::FingerWorkspace& single_ws, const Rows& rows, std::size_t i,
+               double gauge_pa, const std::string& what) {
   const int n = single.chamberCount();
   const auto un = static_cast<std::size_t>(n);
   const pf::FingerState& s = single.evaluate(gauge_pa, single_ws);
@@ -205,7 +206,7 @@ TEST(OwnArctangent, WithinOneAndAHalfUlpOfQuadPrecision) {
   EXPECT_EQ(pf::halfAngle(1e199, 0.0, b).rad, static_cast<double>(acosq(-1) / 2));
 }
 
-// Joint 1's direction from tan(theta) (stages.hpp, FirstJointSeries; simd_math.hpp, firstJoint): cos and sin of
+// Joint 1's direction from tan(theta) (stages.hpp, FirstJointSeries; joint_chain.hpp, firstJoint): cos and sin of
 // (1 + s0) atan(t) against libquadmath's, up to the series' limit t = 1/8 and just above it (where the base face's sine
 // and cosine answer), for inert, calibrated and fully turning faces.
 TEST(FirstJointSeries, WithinTwoUlpOfQuadPrecision) {
@@ -263,12 +264,13 @@ TEST(SinCosSmall, WithinTwoUlpOfQuadPrecision) {
 // The table solver's polynomials (table_kernel.hpp), one variant per instruction set: the same bits in every variant
 // this CPU runs, and each value within a few ulp of the polynomial evaluated in quad precision (Horner, __float128).
 TEST(TablePolynomials, EveryVariantGivesTheSameBitsAndMatchesQuadPrecision) {
-  std::vector<std::pair<const char*, void (*)(const double*, int, int, double, double*)>> variants = {
-      {"generic", pf::tablePolynomialsGeneric}};
-#if defined(__x86_64__)
-  if (pf::batchPathAvailable(pf::BatchPath::kAvx2)) variants.emplace_back("avx2", pf::tablePolynomialsAvx2);
-  if (pf::batchPathAvailable(pf::BatchPath::kAvx512)) variants.emplace_back("avx512", pf::tablePolynomialsAvx512);
-#endif
+  std::vector<std::pair<const char*, pf::TablePolynomials>> variants;
+  for (auto [name, set] : {std::pair{"generic", pf::InstructionSet::kGeneric},
+                           std::pair{"avx2", pf::InstructionSet::kAvx2},
+                           std::pair{"avx512", pf::InstructionSet::kAvx512}}) {
+    if (const pf::SimdKernels* kernels = pf::simdKernels(set)) variants.emplace_back(name, kernels->table_polynomials);
+  }
+  ASSERT_FALSE(variants.empty()) << "the baseline instruction set always runs";
   std::mt19937_64 rng(20261124);
   std::uniform_real_distribution<double> coefficient(-1.0, 1.0), local(-1.0, 1.0);
   const double sentinel = -12345.0;

@@ -63,7 +63,7 @@ TEST(Stage3Bulge, MatchesReference) {
 }
 
 TEST(Stage23Series, ChainMatchesReferenceOnBothSidesOfTheSeriesLimit) {
-  // solveWall takes stages 2-3 from their power series in s = sqrt(g/3) up to s = 1/20 (simd_math.hpp), stage by stage
+  // solveWall takes stages 2-3 from their power series in s = sqrt(g/3) up to s = 1/20 (wall_chain.hpp), stage by stage
   // above: both must give the reference's stretch and bulge to a few ulp. The limit is at P = 3.4e5 Pa for this finger.
   const double po = kPaper.atmospheric_pressure_pa, mu = kPaper.shear_modulus_pa[0];
   const double limit_pa = std::sqrt(po * po + 3.0 * po * mu * 0.05 * 0.05) - po;

@@ -3,7 +3,7 @@
 //
 // It computes what the single evaluation computes (stages.cpp: solveWall; finger_model.cpp: the uniform joints and
 // backbone), so that every lane rounds as the single evaluation does: most of the arithmetic is the same templates
-// (simd_math.hpp: the series of stages 2-4, stage 4's solve, joint 1's direction, the points); stage 1 and the stretch's
+// (wall_chain.hpp: the series of stages 2-4, stage 4's solve; joint_chain.hpp: joint 1's direction, the points); stage 1 and the stretch's
 // Halley steps above the series' limit are transcribed here, operation for operation and in the same order. Where the
 // single evaluation branches, the kernel computes the common
 // branch for every lane and selects; an iteration stops per lane where the single one stops, and the pack goes on
@@ -17,7 +17,8 @@
 
 #include "pneumatic_finger/core/evaluation.hpp"
 #include "pneumatic_finger/core/stages.hpp"
-#include "simd_math.hpp"
+#include "joint_chain.hpp"
+#include "wall_chain.hpp"
 
 namespace pneumatic_finger {
 
@@ -30,14 +31,6 @@ struct UniformRobustSpec {
   double base_wall_share;          ///< s0: theta_0 = s0 theta
   FirstJointSeries first_joint;    ///< firstJointSeries(base_wall_share)
 };
-
-/// One kernel per instruction set (batch_generic.cpp, batch_avx2.cpp, batch_avx512.cpp).
-void batchUniformRobustGeneric(const UniformRobustSpec& spec, const double* gauge_pa, std::size_t count,
-                               const BatchOutputs& out);
-void batchUniformRobustAvx2(const UniformRobustSpec& spec, const double* gauge_pa, std::size_t count,
-                            const BatchOutputs& out);
-void batchUniformRobustAvx512(const UniformRobustSpec& spec, const double* gauge_pa, std::size_t count,
-                              const BatchOutputs& out);
 
 namespace {  // NOLINT(build/namespaces)
 

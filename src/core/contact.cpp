@@ -215,8 +215,7 @@ double Obstacle::distanceFromOrigin() const {
 
 ContactSolver::ContactSolver(const FingerModel& model) : model_(model) {
   const FingerParameters& p = model.parameters();
-  length_m_ = p.base_segment_length_m;
-  for (double z : p.segment_length_m) length_m_ += z;
+  length_m_ = p.lengthM();
   // The half-angle search needs one half angle for every free wall (identical chambers) and a forward model that
   // is the closed-form inverse's exact counterpart (the robust solver).
   uniform_ = model.distinctChamberCount() == 1 && model.options().solver == SolverKind::kRobust;

@@ -234,4 +234,10 @@ void parseParameterAssignment(const std::string& assignment, RawParameterMap& ra
   raw[key] = parsed;
 }
 
+double FingerParameters::lengthM() const {
+  double length_m = base_segment_length_m;
+  for (double z : segment_length_m) length_m += z;
+  return length_m;
+}
+
 }  // namespace pneumatic_finger

@@ -5,7 +5,7 @@
 #include <limits>
 
 #include "pneumatic_finger/core/units.hpp"
-#include "simd_math.hpp"
+#include "wall_chain.hpp"
 
 namespace pneumatic_finger {
 
@@ -135,7 +135,7 @@ HalfAngle halfAngleFromTan(double t, int iterations) {
 // Stage 4 with the walls touching, from the bulge and m = 2 sqrt(h c)/b (the caller's: from h itself, or from the
 // series in s). Eq 15 <=> t + m (w - 1) = D, with t = tan(theta), w = (1 + t^2)^(1/4) and D = H - m, formed as
 // H (H - 2k)/(H + m) so that it keeps its digits where h -> c (both H and m -> 2k). The usual bulges go through the
-// solve shared with the batch kernel (simd_math.hpp, wallHalfAngle): v = w - 1 as the root of
+// solve shared with the batch kernel (wall_chain.hpp, wallHalfAngle): v = w - 1 as the root of
 //   Q(v) = v (4 + 6v + 4v^2 + v^3) - (D - m v)^2 = 0,
 // written so that nothing cancels near v = 0; Q is increasing on [0, D/m] (Q' = 4 w^3 + 2 m t > 0), negative at 0 and
 // positive at D/m, so it has one root there, found by safeguarded Halley steps: no square root per step. The start
@@ -173,7 +173,7 @@ HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m)
 WallSolution solveWall(double gauge_pa, double atmospheric_pa, double shear_modulus_pa, double chamber_height_m,
                        double gap_m, double wall_critical_height_m) {
   WallSolution w;
-  // Stages 2-3 by their series in s = sqrt(g/3) where it is short (simd_math.hpp), else stage by stage. The batch
+  // Stages 2-3 by their series in s = sqrt(g/3) where it is short (wall_chain.hpp), else stage by stage. The batch
   // kernel takes the same branch per pressure (batch_kernel.hpp).
   const double two_over_b = 2.0 / wall_critical_height_m;
   double m = 0.0;

@@ -1,26 +1,17 @@
-// The table solver's polynomials (finger_model.cpp, buildTable), SIMD across functions: one segment's degree-7
+// The table solver's polynomials (chamber_table.cpp), SIMD across functions: one segment's degree-7
 // polynomials at one x, a pack of functions at a time. Compiled once per instruction set beside the batch kernel
 // (batch_generic.cpp, batch_avx2.cpp, batch_avx512.cpp); the model picks the widest the CPU has. Every variant does
-// the same operations in the same order as tableFunction (finger_model.cpp) and nothing fuses a multiply with an add
+// the same operations in the same order as tableFunction (chamber_table.hpp) and nothing fuses a multiply with an add
 // (-ffp-contract=off), so all of them give the same bits (test/test_batch.cpp).
 #pragma once
 
+#include "simd_kernels.hpp"
 #include "simd_math.hpp"
 
 namespace pneumatic_finger {
 
 /// Functions per table row are padded to a multiple of this, so that every variant's packs are whole.
 constexpr int kTablePackFunctions = 8;
-
-/// One of the variants below.
-using TablePolynomials = void (*)(const double* row, int functions, int live, double x, double* out);
-
-/// Writes function f's value at @p x into out[f] for f < @p live, where coefficient i of function f is
-/// row[i * functions + f] (@p functions a multiple of kTablePackFunctions, live <= functions). Nothing is written at
-/// out[live] and beyond, so that @p out may be the state's own array, with padding functions that have no place in it.
-void tablePolynomialsGeneric(const double* row, int functions, int live, double x, double* out);
-void tablePolynomialsAvx2(const double* row, int functions, int live, double x, double* out);
-void tablePolynomialsAvx512(const double* row, int functions, int live, double x, double* out);
 
 namespace {  // NOLINT(build/namespaces): internal linkage per instruction set (simd_math.hpp)
 

@@ -354,8 +354,7 @@ void FingerNode::buildModel(ros::NodeHandle& nh) {
   // The URDF, for rviz and for anyone who reads the chain (planners): the same names as joint_states and tf. Its
   // joint limits follow the actuator, so it is republished when the actuator changes.
   nh.setParam(settings_.description_param, fingerUrdf(settings_.finger, settings_.urdf));
-  finger_length_m_ = settings_.finger.base_segment_length_m;
-  for (double z : settings_.finger.segment_length_m) finger_length_m_ += z;
+  finger_length_m_ = settings_.finger.lengthM();
   // A tracker refers to the model it was made with: the section is cut again for the new one, now (not at the next
   // object tick), so that no pressure in between is published without the object.
   tracker_.reset();

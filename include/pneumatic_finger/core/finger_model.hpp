@@ -177,7 +177,7 @@ class FingerModel {
   struct ChamberGroup {
     double chamber_height_m, wall_critical_height_m, chamber_gap_m, shear_modulus_pa;
     double contact_gauge_pa;
-    // Table solver: piecewise degree-7 polynomials in u = sqrt(P) (finger_model.cpp, buildTable). Per segment, the
+    // Table solver: piecewise degree-7 polynomials in u = sqrt(P) (chamber_table.cpp, buildTable). Per segment, the
     // 8 monomial coefficients (in the local variable x in [-1, 1]) of every function, interleaved (coefficient i of
     // function f at i * table_functions + f) so that one coefficient of all functions is one run of memory. The
     // functions: for unequal chambers theta, cos theta, sin theta (the backbone is then composed per chamber); for
@@ -194,6 +194,10 @@ class FingerModel {
 
   /// The robust chain (stages 1-4) for one group of identical chambers.
   static WallSolution solveRobust(const ChamberGroup& group, double gauge_pa, double atmospheric_pa);
+  /// The usual path, else solveRobust: the robust chain for one group (finger_model.cpp). true: the usual path
+  /// answered.
+  static bool robustWall(const ChamberGroup& group, double gauge_pa, double atmospheric_pa, double& stretch_excess,
+                         double& bulge_m, HalfAngle& half);
   /// solveRobust's usual path inline (finger_model.cpp); false where solveRobust must answer.
   static bool usualWall(const ChamberGroup& group, double gauge_pa, double atmospheric_pa, double& stretch_excess,
                         double& bulge_m, HalfAngle& half);
@@ -202,7 +206,11 @@ class FingerModel {
   double halfAngleOf(const ChamberGroup& group, double gauge_pa) const;
   /// The table's theta in @p segment at @p x (table_theta_only).
   static double tableTheta(const ChamberGroup& group, int segment, double x);
+  /// The chamber table (chamber_table.cpp): built, interpolated, measured.
   void buildTable(ChamberGroup& group);
+  void interpolateTable(ChamberGroup& group, double u_begin, double u_end, int segments, FingerState& scratch) const;
+  double tableErrorRad(const ChamberGroup& group, FingerState& exact_state, FingerState& table_state) const;
+  void exactTableFunctions(const ChamberGroup& group, double u, FingerState& scratch, double* f) const;
   /// Where @p gauge_pa falls in @p group's table: false outside it (at or below contact, above its range, or no
   /// table), else the segment and the local variable x in [-1, 1].
   static bool tableSegment(const ChamberGroup& group, double gauge_pa, int& segment, double& x);
@@ -211,6 +219,8 @@ class FingerModel {
   /// Writes the state at @p gauge_pa into @p out; returns false, leaving @p out untouched, when the solver gave a
   /// non-finite stretch, bulge or half angle.
   bool writeState(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const;
+  /// writeState out of line, for evaluateMany's one-at-a-time path (another translation unit).
+  bool writeStateAt(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const;
   /// writeState's table path (identical chambers, table_shape_writer_ set): false where the table does not answer
   /// (outside its range, or theta a rounding error below 0 next to contact; the points may then be written).
   bool writeTableShape(double gauge_pa, FingerState& out) const;
@@ -226,7 +236,7 @@ class FingerModel {
   ModelOptions options_;
   FirstJointSeries first_joint_series_;  // joint 1's direction for identical chambers (stages.hpp)
   std::vector<ChamberGroup> groups_;
-  // The table solver with identical chambers: writes the state from the table's shape (finger_model.cpp,
+  // The table solver with identical chambers: writes the state from the table's shape (uniform_shape.hpp,
   // tableShape) with the polynomials of the widest instruction set the CPU has; null otherwise.
   void (*table_polynomials_)(const double*, int, int, double, double*) = nullptr;
   bool (*table_shape_writer_)(const FingerParameters&, void (*)(const double*, int, int, double, double*),

@@ -85,6 +85,9 @@ struct FingerParameters {
 
   /// The same actuator as a raw map (lists collapsed to scalars where all entries are equal).
   RawParameterMap toRaw() const;
+
+  /// The finger's length along its straight backbone, mount to tip: Z0 + sum of Z_n (m).
+  double lengthM() const;
 };
 
 /// Parses "KEY=VALUE" or "KEY=[v1,v2,...]" (as given to --set) into @p raw.

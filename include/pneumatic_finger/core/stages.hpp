@@ -65,7 +65,7 @@ HalfAngle halfAngle(double bulge_m, double gap_m, double wall_critical_height_m)
 /// Re and Im of ((1 + i t)/(1 - i t))^(a/2) = sum i^n b_n t^n, and (1 + t^2) f' = i a f gives b_0 = 1, b_1 = a and
 /// (n + 1) b_(n+1) = a b_n + (n - 1) b_(n-1): positive terms, so the coefficients come out to a few ulp. For t <= 1/8 and
 /// a <= 2, b_n t^n <= (n + 1) 8^-n: the first terms left out (n = 20, 21) are below 2e-17 relative. The backbone takes
-/// the direction from t beside the arctangent rather than after it (simd_math.hpp, firstJoint).
+/// the direction from t beside the arctangent rather than after it (joint_chain.hpp, firstJoint).
 struct FirstJointSeries {
   double cos_c[10];  ///< (-1)^k b_2k
   double sin_c[10];  ///< (-1)^k b_(2k+1)
@@ -84,7 +84,7 @@ struct WallSolution {
 /// Stages 1-4 chained with the robust forms: gauge pressure -> delta, h -> theta. Where s = sqrt(g/3) <= 1/20 (the
 /// validated range and beyond), delta, h and stage 4's m come from power series in s (docs/MODEL.md stages 2-4);
 /// otherwise g -> delta -> h -> theta by the functions above. The model's robust solver and its table builder call it;
-/// the batch kernel shares its arithmetic (src/core/simd_math.hpp) and takes the same branch per pressure.
+/// the batch kernel shares its arithmetic (src/core/wall_chain.hpp) and takes the same branch per pressure.
 /// @param[in] gauge_pa P (Pa gauge); <= 0 gives the rest wall
 /// @param[in] atmospheric_pa P_o (Pa)
 /// @param[in] shear_modulus_pa mu (Pa)

@@ -1,0 +1,117 @@
+// FingerModel::evaluateMany: many pressures in one call, SIMD across pressures where the kernels answer (the robust
+// solver with identical chambers), else one at a time through the single evaluation.
+#include <algorithm>
+#include <limits>
+#include <stdexcept>
+#include <string>
+
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "batch_kernel.hpp"
+#include "simd_kernels.hpp"
+
+namespace pneumatic_finger {
+
+BatchBuffers::BatchBuffers(std::size_t count, int chamber_count) {
+  const auto n = static_cast<std::size_t>(chamber_count);
+  for (auto* v : {&stretch, &bulge_m, &half_angle_rad, &joint_angle_rad}) v->resize(count * n);
+  backbone_m.resize(count * 2 * (n + 2));
+  tip_angle_rad.resize(count);
+  status.resize(count);
+}
+
+BatchOutputs BatchBuffers::outputs() {
+  BatchOutputs o;
+  o.stretch = stretch.data();
+  o.bulge_m = bulge_m.data();
+  o.half_angle_rad = half_angle_rad.data();
+  o.joint_angle_rad = joint_angle_rad.data();
+  o.backbone_m = backbone_m.data();
+  o.tip_angle_rad = tip_angle_rad.data();
+  o.status = status.data();
+  return o;
+}
+
+const char* batchPathName(BatchPath path) {
+  switch (path) {
+    case BatchPath::kBest: return "best";
+    case BatchPath::kScalar: return "scalar";
+    case BatchPath::kGeneric: return "generic";
+    case BatchPath::kAvx2: return "avx2";
+    case BatchPath::kAvx512: return "avx512";
+  }
+  return "best";
+}
+
+namespace {
+
+// The instruction set of a SIMD path (kBest: the widest this CPU has).
+InstructionSet instructionSetOf(BatchPath path) {
+  switch (path) {
+    case BatchPath::kAvx2: return InstructionSet::kAvx2;
+    case BatchPath::kAvx512: return InstructionSet::kAvx512;
+    case BatchPath::kGeneric: return InstructionSet::kGeneric;
+    case BatchPath::kBest:
+    case BatchPath::kScalar:
+      break;
+  }
+  return widestInstructionSet();
+}
+
+}  // namespace
+
+bool batchPathAvailable(BatchPath path) {
+  return path == BatchPath::kScalar || instructionSetAvailable(instructionSetOf(path));
+}
+
+static_assert(kMaxChamberCount <= 64, "the batch kernel keeps at most 64 directions per lane");
+
+void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out,
+                               FingerWorkspace& workspace, BatchPath path) const {
+  if (path != BatchPath::kScalar && !batchPathAvailable(path)) {
+    throw std::invalid_argument(std::string("evaluateMany: the batch path '") + batchPathName(path) +
+                                "' is not available on this CPU or build");
+  }
+  const auto n = static_cast<std::size_t>(parameters_.chamber_count);
+  if (path != BatchPath::kScalar && options_.solver == SolverKind::kRobust && groups_.size() == 1) {
+    const ChamberGroup& g = groups_[0];
+    const UniformRobustSpec spec{parameters_.chamber_count, parameters_.atmospheric_pressure_pa, g.shear_modulus_pa,
+                                 g.chamber_height_m, g.chamber_gap_m, g.wall_critical_height_m,
+                                 parameters_.base_segment_length_m, parameters_.segment_length_m.data(),
+                                 parameters_.base_wall_share, first_joint_series_};
+    simdKernels(instructionSetOf(path))->batch_uniform_robust(spec, gauge_pa, count, out);
+    return;
+  }
+  if (workspace.shape_ != shape_) refuseWorkspace(workspace);
+  FingerState& state = workspace.batch_state_;
+  if (state.stretch.size() == 0) state = initialState();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto row = [n, nan](const Eigen::VectorXd& from, double* to, std::size_t i, bool answered) {
+    if (!to) return;
+    if (answered) std::copy(from.data(), from.data() + n, to + i * n);
+    else std::fill(to + i * n, to + (i + 1) * n, nan);
+  };
+  for (std::size_t i = 0; i < count; ++i) {
+    const double p = gauge_pa[i];
+    EvaluationStatus status = !std::isfinite(p) ? EvaluationStatus::kNotFinite
+                              : p < 0.0         ? EvaluationStatus::kVacuum
+                                                : EvaluationStatus::kOk;
+    if (status != EvaluationStatus::kNotFinite && !writeStateAt(p < 0.0 ? 0.0 : p, workspace, state)) {
+      status = EvaluationStatus::kSolverFailure;
+    }
+    const bool answered = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum;
+    const FingerState& s = state;
+    row(s.stretch, out.stretch, i, answered);
+    row(s.bulge_m, out.bulge_m, i, answered);
+    row(s.half_angle_rad, out.half_angle_rad, i, answered);
+    row(s.joint_angle_rad, out.joint_angle_rad, i, answered);
+    if (out.backbone_m) {
+      double* o = out.backbone_m + i * 2 * (n + 2);
+      if (answered) std::copy(s.backbone_m.data(), s.backbone_m.data() + 2 * (n + 2), o);
+      else std::fill(o, o + 2 * (n + 2), nan);
+    }
+    if (out.tip_angle_rad) out.tip_angle_rad[i] = answered ? s.tip_angle_rad : nan;
+    if (out.status) out.status[i] = static_cast<int>(status);
+  }
+}
+
+}  // namespace pneumatic_finger

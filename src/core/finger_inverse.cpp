@@ -1,0 +1,91 @@
+// The inverse model: the gauge pressure for a bulge, a half angle or a tip direction. Every stage inverts in closed
+// form for identical chambers; unequal chambers bisect on the (non-decreasing) tip direction.
+#include <cmath>
+#include <limits>
+#include <sstream>
+#include <string>
+
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/units.hpp"
+
+namespace pneumatic_finger {
+
+double gaugeForBulge(double bulge_m, double chamber_height_m, double shear_modulus_pa, double atmospheric_pa) {
+  if (!(bulge_m > 0.0)) return 0.0;
+  // Stage 3 inverted: sqrt(2 lambda^2 - 1) = 1 + x with x = 2h/L, so lambda^2 - 1 = x (2 + x)/2.
+  const double x = 2.0 * bulge_m / chamber_height_m;
+  const double lambda_sq_m1 = 0.5 * x * (2.0 + x);
+  const double delta = lambda_sq_m1 / (std::sqrt(1.0 + lambda_sq_m1) + 1.0);
+  // Stage 2 inverted: g = delta^2 (3 + delta)/(1 + delta).
+  const double g = delta * delta * (3.0 + delta) / (1.0 + delta);
+  // Stage 1 inverted: P^2 + 2 P_o P - g P_o mu = 0, positive root without cancellation.
+  const double gpm = g * atmospheric_pa * shear_modulus_pa;
+  return gpm / (atmospheric_pa + std::sqrt(atmospheric_pa * atmospheric_pa + gpm));
+}
+
+double contactGaugePa(double chamber_height_m, double chamber_gap_m, double shear_modulus_pa,
+                      double atmospheric_pa) {
+  return gaugeForBulge(chamber_gap_m, chamber_height_m, shear_modulus_pa, atmospheric_pa);
+}
+
+bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, double& gauge_pa,
+                                   std::string& message) const {
+  std::ostringstream why;
+  if (!std::isfinite(tip_angle_rad) || tip_angle_rad < 0.0) {
+    why << "tip angle " << formatExact(tip_angle_rad) << " rad is not a finite angle >= 0 (flexion is positive)";
+    message = why.str();
+    return false;
+  }
+  const int n = parameters_.chamber_count;
+  // Every half angle stays below pi/2, so Theta_N < (2N - 1 + s0) pi/2.
+  const double turns = 2 * n - 1 + parameters_.base_wall_share;
+  const double limit = turns * kPi / 2;
+  if (tip_angle_rad >= limit) {
+    why << "tip angle " << formatExact(tip_angle_rad) << " rad is beyond the model's limit (2N-1+s0) pi/2 = "
+        << formatExact(limit) << " rad, which no finite pressure reaches";
+    message = why.str();
+    return false;
+  }
+  if (tip_angle_rad == 0.0) {
+    gauge_pa = 0.0;
+    return true;
+  }
+  double answer;
+  if (groups_.size() == 1) {
+    // Identical chambers: Theta_N = (2N - 1 + s0) theta, and every stage inverts in closed form.
+    if (!gaugeForHalfAngle(tip_angle_rad / turns, answer)) answer = std::numeric_limits<double>::infinity();
+  } else {
+    // Unequal chambers: Theta_N(P) is non-decreasing, so bisect on [0, max].
+    if (tipAngleAt(max_gauge_pa) < tip_angle_rad) {
+      answer = std::numeric_limits<double>::infinity();
+    } else {
+      double lo = 0.0, hi = max_gauge_pa;
+      for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        (tipAngleAt(mid) < tip_angle_rad ? lo : hi) = mid;
+      }
+      answer = hi;
+    }
+  }
+  if (!(answer <= max_gauge_pa)) {
+    why << "tip angle " << formatExact(tip_angle_rad) << " rad needs more than the allowed " << formatExact(max_gauge_pa)
+        << " Pa gauge";
+    if (std::isfinite(answer)) why << " (" << formatExact(answer) << " Pa)";
+    message = why.str();
+    return false;
+  }
+  gauge_pa = answer;
+  return true;
+}
+
+bool FingerModel::gaugeForHalfAngle(double half_angle_rad, double& gauge_pa) const {
+  if (groups_.size() != 1 || !(half_angle_rad > 0) || !(half_angle_rad < kPi / 2)) return false;
+  const ChamberGroup& g = groups_[0];
+  const double h = bulgeForHalfAngle(half_angle_rad, g.chamber_gap_m, g.wall_critical_height_m);
+  const double p = gaugeForBulge(h, g.chamber_height_m, g.shear_modulus_pa, parameters_.atmospheric_pressure_pa);
+  if (!std::isfinite(p)) return false;
+  gauge_pa = p;
+  return true;
+}
+
+}  // namespace pneumatic_finger
