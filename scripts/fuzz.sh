@@ -18,7 +18,7 @@ CXXFLAGS=(-std=c++17 -O1 -g -fsanitize=fuzzer-no-link,address,undefined -fno-san
   -isystem /usr/include/eigen3)
 OBJECTS=()
 for source in fuzz/fuzz_model src/core/parameters src/core/stages src/core/finger_model src/core/chamber_table \
-  src/core/finger_inverse src/core/batch_evaluation src/core/simd_kernels src/core/yaml_parameters \
+  src/core/finger_inverse src/core/finger_batch src/core/simd_kernels src/core/yaml_parameters \
   src/core/tip_uncertainty src/core/batch_generic src/core/batch_avx2 src/core/batch_avx512; do
   case "$source" in
     *avx512) isa=(-mavx512f) ;;

@@ -17,7 +17,8 @@ else
   cat <<MSG
 main: no display: running the cell headless ($LOOPS cycles of 12 s); the log below shows each phase.
       To watch it, run this command on a machine with a display (rviz opens), or render a picture of it
-      mid-grasp with:  bash scripts/screenshot_cell.sh   (Xvfb; writes docs/cell_rviz.png)
+      mid-grasp with:  bash scripts/screenshot_cell.sh /tmp/cell.png   (Xvfb; with no argument it rewrites the
+      README's picture, docs/cell_rviz.png)
       While it runs, from another shell:  source devel/setup.bash && ROS_MASTER_URI=$ROS_MASTER_URI \\
         rostopic echo /finger_a/finger_state/tip_angle_rad
 MSG

@@ -15,6 +15,7 @@
 
 #include <sys/wait.h>
 
+#include <limits>
 #include <map>
 #include <mutex>
 #include <set>
@@ -350,9 +351,16 @@ TEST_F(FingerNodeTest, InverseServiceRoundTrips) {
   ASSERT_TRUE(client.call(srv));
   EXPECT_FALSE(srv.response.success);
   EXPECT_NE(srv.response.message.find("needs more than"), std::string::npos) << srv.response.message;
+  // A refusal names what was wrong and nothing else; a NaN reads as "nan" (printf's "-nan" reads like a number).
   srv.request.tip_angle_rad = -0.1;
   ASSERT_TRUE(client.call(srv));
   EXPECT_FALSE(srv.response.success);
+  EXPECT_EQ(srv.response.message,
+            "tip angle -0.10000000000000001 rad is not a finite angle >= 0 (flexion is positive)");
+  srv.request.tip_angle_rad = -std::numeric_limits<double>::quiet_NaN();
+  ASSERT_TRUE(client.call(srv));
+  EXPECT_FALSE(srv.response.success);
+  EXPECT_EQ(srv.response.message, "tip angle nan rad is not a finite angle >= 0 (flexion is positive)");
 }
 
 // The grasp object: out of reach it changes nothing (the free finger, bit for bit); in reach the node's joints are
@@ -437,6 +445,32 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
   for (int i = 0; i < 7; ++i) EXPECT_EQ(listener_->joint_states[stamp].position[static_cast<std::size_t>(i)], free.joint_angle_rad[i]);
 }
 
+// A list parameter (as rosparam loads it from a file) reads as a list in the message, with every digit: it printed
+// as "0.100000000000000010.20000000000000001" before.
+namespace {
+// Runs finger_node with @p args (stdout and stderr together) and returns its exit status, -1 if it did not exit.
+int runNode(const std::string& args, std::string& out) {
+  const std::string cmd = std::string("timeout 30 ") + FINGER_NODE_EXE + " " + args + " 2>&1";
+  FILE* pipe = popen(cmd.c_str(), "r");
+  char buf[4096];
+  std::size_t n;
+  while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
+  const int raw = pclose(pipe);
+  return WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+}
+}  // namespace
+
+TEST(FingerNodeParameters, AListInAMessageReadsAsAList) {
+  ros::param::set("/bad_list_node/mount_xyz_m", std::vector<double>{0.1, 0.2});
+  std::string out;
+  EXPECT_EQ(runNode("__name:=bad_list_node", out), 2) << out;
+  EXPECT_NE(out.find("finger_node: error: parameter 'mount_xyz_m' = [0.10000000000000001, 0.20000000000000001] must "
+                     "be a list of 3 numbers"),
+            std::string::npos)
+      << out;
+  ros::param::del("/bad_list_node/mount_xyz_m");
+}
+
 TEST(FingerNodeParameters, EveryBadParameterStopsTheNodeNamingTheKey) {
   std::vector<std::pair<std::string, std::string>> cases = {
       {"_chamber_gap_m:=-1", "chamber_gap_m"},
@@ -466,7 +500,7 @@ TEST(FingerNodeParameters, EveryBadParameterStopsTheNodeNamingTheKey) {
       {"_finger_state_topic:='x y'", "finger_state_topic"},
       // The calibration's error bar, as `rosparam load` of a parameter file puts it under ~tip_uncertainty/ (the
       // command line gives a string, not a list; the lists' own rules are the core's, test_tip_uncertainty.cpp).
-      {"_tip_uncertainty/gauge_pa:=[100000.0]", "'tip_uncertainty/gauge_pa' = [100000.0] is not a list of numbers"},
+      {"_tip_uncertainty/gauge_pa:=[100000.0]", "'tip_uncertainty/gauge_pa' = '[100000.0]' is not a list of numbers"},
       {"_tip_uncertainty/gauges:=1", "tip_uncertainty/gauges"},
   };
   // Every actuator key out of its range, as a rosparam (the node's other path in).
@@ -475,15 +509,8 @@ TEST(FingerNodeParameters, EveryBadParameterStopsTheNodeNamingTheKey) {
   }
   int k = 0;
   for (const auto& c : cases) {
-    const std::string cmd = std::string("timeout 30 ") + FINGER_NODE_EXE + " __name:=bad_node_" + std::to_string(k++) +
-                            " " + c.first + " 2>&1";
-    FILE* pipe = popen(cmd.c_str(), "r");
     std::string out;
-    char buf[4096];
-    std::size_t n;
-    while ((n = fread(buf, 1, sizeof buf, pipe)) > 0) out.append(buf, n);
-    const int raw = pclose(pipe);
-    EXPECT_TRUE(WIFEXITED(raw) && WEXITSTATUS(raw) == 2) << c.first << ": " << out;
+    EXPECT_EQ(runNode("__name:=bad_node_" + std::to_string(k++) + " " + c.first, out), 2) << c.first << ": " << out;
     EXPECT_NE(out.find("finger_node: error: "), std::string::npos) << c.first << ": " << out;
     EXPECT_NE(out.find(c.second), std::string::npos) << c.first << ": " << out;
   }

@@ -308,6 +308,8 @@ TEST_F(FaultTest, StaleInputIsReportedAndRecovers) {
   // Recovery: good input again, and the report goes back to OK once earlier warnings (held 5 s) have aged out.
   const auto ok = waitForDiagnostics(diagnostic_msgs::DiagnosticStatus::OK, 8);
   EXPECT_EQ(ok.message, "ok");
+  // The grasp object's status by its name (it read as a bare number).
+  EXPECT_EQ(value(ok, "grasp object status"), "none");
 }
 
 TEST_F(FaultTest, RegulatorPublisherRestartIsFollowed) {

@@ -328,7 +328,7 @@ __attribute__((noinline)) bool FingerModel::writeSolvedState(double gauge_pa, Fi
   return true;
 }
 
-// evaluateMany's one-at-a-time path (batch_evaluation.cpp): writeState out of line.
+// evaluateMany's one-at-a-time path (finger_batch.cpp): writeState out of line.
 bool FingerModel::writeStateAt(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const {
   return writeState(gauge_pa, workspace, out);
 }

@@ -7,11 +7,6 @@
 #include "pneumatic_finger/core/stages.hpp"
 #include "simd_math.hpp"
 
-#pragma GCC diagnostic push
-// GCC 12's _mm512_sqrt_pd starts from _mm512_undefined_pd(), which -Wuninitialized reports by mistake.
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-
 namespace pneumatic_finger {
 namespace {  // NOLINT(build/namespaces): internal linkage per instruction set (simd_math.hpp)
 
@@ -124,5 +119,3 @@ inline void uniformPoints(T first_c, T first_s, T cos_half, T sin_half, int cham
 
 }  // namespace
 }  // namespace pneumatic_finger
-
-#pragma GCC diagnostic pop

@@ -108,6 +108,7 @@ const ParameterSpec* findParameterSpec(const std::string& key) {
 }
 
 std::string formatExact(double value) {
+  if (std::isnan(value)) return "nan";  // printf writes "-nan" for a NaN with its sign bit set, which reads as a number
   char buffer[40];
   std::snprintf(buffer, sizeof(buffer), "%.17g", value);
   return buffer;

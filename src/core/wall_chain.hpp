@@ -6,11 +6,6 @@
 
 #include "simd_math.hpp"
 
-#pragma GCC diagnostic push
-// GCC 12's _mm512_sqrt_pd starts from _mm512_undefined_pd(), which -Wuninitialized reports by mistake.
-#pragma GCC diagnostic ignored "-Wuninitialized"
-#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
-
 namespace pneumatic_finger {
 namespace {  // NOLINT(build/namespaces): internal linkage per instruction set (simd_math.hpp)
 
@@ -159,5 +154,3 @@ inline bool usualWallHalfAngle(double bulge_m, double gap_m, double two_over_b, 
 
 }  // namespace
 }  // namespace pneumatic_finger
-
-#pragma GCC diagnostic pop

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <sstream>
 #include <stdexcept>
@@ -92,17 +93,39 @@ const NodeParameterSpec& spec(const std::string& key) {
   throw std::logic_error("no node parameter '" + key + "'");
 }
 
-std::string describe(const XmlRpc::XmlRpcValue& v) {
-  std::string text = const_cast<XmlRpc::XmlRpcValue&>(v).toXml();
-  // Strip the XML-RPC wrapping for a readable message: <value><double>3</double></value> -> 3
-  std::string out;
-  bool in_tag = false;
-  for (char c : text) {
-    if (c == '<') in_tag = true;
-    else if (c == '>') in_tag = false;
-    else if (!in_tag) out += c;
+// The name of a finger_state object status, as diagnostics show it (msg/FingerModelState.msg).
+const char* objectStatusName(std::uint8_t status) {
+  switch (status) {
+    case FingerModelState::OBJECT_NONE: return "none";
+    case FingerModelState::OBJECT_OUT_OF_REACH: return "out of reach";
+    case FingerModelState::OBJECT_CLEAR: return "clear (in reach, not touched)";
+    case FingerModelState::OBJECT_TOUCHING: return "touching";
+    case FingerModelState::OBJECT_OVERLAPS_AT_REST: return "overlaps the straight finger";
+    case FingerModelState::OBJECT_NO_TRANSFORM: return "no transform to the object's frame";
+    default: return "unknown";
   }
-  return out.empty() ? "(empty)" : out;
+}
+
+// A parameter's value as a message shows it: numbers with every digit, lists as [a, b, c], text in quotes.
+std::string describe(const XmlRpc::XmlRpcValue& v) {
+  auto& x = const_cast<XmlRpc::XmlRpcValue&>(v);
+  switch (x.getType()) {
+    case XmlRpc::XmlRpcValue::TypeDouble: return formatExact(static_cast<double>(x));
+    case XmlRpc::XmlRpcValue::TypeInt: return std::to_string(static_cast<int>(x));
+    case XmlRpc::XmlRpcValue::TypeBoolean: return static_cast<bool>(x) ? "true" : "false";
+    case XmlRpc::XmlRpcValue::TypeString: return "'" + static_cast<std::string>(x) + "'";
+    case XmlRpc::XmlRpcValue::TypeArray: {
+      std::string out = "[";
+      for (int i = 0; i < x.size(); ++i) out += (i > 0 ? ", " : "") + describe(x[i]);
+      return out + "]";
+    }
+    case XmlRpc::XmlRpcValue::TypeStruct: {
+      std::string out = "{";
+      for (const auto& entry : x) out += (out.size() > 1 ? ", " : "") + entry.first + ": " + describe(entry.second);
+      return out + "}";
+    }
+    default: return "(" + std::string(x.valid() ? "a value of another type" : "empty") + ")";
+  }
 }
 
 bool asNumber(const XmlRpc::XmlRpcValue& v, double& out) {
@@ -712,7 +735,7 @@ bool FingerNode::onInverse(PressureForTipAngle::Request& req, PressureForTipAngl
   res.success = model_->gaugeForTipAngle(req.tip_angle_rad, settings_.urdf.max_gauge_pa, gauge, why);
   res.gauge_pa = res.success ? gauge : 0.0;
   res.absolute_pa = res.success ? gauge + settings_.finger.atmospheric_pressure_pa : 0.0;
-  res.message = res.success ? "" : why + " (max_gauge_pa)";
+  res.message = res.success ? "" : why;
   return true;  // a refused request is an answer, not a transport failure
 }
 
@@ -799,7 +822,7 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
                                          " pressures up to " + formatExact(tip_uncertainty_.gauge_pa.back()) +
                                          " Pa gauge; above: extrapolated");
   status.add("grasp object", object_ ? object_->id : std::string("(none)"));
-  status.add("grasp object status", static_cast<int>(object_status_));
+  status.add("grasp object status", objectStatusName(object_status_));
   status.add("predicted first touch (Pa gauge)", touch_gauge_pa_);
   status.add("object sections cut (pose changed)", sections_cut_);
   status.add("object transform failures", transform_failures_);

@@ -95,7 +95,7 @@ struct FingerParameters {
 void parseParameterAssignment(const std::string& assignment, RawParameterMap& raw);
 
 /// Formats a number with 17 significant digits (round-trip exact), as every tool prints numbers.
-std::string formatExact(double value);
+std::string formatExact(double value);  // NaN as "nan", whatever its sign bit
 
 /// Formats a number with the fewest significant digits (15 to 17) that read back to the same double, as the
 /// parameter files are written.
