@@ -16,6 +16,7 @@
 #include <cstddef>
 
 #include "pneumatic_finger/core/evaluation.hpp"
+#include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/stages.hpp"
 #include "joint_chain.hpp"
 #include "wall_chain.hpp"
@@ -70,7 +71,6 @@ template <class T>
 inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa, int valid, std::size_t row0,
                               const BatchOutputs& out) {
   constexpr int kLanes = lanesOf<T>();
-  constexpr int kMaxChambers = 64;
   const int n = s.chamber_count;
   const T zero = splat<T>(0.0), one = splat<T>(1.0);
 
@@ -149,7 +149,7 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
   const T joint = 2.0 * rad;
   T first_c, first_s;
   const T joint1 = firstJoint(s.base_wall_share, s.first_joint, rad, tan_half, cos_half, sin_half, first_c, first_s);
-  T dir_c[kMaxChambers], dir_s[kMaxChambers], px[kMaxChambers], py[kMaxChambers];
+  T dir_c[kMaxChamberCount], dir_s[kMaxChamberCount], px[kMaxChamberCount], py[kMaxChamberCount];
   uniformPoints<0>(first_c, first_s, cos_half, sin_half, n, s.base_segment_length_m, s.segment_length_m, dir_c, dir_s,
                 px, py, 1);
   const T tip_angle = joint1 + static_cast<double>(n - 1) * joint;

@@ -329,9 +329,9 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
   if (keys.empty() || keys.size() > 3) throw ParameterError("calibration fits one to three parameters");
   for (const auto& k : keys) {
     if (!isFittableKey(k)) {
-      throw ParameterError("parameter '" + k +
-                           "' cannot be fitted; fittable: shear_modulus_pa, chamber_gap_m, wall_critical_height_m, "
-                           "chamber_height_m, base_wall_share");
+      std::string fittable;
+      for (const char* key : kFittable) fittable += (fittable.empty() ? "" : ", ") + std::string(key);
+      throw ParameterError("parameter '" + k + "' cannot be fitted; fittable: " + fittable);
     }
     if (std::count(keys.begin(), keys.end(), k) > 1) throw ParameterError("parameter '" + k + "' given twice");
   }

@@ -6,6 +6,7 @@
 #include <limits>
 #include <utility>
 
+#include "pneumatic_finger/core/units.hpp"
 #include "simd_math.hpp"
 
 namespace pneumatic_finger {
@@ -16,7 +17,7 @@ namespace {
 // [0, pi/2], where a closing finger's angles lie (theta, q_1 = (1 + s0) theta, q_n = 2 theta); glibc's outside it. The
 // series costs less than the two library calls, and the search runs it at every sample.
 inline void cosSin(double x, double& cos_x, double& sin_x) {
-  if (x >= 0.0 && x <= 1.5707963267948966) {
+  if (x >= 0.0 && x <= kHalfPi) {
     sinCosSmall(x, cos_x, sin_x);
   } else {
     cos_x = std::cos(x);
@@ -180,23 +181,6 @@ Eigen::Vector2d Obstacle::nearestPoint(const Eigen::Vector2d& p, const Eigen::Ve
     }
   }
   return p;
-}
-
-std::vector<Eigen::Vector2d> Obstacle::outline(int samples) const {
-  if (kind_ == Kind::kPolygon) return vertices_;
-  std::vector<Vec> points;
-  const int n = std::max(samples, 3);
-  points.reserve(static_cast<std::size_t>(n));
-  for (int i = 0; i < n; ++i) {
-    const double phi = 2 * M_PI * i / n;
-    if (kind_ == Kind::kDisk) {
-      points.push_back(center_ + radius_ * Vec(std::cos(phi), std::sin(phi)));
-    } else {
-      const Vec local(a_ * std::cos(phi), b_ * std::sin(phi));
-      points.push_back(center_ + Vec(cos_ * local.x() - sin_ * local.y(), sin_ * local.x() + cos_ * local.y()));
-    }
-  }
-  return points;
 }
 
 double Obstacle::distanceFromOrigin() const {

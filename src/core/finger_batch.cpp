@@ -63,8 +63,6 @@ bool batchPathAvailable(BatchPath path) {
   return path == BatchPath::kScalar || instructionSetAvailable(instructionSetOf(path));
 }
 
-static_assert(kMaxChamberCount <= 64, "the batch kernel keeps at most 64 directions per lane");
-
 void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out,
                                FingerWorkspace& workspace, BatchPath path) const {
   if (path != BatchPath::kScalar && !batchPathAvailable(path)) {

@@ -39,7 +39,7 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
   const int n = parameters_.chamber_count;
   // Every half angle stays below pi/2, so Theta_N < (2N - 1 + s0) pi/2.
   const double turns = 2 * n - 1 + parameters_.base_wall_share;
-  const double limit = turns * kPi / 2;
+  const double limit = turns * kHalfPi;
   if (tip_angle_rad >= limit) {
     why << "tip angle " << formatExact(tip_angle_rad) << " rad is beyond the model's limit (2N-1+s0) pi/2 = "
         << formatExact(limit) << " rad, which no finite pressure reaches";
@@ -79,7 +79,7 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
 }
 
 bool FingerModel::gaugeForHalfAngle(double half_angle_rad, double& gauge_pa) const {
-  if (groups_.size() != 1 || !(half_angle_rad > 0) || !(half_angle_rad < kPi / 2)) return false;
+  if (groups_.size() != 1 || !(half_angle_rad > 0) || !(half_angle_rad < kHalfPi)) return false;
   const ChamberGroup& g = groups_[0];
   const double h = bulgeForHalfAngle(half_angle_rad, g.chamber_gap_m, g.wall_critical_height_m);
   const double p = gaugeForBulge(h, g.chamber_height_m, g.shear_modulus_pa, parameters_.atmospheric_pressure_pa);

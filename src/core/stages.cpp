@@ -11,7 +11,6 @@ namespace pneumatic_finger {
 
 namespace {
 
-constexpr double kHalfPi = kPi / 2;
 // Above this tan(theta), 1 + t^2 == t^2 in double, and t^2 would overflow near 1e154: switch to the
 // asymptotic forms (1 + t^2)^(1/4) = sqrt(t), cos = 1/t, which are then exact to rounding.
 constexpr double kLargeTan = 1e8;

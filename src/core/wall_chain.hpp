@@ -15,7 +15,7 @@ namespace {  // NOLINT(build/namespaces): internal linkage per instruction set (
 /// (together about as long as the rest of the chain). The coefficients and their error are derived exactly by
 /// scripts/wall_series.py: the terms left out are below 6e-21 (delta) and 1.3e-18 (h) relative, well below the
 /// rounding of the sums (test: Stage23Series). The limit covers the calibrated finger to 3.4e5 Pa, beyond its
-/// validated range (2 kg/cm^2) and the table's (3e5 Pa); above it the Halley steps answer.
+/// validated range (2 kg/cm^2) and the table's (3 kg/cm^2); above it the Halley steps answer.
 constexpr double kStretchSeriesLimit = 0.05;
 template <class T>
 inline void stretchAndBulgeSeries(T s, double chamber_height_m, T& stretch_excess, T& bulge_m) {

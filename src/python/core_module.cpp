@@ -120,7 +120,7 @@ class PyFingerModel {
   }
 
   double gaugeForTipAngle(double tip_angle_rad, const py::object& max_gauge_pa) const {
-    const double limit = max_gauge_pa.is_none() ? kDefaultMaxGaugePa : max_gauge_pa.cast<double>();
+    const double limit = max_gauge_pa.is_none() ? pf::kModelMaxGaugePa : max_gauge_pa.cast<double>();
     double gauge = 0.0;
     std::string why;
     if (!model_->gaugeForTipAngle(tip_angle_rad, limit, gauge, why)) throw py::value_error(why);
@@ -178,7 +178,6 @@ class PyFingerModel {
   double contactGaugePa() const { return model_->contactGaugePa(); }
   std::string solver() const { return pf::solverName(model_->options().solver); }
 
-  static constexpr double kDefaultMaxGaugePa = 3 * 98066.5;  // the node's max_gauge_pa default (3 kg/cm^2)
 
  private:
   std::unique_ptr<const pf::FingerModel> model_;

@@ -447,7 +447,7 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
   tip_uncertainty_ = settings_.tip_uncertainty;
   // Latched: rviz, started later, still gets the sphere the finger has now.
   tip_marker_pub_ = nh.advertise<visualization_msgs::Marker>("tip_uncertainty_marker", 1, true);
-  tip_marker_.header.frame_id = prefix + "tip";
+  tip_marker_.header.frame_id = tipLinkName(prefix);
   tip_marker_.header.stamp = ros::Time(0);  // "latest"
   tip_marker_.frame_locked = true;  // rviz re-transforms it every frame: the sphere rides on the tip as the finger moves
   tip_marker_.ns = prefix + "tip_uncertainty";
@@ -470,9 +470,10 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
   // Queue of 1 when throttled (only the newest pressure matters); otherwise keep up with bursts.
   pressure_sub_ = nh.subscribe(settings_.pressure_topic, settings_.input.max_rate_hz > 0 ? 1 : 100, &FingerNode::onPressure,
                                this, ros::TransportHints().tcpNoDelay());
-  ROS_INFO("finger_node: %d chambers (%d distinct), solver %s, frames %ssegment_0..%d and %stip on %s; URDF in '%s'",
-           n, model_->distinctChamberCount(), solverName(settings_.solver), prefix.c_str(), n, prefix.c_str(),
-           settings_.urdf.parent_frame.c_str(), nh.resolveName(settings_.description_param).c_str());
+  ROS_INFO("finger_node: %d chambers (%d distinct), solver %s, frames %s..%s and %s on %s; URDF in '%s'", n,
+           model_->distinctChamberCount(), solverName(settings_.solver), segmentLinkName(prefix, 0).c_str(),
+           segmentLinkName(prefix, n).c_str(), tipLinkName(prefix).c_str(), settings_.urdf.parent_frame.c_str(),
+           nh.resolveName(settings_.description_param).c_str());
 }
 
 void FingerNode::onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg) {

@@ -17,6 +17,7 @@
 #include "pneumatic_finger/GripperCommandAction.h"
 #include "pneumatic_finger/PressureForTipAngle.h"
 #include "pneumatic_finger/core/grasp_plan.hpp"
+#include "pneumatic_finger/core/units.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -44,7 +45,7 @@ class GripperActionServer {
     goal_tolerance_rad_ = readNumber(pnh, "goal_tolerance_rad", 0.01, 1e-6, 1.0);
     settle_tolerance_pa_ = readNumber(pnh, "settle_tolerance_pa", 200.0, 1e-3, 1e5);
     settle_timeout_s_ = readNumber(pnh, "settle_timeout_s", 10.0, 0.1, 600);
-    max_gauge_pa_ = readNumber(pnh, "max_gauge_pa", 294199.5, 1e-3, 1e7);
+    max_gauge_pa_ = readNumber(pnh, "max_gauge_pa", pf::kModelMaxGaugePa, 1e-3, 1e7);
     for (const std::string& ns : fingers_) {
       subs_.push_back(nh.subscribe<pf::FingerModelState>(
           ros::names::append(ns, "finger_state"), 1,

@@ -39,10 +39,6 @@ class Obstacle {
   /// a finger of length L when distanceFromOrigin() > L.
   double distanceFromOrigin() const;
 
-  /// Points along the region's boundary, counter-clockwise (a polygon's corners; @p samples points of a disk or an
-  /// ellipse), for drawing it.
-  std::vector<Eigen::Vector2d> outline(int samples = 64) const;
-
   /// For a disk: its centre and radius, and true; false for the other shapes.
   bool asDisk(Eigen::Vector2d& center_m, double& radius_m) const {
     center_m = center_;

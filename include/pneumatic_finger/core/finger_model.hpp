@@ -15,6 +15,7 @@
 #include "pneumatic_finger/core/evaluation.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/stages.hpp"
+#include "pneumatic_finger/core/units.hpp"
 
 namespace pneumatic_finger {
 
@@ -35,7 +36,7 @@ SolverKind parseSolverName(const std::string& name);
 struct ModelOptions {
   SolverKind solver = SolverKind::kRobust;
   /// Upper end of the table solver's pressure range (Pa gauge); above it the robust solver answers.
-  double table_max_gauge_pa = 3.0e5;
+  double table_max_gauge_pa = kModelMaxGaugePa;
   /// Largest error the table may have on its check grid (rad, as tableMeasuredErrorRad() measures it); segments
   /// double until met.
   double table_tolerance_rad = 5e-13;

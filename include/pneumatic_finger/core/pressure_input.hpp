@@ -7,13 +7,15 @@
 #include <deque>
 #include <string>
 
+#include "pneumatic_finger/core/units.hpp"
+
 namespace pneumatic_finger {
 
 /// The node's input settings (their defaults and ranges are defined once, with the node's other parameters).
 struct PressureInputSettings {
-  double atmospheric_pa = 101325.0;      ///< P_o: gauge = absolute - P_o (Pa)
-  double max_gauge_pa = 294199.5;        ///< gauge pressures above this are clamped to it (Pa)
-  double validated_max_gauge_pa = 196133.0;  ///< top of the calibrated range (Pa); above it the twin extrapolates
+  double atmospheric_pa = kStandardAtmospherePa;      ///< P_o: gauge = absolute - P_o (Pa)
+  double max_gauge_pa = kModelMaxGaugePa;        ///< gauge pressures above this are clamped to it (Pa)
+  double validated_max_gauge_pa = kValidatedMaxGaugePa;  ///< top of the calibrated range (Pa); above it the twin extrapolates
   double max_rate_hz = 0.0;              ///< model cycles per second at most; 0: every message
   double stamp_tolerance_s = 1.0;        ///< a stamp further than this from the receive time is replaced by it (s)
   double time_jump_s = 1.0;              ///< a stamp older than the last by more than this starts a new timeline (s)

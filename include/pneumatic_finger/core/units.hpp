@@ -6,6 +6,9 @@ namespace pneumatic_finger {
 /// pi to double precision (M_PI is POSIX, not C++17).
 constexpr double kPi = 3.14159265358979323846;
 
+/// pi/2: a wall's half angle stays below it (exact: halving kPi is exact in binary).
+constexpr double kHalfPi = kPi / 2;
+
 /// Degrees per radian, for the tools' human-readable tables.
 constexpr double kDegPerRad = 180.0 / kPi;
 
@@ -18,5 +21,12 @@ constexpr double kM3PerSPerLitrePerMinute = 1e-3 / 60.0;
 
 /// Standard atmosphere (Pa), the default P_o.
 constexpr double kStandardAtmospherePa = 101325.0;
+
+/// The top of the model's range, 3 kg/cm^2 gauge (Pa): the node clamps higher pressures to it; the URDF's joint limits,
+/// the inverse's and the gripper action's limit and the table solver's range end there.
+constexpr double kModelMaxGaugePa = 3 * kPaPerKgfPerCm2;
+
+/// The top of the validated range, 2 kg/cm^2 gauge (Pa): the paper's highest measured pressure.
+constexpr double kValidatedMaxGaugePa = 2 * kPaPerKgfPerCm2;
 
 }  // namespace pneumatic_finger

@@ -25,7 +25,7 @@ struct FingerUrdfOptions {
   std::string parent_frame = "tool0";           ///< link the finger mounts on (included as the URDF's root)
   std::array<double, 3> mount_xyz_m{{0, 0, 0}};     ///< mount position in the parent frame (m)
   std::array<double, 3> mount_rpy_rad{{0, 0, 0}};   ///< mount orientation in the parent frame (rad, fixed-axis XYZ)
-  double max_gauge_pa = 294199.5;               ///< joint upper limits are the joint angles at this pressure
+  double max_gauge_pa = kModelMaxGaugePa;             ///< joint upper limits are the joint angles at this pressure
 };
 
 std::string segmentLinkName(const std::string& prefix, int n);  ///< <prefix>segment_<n>, n = 0..N
