@@ -326,6 +326,9 @@ void benchContact(benchmark::State& state, int which) {
   // needs one sincos per sample, not two (joint 1 turns by theta itself).
   pf::FingerParameters params = kParams;
   if (which == 3) params.base_wall_share = 0.0;
+  // which == 4: from scratch on a finger whose chambers differ (one gap 1 % wider): the search then runs in sqrt(P),
+  // a model solve per sample.
+  if (which == 4) params.chamber_gap_m.back() *= 1.01;
   pf::FingerModel model(params);
   const pf::ContactSolver solver(model);
   const pf::Obstacle obstacle = which == 0 ? pf::Obstacle::disk(0.0, 0.2, 0.01) : pf::Obstacle::disk(0.075, 0.035, 0.01);
@@ -340,7 +343,8 @@ void benchContact(benchmark::State& state, int which) {
   state.SetLabel(which == 0   ? "contact: obstacle out of reach"
                  : which == 1 ? "contact: disk at the tip, one touch, from scratch"
                  : which == 2 ? "contact: the same, ContactTracker (events kept)"
-                              : "contact: from scratch, inert base face (base_wall_share = 0)");
+                 : which == 3 ? "contact: from scratch, inert base face (base_wall_share = 0)"
+                              : "contact: from scratch, unequal chambers (search in sqrt(P))");
 }
 
 // The batch entry point (FingerModel::evaluateMany) over the validated pressures, every output written to arrays the
@@ -419,7 +423,7 @@ int main(int argc, char** argv) {
     benchmark::RegisterBenchmark(("latency/" + std::to_string(which)).c_str(),
                                  [which](benchmark::State& s) { benchPrimitive(s, which); });
   }
-  for (int which = 0; which < 4; ++which) {
+  for (int which = 0; which < 5; ++which) {
     benchmark::RegisterBenchmark(("contact/" + std::to_string(which)).c_str(),
                                  [which](benchmark::State& s) { benchContact(s, which); });
   }

@@ -252,17 +252,182 @@ class ObjectHandle {
   interactive_markers::InteractiveMarkerServer::FeedbackCallback callback_;
 };
 
+// The sequencer: each tick, the schedule's arm pose goes out as joint states, and a new phase does its one thing
+// (a new object, a grasp, the verdict on the grasp, a release).
+class CellSequencer {
+ public:
+  CellSequencer(ros::NodeHandle& nh, const Settings& settings, const ArmKinematics& arm)
+      : settings_(settings),
+        arm_(arm),
+        schedule_(settings.waypoints, settings.cycle_time_s),
+        // The object stands where the gripper will hold it at the pick pose; the place pose puts it on the other table.
+        scene_(nh, settings, arm.toolPose(settings.waypoints.pick) * heldOffset(settings),
+               arm.toolPose(settings.waypoints.place) * heldOffset(settings)),
+        handle_(settings, scene_.pickSpot()),
+        gripper_("gripper/gripper_action", true) {
+    object_.in_base = scene_.pickSpot();
+    joints_pub_ = nh.advertise<sensor_msgs::JointState>("joint_states", 10);
+    phase_pub_ = nh.advertise<std_msgs::String>("cell/phase", 10, true);
+    events_pub_ = nh.advertise<std_msgs::String>("cell/events", 10, true);
+    cycles_pub_ = nh.advertise<std_msgs::UInt32>("cell/cycles", 10, true);
+    js_.name = settings.joint_names;
+    handle_.onMove([this](const Eigen::Vector3d& p) { onObjectDragged(p); });
+    scene_.publishObject(object_, ros::Time::now());
+  }
+
+  /// Waits for the gripper action server; false (with the reason logged) when it does not come.
+  bool waitForGripper(ros::NodeHandle& nh) {
+    if (gripper_.waitForServer(ros::Duration(30.0))) return true;
+    ROS_FATAL("cell_sequencer: no gripper action server at '%s'", nh.resolveName("gripper/gripper_action").c_str());
+    return false;
+  }
+
+  /// Runs the cycles until ROS stops or loop_count cycles are done.
+  void run() {
+    ros::Rate rate(settings_.publish_rate_hz);
+    start_ = ros::Time::now();
+    ROS_INFO("cell_sequencer: %.1f s cycles, %s; object '%s' at (%.3f, %.3f, %.3f) m", settings_.cycle_time_s,
+             settings_.loop_count ? (std::to_string(settings_.loop_count) + " loops").c_str() : "looping",
+             settings_.object_id.c_str(), object_.in_base.translation().x(), object_.in_base.translation().y(),
+             object_.in_base.translation().z());
+    while (ros::ok() && tick()) rate.sleep();
+  }
+
+ private:
+  static Eigen::Isometry3d heldOffset(const Settings& s) {
+    return Eigen::Isometry3d(Eigen::Translation3d(0, 0, s.object_offset_m));
+  }
+
+  // One tick of the schedule; false when the last cycle is done.
+  bool tick() {
+    const pf::CellStep step = schedule_.at((ros::Time::now() - start_).toSec());
+    if (step.cycle != last_cycle_ && !countCycle(step.cycle)) return false;
+    js_.header.stamp = ros::Time::now();
+    js_.position = step.arm;
+    joints_pub_.publish(js_);
+    // The drag handle changes outside the object's lock: the marker server calls back under its own lock.
+    int show_handle = -1;
+    if (first_ || step.phase != last_phase_) show_handle = enterPhase(step, arm_.toolPose(step.arm));
+    if (show_handle >= 0) handle_.show(show_handle == 1, scene_.pickSpot());
+    if (ticks_++ % 5 == 0) scene_.publishMarkers(js_.header.stamp);
+    return true;
+  }
+
+  // A cycle completed: counted on cell/cycles; false when it was the last.
+  bool countCycle(long cycle) {
+    std_msgs::UInt32 cycles;
+    cycles.data = static_cast<unsigned>(cycle);
+    cycles_pub_.publish(cycles);
+    ROS_INFO("cell_sequencer: cycle %ld complete", cycle);
+    last_cycle_ = cycle;
+    if (settings_.loop_count > 0 && cycle >= settings_.loop_count) {
+      ROS_INFO("cell_sequencer: %d cycles done", settings_.loop_count);
+      return false;
+    }
+    return true;
+  }
+
+  // What a new phase does. Returns 1 to show the drag handle, 0 to hide it, -1 to leave it.
+  int enterPhase(const pf::CellStep& step, const Eigen::Isometry3d& tool) {
+    std_msgs::String msg;
+    msg.data = pf::cellPhaseName(step.phase);
+    phase_pub_.publish(msg);
+    ROS_INFO("cell_sequencer: cycle %ld: %s", step.cycle + 1, msg.data.c_str());
+    std::lock_guard<std::mutex> lock(object_mutex_);
+    int show_handle = -1;
+    if (step.phase == pf::CellPhase::kApproach && !first_) {
+      object_ = ObjectState();  // a new object on the pick table for the next cycle
+      object_.in_base = scene_.pickSpot();
+      scene_.publishObject(object_, js_.header.stamp);
+      show_handle = 1;
+    } else if (step.phase == pf::CellPhase::kGrasp) {
+      pf::GripperCommandGoal goal;
+      goal.position = settings_.grasp_position_rad;
+      goal.max_effort = settings_.grasp_max_effort_pa;
+      gripper_.sendGoal(goal);
+    } else if (step.phase == pf::CellPhase::kLift) {
+      if (judgeGrasp(step.cycle + 1, tool)) show_handle = 0;
+    } else if (step.phase == pf::CellPhase::kPlace) {
+      release(tool);
+    }
+    last_phase_ = step.phase;
+    first_ = false;
+    return show_handle;
+  }
+
+  // At the lift: the object is carried only when the twin says every finger touches it. true: it is carried.
+  bool judgeGrasp(long cycle, const Eigen::Isometry3d& tool) {
+    const auto state = gripper_.getState();
+    const auto result = gripper_.getResult();
+    if (state == actionlib::SimpleClientGoalState::SUCCEEDED && result && result->stalled) {
+      object_.held = true;
+      object_.in_tool = tool.inverse() * object_.in_base;
+      scene_.publishObject(object_, js_.header.stamp);
+      say("cycle " + std::to_string(cycle) + ": grasped '" + settings_.object_id + "' at " +
+          std::to_string(result->effort) + " Pa: every finger touches it");
+      return true;
+    }
+    say("cycle " + std::to_string(cycle) + ": grasp missed, '" + settings_.object_id + "' stays on the pick table: " +
+        (state == actionlib::SimpleClientGoalState::SUCCEEDED
+             ? std::string("not every finger touches it")
+             : "the gripper action " + state.toString() + (state.getText().empty() ? "" : ": " + state.getText())));
+    return false;
+  }
+
+  // At the place: the gripper opens, and a carried object stays where it is, in the base frame.
+  void release(const Eigen::Isometry3d& tool) {
+    gripper_.sendGoal(pf::GripperCommandGoal());  // position 0: open
+    if (!object_.held) return;
+    object_.held = false;
+    object_.in_base = tool * object_.in_tool;
+    scene_.publishObject(object_, js_.header.stamp);
+  }
+
+  // A person dragged the object on the pick table (rviz): the fingers wrap it where it now is.
+  void onObjectDragged(const Eigen::Vector3d& p) {
+    std::lock_guard<std::mutex> lock(object_mutex_);
+    Eigen::Isometry3d spot = scene_.pickSpot();
+    spot.translation() = p;
+    scene_.movePickSpot(spot);
+    if (object_.held) return;
+    object_.in_base = spot;
+    scene_.publishObject(object_, ros::Time::now());
+  }
+
+  void say(const std::string& text) {
+    std_msgs::String msg;
+    msg.data = text;
+    events_pub_.publish(msg);
+    ROS_INFO("cell_sequencer: %s", text.c_str());
+  }
+
+  const Settings& settings_;
+  const ArmKinematics& arm_;
+  pf::CellSchedule schedule_;
+  Scene scene_;
+  ObjectHandle handle_;
+  actionlib::SimpleActionClient<pf::GripperCommandAction> gripper_;
+  ros::Publisher joints_pub_, phase_pub_, events_pub_, cycles_pub_;
+  sensor_msgs::JointState js_;
+  std::mutex object_mutex_;  // the object is moved by the ticks and by the drag handle's callback
+  ObjectState object_;
+  ros::Time start_;
+  bool first_ = true;
+  pf::CellPhase last_phase_ = pf::CellPhase::kApproach;
+  long last_cycle_ = 0;
+  int ticks_ = 0;
+};
+
 }  // namespace
 
 int main(int argc, char** argv) {
   ros::init(argc, argv, "cell_sequencer");
   ros::NodeHandle nh, pnh("~");
   Settings settings;
-  std::unique_ptr<pf::CellSchedule> schedule;
   std::unique_ptr<ArmKinematics> arm;
   try {
     settings = readSettings(pnh);
-    schedule = std::make_unique<pf::CellSchedule>(settings.waypoints, settings.cycle_time_s);
+    pf::CellSchedule check(settings.waypoints, settings.cycle_time_s);  // refuses a schedule it cannot run
     std::string xml;
     if (!nh.getParam("robot_description", xml)) throw std::runtime_error("no arm URDF in 'robot_description'");
     arm = std::make_unique<ArmKinematics>(xml, settings.base_link, settings.tool_link, settings.joint_names);
@@ -270,124 +435,10 @@ int main(int argc, char** argv) {
     ROS_FATAL("cell_sequencer: %s", e.what());
     return 2;
   }
-  // The object stands where the gripper will hold it at the pick pose; the place pose puts it on the other table.
-  const Eigen::Isometry3d held(Eigen::Translation3d(0, 0, settings.object_offset_m));
-  Scene scene(nh, settings, arm->toolPose(settings.waypoints.pick) * held,
-              arm->toolPose(settings.waypoints.place) * held);
-  ObjectState object;
-  object.in_base = scene.pickSpot();
-
-  ros::Publisher joints_pub = nh.advertise<sensor_msgs::JointState>("joint_states", 10);
-  ros::Publisher phase_pub = nh.advertise<std_msgs::String>("cell/phase", 10, true);
-  ros::Publisher events_pub = nh.advertise<std_msgs::String>("cell/events", 10, true);
-  ros::Publisher cycles_pub = nh.advertise<std_msgs::UInt32>("cell/cycles", 10, true);
-  actionlib::SimpleActionClient<pf::GripperCommandAction> gripper("gripper/gripper_action", true);
   ros::AsyncSpinner spinner(1);  // the action client's and the interactive marker's callbacks
   spinner.start();
-
-  sensor_msgs::JointState js;
-  js.name = settings.joint_names;
-  std::mutex object_mutex;
-  auto say = [&](const std::string& text) {
-    std_msgs::String msg;
-    msg.data = text;
-    events_pub.publish(msg);
-    ROS_INFO("cell_sequencer: %s", text.c_str());
-  };
-  ObjectHandle handle(settings, scene.pickSpot());
-  handle.onMove([&](const Eigen::Vector3d& p) {
-    std::lock_guard<std::mutex> lock(object_mutex);
-    Eigen::Isometry3d spot = scene.pickSpot();
-    spot.translation() = p;
-    scene.movePickSpot(spot);
-    if (!object.held) {
-      object.in_base = spot;
-      scene.publishObject(object, ros::Time::now());
-    }
-  });
-  scene.publishObject(object, ros::Time::now());
-  if (!gripper.waitForServer(ros::Duration(30.0))) {
-    ROS_FATAL("cell_sequencer: no gripper action server at '%s'", nh.resolveName("gripper/gripper_action").c_str());
-    return 2;
-  }
-
-  ros::Rate rate(settings.publish_rate_hz);
-  const ros::Time start = ros::Time::now();
-  bool first = true;
-  pf::CellPhase last_phase = pf::CellPhase::kApproach;
-  long last_cycle = 0;
-  int tick = 0;
-  ROS_INFO("cell_sequencer: %.1f s cycles, %s; object '%s' at (%.3f, %.3f, %.3f) m", settings.cycle_time_s,
-           settings.loop_count ? (std::to_string(settings.loop_count) + " loops").c_str() : "looping",
-           settings.object_id.c_str(), object.in_base.translation().x(), object.in_base.translation().y(),
-           object.in_base.translation().z());
-  while (ros::ok()) {
-    const pf::CellStep step = schedule->at((ros::Time::now() - start).toSec());
-    if (step.cycle != last_cycle) {
-      std_msgs::UInt32 cycles;
-      cycles.data = static_cast<unsigned>(step.cycle);
-      cycles_pub.publish(cycles);
-      ROS_INFO("cell_sequencer: cycle %ld complete", step.cycle);
-      last_cycle = step.cycle;
-      if (settings.loop_count > 0 && step.cycle >= settings.loop_count) {
-        ROS_INFO("cell_sequencer: %d cycles done", settings.loop_count);
-        break;
-      }
-    }
-    js.header.stamp = ros::Time::now();
-    js.position = step.arm;
-    joints_pub.publish(js);
-    const Eigen::Isometry3d tool = arm->toolPose(step.arm);
-    // The drag handle changes outside the object's lock: the marker server calls back under its own lock.
-    int show_handle = -1;
-    if (first || step.phase != last_phase) {
-      std_msgs::String msg;
-      msg.data = pf::cellPhaseName(step.phase);
-      phase_pub.publish(msg);
-      ROS_INFO("cell_sequencer: cycle %ld: %s", step.cycle + 1, msg.data.c_str());
-      std::lock_guard<std::mutex> lock(object_mutex);
-      if (step.phase == pf::CellPhase::kApproach && !first) {
-        object = ObjectState();  // a new object on the pick table for the next cycle
-        object.in_base = scene.pickSpot();
-        scene.publishObject(object, js.header.stamp);
-        show_handle = 1;
-      } else if (step.phase == pf::CellPhase::kGrasp) {
-        pf::GripperCommandGoal goal;
-        goal.position = settings.grasp_position_rad;
-        goal.max_effort = settings.grasp_max_effort_pa;
-        gripper.sendGoal(goal);
-      } else if (step.phase == pf::CellPhase::kLift) {
-        // Carried only when the twin says every finger touches the object.
-        const auto state = gripper.getState();
-        const auto result = gripper.getResult();
-        if (state == actionlib::SimpleClientGoalState::SUCCEEDED && result && result->stalled) {
-          object.held = true;
-          object.in_tool = tool.inverse() * object.in_base;
-          scene.publishObject(object, js.header.stamp);
-          show_handle = 0;
-          say("cycle " + std::to_string(step.cycle + 1) + ": grasped '" + settings.object_id + "' at " +
-              std::to_string(result->effort) + " Pa: every finger touches it");
-        } else {
-          say("cycle " + std::to_string(step.cycle + 1) + ": grasp missed, '" + settings.object_id +
-              "' stays on the pick table: " +
-              (state == actionlib::SimpleClientGoalState::SUCCEEDED
-                   ? std::string("not every finger touches it")
-                   : "the gripper action " + state.toString() + (state.getText().empty() ? "" : ": " + state.getText())));
-        }
-      } else if (step.phase == pf::CellPhase::kPlace) {
-        gripper.sendGoal(pf::GripperCommandGoal());  // position 0: open
-        if (object.held) {
-          object.held = false;
-          object.in_base = tool * object.in_tool;
-          scene.publishObject(object, js.header.stamp);
-        }
-      }
-      last_phase = step.phase;
-      first = false;
-    }
-    if (show_handle >= 0) handle.show(show_handle == 1, scene.pickSpot());
-    if (tick++ % 5 == 0) scene.publishMarkers(js.header.stamp);
-    rate.sleep();
-  }
+  CellSequencer sequencer(nh, settings, *arm);
+  if (!sequencer.waitForGripper(nh)) return 2;
+  sequencer.run();
   return 0;
 }

@@ -7,6 +7,8 @@
 #include <limits>
 #include <sstream>
 
+#include "golden_section.hpp"
+
 namespace pneumatic_finger {
 
 double Measurement::averageOuterJoints() const {
@@ -237,23 +239,14 @@ double minimize1d(F&& f, double lo, double hi, double& best_value) {
       best_i = i;
     }
   }
-  double a = lo + (hi - lo) * std::max(best_i - 1, 0) / (kScan - 1);
-  double b = lo + (hi - lo) * std::min(best_i + 1, kScan - 1) / (kScan - 1);
-  const double r = (std::sqrt(5.0) - 1) / 2;
-  double x1 = b - r * (b - a), x2 = a + r * (b - a);
-  double f1 = f(x1), f2 = f(x2);
-  for (int i = 0; i < 80 && b - a > 1e-13 * (std::fabs(a) + std::fabs(b) + 1e-300); ++i) {
-    if (f1 <= f2) {
-      b = x2; x2 = x1; f2 = f1; x1 = b - r * (b - a); f1 = f(x1);
-    } else {
-      a = x1; x1 = x2; f1 = f2; x2 = a + r * (b - a); f2 = f(x2);
-    }
-  }
-  for (auto [x, v] : {std::pair{x1, f1}, std::pair{x2, f2}}) {
-    if (v < best_value) {
-      best_value = v;
-      best_x = x;
-    }
+  const double a = lo + (hi - lo) * std::max(best_i - 1, 0) / (kScan - 1);
+  const double b = lo + (hi - lo) * std::min(best_i + 1, kScan - 1) / (kScan - 1);
+  const GoldenMinimum m = goldenSection(f, a, b, 80, [](double a_, double b_, double, double) {
+    return b_ - a_ > 1e-13 * (std::fabs(a_) + std::fabs(b_) + 1e-300);
+  });
+  if (m.value < best_value) {
+    best_value = m.value;
+    best_x = m.x;
   }
   return best_x;
 }
