@@ -24,45 +24,14 @@
 #include "pneumatic_finger/PressureForTipAngle.h"
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/grasp_object.hpp"
 #include "pneumatic_finger/core/object_section.hpp"
 #include "pneumatic_finger/core/pressure_input.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
+#include "pneumatic_finger/ros/node_parameters.hpp"
 
 namespace pneumatic_finger {
-
-/// The node's own parameters (besides the actuator keys of parameterSpecs()): one definition of each (type,
-/// default, unit, range, meaning), read by readNodeSettings() and printed by `finger_node --parameters` for the README.
-struct NodeParameterSpec {
-  std::string key;
-  std::string type;           ///< "string", "double", "double[3]", "bool"
-  std::string default_text;   ///< the default as text (strings, triples)
-  double default_value;       ///< the default of a "double"
-  double min_value;           ///< range of a "double" (of every entry of a "double[3]": |x| <= max_value)
-  bool min_open;              ///< whether min_value itself is excluded
-  double max_value;
-  std::string unit;
-  std::string allowed;        ///< the range as text (generated for numbers)
-  std::string description;
-};
-const std::vector<NodeParameterSpec>& nodeParameterSpecs();
-
-/// Everything the node reads at start-up, validated.
-struct NodeSettings {
-  FingerParameters finger;
-  TipUncertainty tip_uncertainty;  ///< the calibration's error bar (rosparam tip_uncertainty/*, or the gripper file's)
-  FingerUrdfOptions urdf;
-  PressureInputSettings input;  ///< the input rules' settings (atmospheric_pa and max_gauge_pa follow finger, urdf)
-  SolverKind solver;
-  bool publish_tf = true;
-  std::string gripper_file;
-  double object_rate_hz = 30.0;
-  std::string description_param, pressure_topic, joint_states_topic, finger_state_topic, grasp_object_topic;
-};
-
-/// Reads and validates every parameter from the private handle.
-/// @throws ParameterError naming the key, the value and what is allowed
-NodeSettings readNodeSettings(const ros::NodeHandle& private_nh);
 
 class FingerNode {
  public:
@@ -85,8 +54,11 @@ class FingerNode {
 
   // The grasp object (docs/GRASP.md).
   void onGraspObject(const GraspObject::ConstPtr& msg);
-  /// Looks the object up in the finger's frame; when its pose there changed, cuts it by the bending plane and
-  /// starts a new ContactTracker. Returns whether anything changed.
+  /// Validates a new object and starts following it; false (the reason in object_refused_) for a bad one.
+  bool acceptObject(const GraspObject::ConstPtr& msg);
+  /// The object's frame in the finger's frame (tf and the finger's own mount); false with the reason when tf has none.
+  bool objectPose(Eigen::Isometry3d& finger_from_frame, std::string& why) const;
+  /// Looks the object up in the finger's frame and hands it to the tracker. Returns whether anything changed.
   bool updateObject();
   void onObjectTimer(const ros::TimerEvent&);
 
@@ -131,14 +103,8 @@ class FingerNode {
   std::unique_ptr<tf2_ros::TransformListener> tf_listener_;
   GraspObject::ConstPtr object_;                  ///< null: no object
   SolidObject object_in_frame_;                   ///< the object in its message's frame
-  SolidObject object_in_finger_;                  ///< the object in this finger's frame, as last looked up
-  bool object_located_ = false;                   ///< object_in_finger_ is current
-  std::unique_ptr<ContactTracker> tracker_;       ///< the section's touch events; null: no section in reach
-  uint8_t object_status_ = FingerModelState::OBJECT_NONE;
-  double touch_gauge_pa_ = NAN;                   ///< predicted first touch, 0..max_gauge_pa
-  double finger_length_m_ = 0.0;
-  long sections_cut_ = 0, transform_failures_ = 0;
-  std::string object_problem_;
+  std::string object_refused_;                    ///< why the last object was refused, empty when it was not
+  std::unique_ptr<GraspObjectTracker> grasp_;     ///< section, touch events, status: the core's, made with the model
   // The last accepted pressure: an object that moves re-publishes the finger at it.
   bool have_pressure_ = false, last_clamped_ = false;
   double last_gauge_pa_ = 0.0;

@@ -1,0 +1,54 @@
+// finger_node's parameters: their one definition (type, default, unit, range, meaning), which `finger_node
+// --parameters` prints for the README, and their reading and checking from the private handle.
+#pragma once
+
+#include <ros/node_handle.h>
+
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/core/parameters.hpp"
+#include "pneumatic_finger/core/pressure_input.hpp"
+#include "pneumatic_finger/core/tip_uncertainty.hpp"
+#include "pneumatic_finger/description/finger_urdf.hpp"
+
+namespace pneumatic_finger {
+
+/// The node's own parameters (besides the actuator keys of parameterSpecs()): one definition of each (type,
+/// default, unit, range, meaning), read by readNodeSettings() and printed by `finger_node --parameters` for the README.
+struct NodeParameterSpec {
+  std::string key;
+  std::string type;           ///< "string", "double", "double[3]", "bool"
+  std::string default_text;   ///< the default as text (strings, triples)
+  double default_value;       ///< the default of a "double"
+  double min_value;           ///< range of a "double" (of every entry of a "double[3]": |x| <= max_value)
+  bool min_open;              ///< whether min_value itself is excluded
+  double max_value;
+  std::string unit;
+  std::string allowed;        ///< the range as text (generated for numbers)
+  std::string description;
+};
+const std::vector<NodeParameterSpec>& nodeParameterSpecs();
+
+/// Everything the node reads at start-up, validated.
+struct NodeSettings {
+  FingerParameters finger;
+  TipUncertainty tip_uncertainty;  ///< the calibration's error bar (rosparam tip_uncertainty/*, or the gripper file's)
+  FingerUrdfOptions urdf;
+  PressureInputSettings input;  ///< the input rules' settings (atmospheric_pa and max_gauge_pa follow finger, urdf)
+  SolverKind solver;
+  bool publish_tf = true;
+  std::string gripper_file;
+  double object_rate_hz = 30.0;
+  std::string description_param, pressure_topic, joint_states_topic, finger_state_topic, grasp_object_topic;
+};
+
+/// Reads and validates every parameter from the private handle.
+/// @throws ParameterError naming the key, the value and what is allowed
+NodeSettings readNodeSettings(const ros::NodeHandle& private_nh);
+
+/// The one range check of a node number, at start-up and live (dynamic_reconfigure): @p x itself when allowed.
+/// @throws ParameterError naming the key, the value and the allowed range
+double checkNodeNumber(const std::string& key, double x);
+
+}  // namespace pneumatic_finger

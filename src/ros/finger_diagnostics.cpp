@@ -1,0 +1,50 @@
+// finger_node's report on /diagnostics (task "pressure input"): the input rules' verdict and counters, the model's
+// work, the tip's error bar and the grasp object.
+#include <string>
+
+#include "pneumatic_finger/ros/finger_node.hpp"
+
+namespace pneumatic_finger {
+
+void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  const InputReport r = input_.report(ros::Time::now().toSec());
+  status.summary(static_cast<unsigned char>(r.level), r.message);
+  const InputCounters& c = input_.counters();
+  status.add("input rate (Hz, last 1 s)", r.rate_hz);
+  status.add("seconds since last pressure", r.age_s);
+  status.add("last gauge pressure (Pa)", input_.lastGaugePa());
+  status.add("validated range (Pa gauge)", "0.." + formatExact(settings_.input.validated_max_gauge_pa));
+  status.add("messages received", c.received);
+  status.add("refused: not finite", c.refused_not_finite);
+  status.add("refused: negative absolute pressure", c.refused_negative_absolute);
+  status.add("refused: stamp not newer than the last", c.refused_out_of_order);
+  status.add("zero stamps (receive time used)", c.zero_stamps);
+  status.add("stamps replaced by the receive time", c.far_stamps);
+  status.add("time jumps (new timeline)", c.time_jumps);
+  status.add("vacuum (straight finger published)", c.vacuum);
+  status.add("clamped to max_gauge_pa", c.clamped);
+  status.add("above the validated range", c.out_of_range);
+  status.add("solver failures (last state kept)", c.solver_failures);
+  status.add("skipped by max_rate_hz or same instant", c.throttled);
+  status.add("model evaluations (unchanged pressures reuse the last)", workspace_->computationCount());
+  if (!input_.lastProblem().empty()) status.add("last problem", input_.lastProblem());
+  status.add("tip error bar", tip_uncertainty_.empty()
+                                   ? std::string("none (NaN in finger_state)")
+                                   : "calibrated at " + std::to_string(tip_uncertainty_.gauge_pa.size()) +
+                                         " pressures up to " + formatExact(tip_uncertainty_.gauge_pa.back()) +
+                                         " Pa gauge; above: extrapolated");
+  status.add("grasp object", object_ ? object_->id : std::string("(none)"));
+  status.add("grasp object status", graspObjectStatusName(grasp_->status()));
+  status.add("predicted first touch (Pa gauge)", grasp_->touchGaugePa());
+  status.add("object sections cut (pose changed)", grasp_->sectionsCut());
+  status.add("object transform failures", grasp_->transformFailures());
+  const std::string problem = !object_refused_.empty()  ? object_refused_
+                              : grasp_->problem().empty() ? std::string()
+                                                          : "grasp object '" + object_->id + "': " + grasp_->problem();
+  if (!problem.empty()) {
+    status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, problem);
+    status.add("grasp object problem", problem);
+  }
+}
+
+}  // namespace pneumatic_finger
