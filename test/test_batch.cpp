@@ -206,6 +206,17 @@ TEST(OwnArctangent, WithinOneAndAHalfUlpOfQuadPrecision) {
   EXPECT_EQ(pf::halfAngle(1e199, 0.0, b).rad, static_cast<double>(acosq(-1) / 2));
 }
 
+namespace {
+// The largest error of a (cos, sin) pair against libquadmath's of @p angle over the samples it is given, and where.
+struct WorstCosSin {
+  double error = 0.0, at = 0.0;
+  void check(double x, double c, double s, __float128 angle) {
+    const double e = std::max(static_cast<double>(fabsq(c - cosq(angle))), static_cast<double>(fabsq(s - sinq(angle))));
+    if (e > error) error = e, at = x;
+  }
+};
+}  // namespace
+
 // Joint 1's direction from tan(theta) (stages.hpp, FirstJointSeries; joint_chain.hpp, firstJoint): cos and sin of
 // (1 + s0) atan(t) against libquadmath's, up to the series' limit t = 1/8 and just above it (where the base face's sine
 // and cosine answer), for inert, calibrated and fully turning faces.
@@ -213,7 +224,7 @@ TEST(FirstJointSeries, WithinTwoUlpOfQuadPrecision) {
   const double ulp_of_one = std::numeric_limits<double>::epsilon();
   for (double share : {0.0, 0.1, 0.31406024809341682, 0.5, 1.0}) {
     const pf::FirstJointSeries series = pf::firstJointSeries(share);
-    double worst = 0.0, worst_at = 0.0;
+    WorstCosSin worst;
     auto check = [&](double t) {
       const __float128 q1 = (1 + static_cast<__float128>(share)) * atanq(static_cast<__float128>(t));
       // theta, cos and sin as the solve gives them (each rounded once), the direction from them.
@@ -222,16 +233,12 @@ TEST(FirstJointSeries, WithinTwoUlpOfQuadPrecision) {
       const double cos_half = static_cast<double>(cosq(theta_q)), sin_half = static_cast<double>(sinq(theta_q));
       double c = 0.0, s = 0.0;
       pf::firstJoint(share, series, theta, t, cos_half, sin_half, c, s);
-      const double err = std::max(static_cast<double>(fabsq(c - cosq(q1))), static_cast<double>(fabsq(s - sinq(q1))));
-      if (err > worst) {
-        worst = err;
-        worst_at = t;
-      }
+      worst.check(t, c, s, q1);
     };
     for (double t = 1e-300; t < 0.2; t *= 1.01) check(t);
     for (int i = 0; i <= 20000; ++i) check(0.2 * i / 20000);
     for (int k = -20; k <= 20; ++k) check(0.125 + k * 1e-17);
-    EXPECT_LE(worst, 2.0 * ulp_of_one) << "s0 = " << share << ", at t = " << worst_at;
+    EXPECT_LE(worst.error, 2.0 * ulp_of_one) << "s0 = " << share << ", at t = " << worst.at;
   }
 }
 
@@ -240,21 +247,16 @@ TEST(FirstJointSeries, WithinTwoUlpOfQuadPrecision) {
 // cost a little near pi/2, where x^2 = 2.5), both sides of the switch.
 TEST(SinCosSmall, WithinTwoUlpOfQuadPrecision) {
   const double ulp_of_one = std::numeric_limits<double>::epsilon();
-  double worst = 0.0, worst_at = 0.0;
+  WorstCosSin worst;
   auto check = [&](double x) {
     double c = 0.0, s = 0.0;
     pf::sinCosSmall(x, c, s);
-    const __float128 xq = x;
-    const double err = std::max(static_cast<double>(fabsq(c - cosq(xq))), static_cast<double>(fabsq(s - sinq(xq))));
-    if (err > worst) {
-      worst = err;
-      worst_at = x;
-    }
+    worst.check(x, c, s, x);
   };
   for (double x = 1e-300; x < 1.0; x *= 1.01) check(x);
   for (int i = 0; i <= 100000; ++i) check(1.5707963267948966 * i / 100000);
   for (int k = -20; k <= 20; ++k) check(0.125 + k * 1e-17);
-  EXPECT_LE(worst, 2.0 * ulp_of_one) << "at x = " << worst_at;
+  EXPECT_LE(worst.error, 2.0 * ulp_of_one) << "at x = " << worst.at;
   double c = 0.0, s = 0.0;
   pf::sinCosSmall(0.0, c, s);
   EXPECT_EQ(c, 1.0);

@@ -124,7 +124,6 @@ TEST(Contact, TurningBaseFaceMatchesTheReference) {
   raw["base_wall_share"] = {{0.3}, false};
   const pf::FingerParameters finger = pf::FingerParameters::fromRaw(raw);
   pf::FingerModel model(finger);
-  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   const std::vector<Disk> disks = {{0.02, 0.0035, 0.003}, {0.0388324, 0.00650505, 0.003},
                                    {0.0632674, 0.0211602, 0.006}, {0.075, 0.035, 0.01}};
@@ -139,7 +138,6 @@ TEST(Contact, TurningBaseFaceMatchesTheReference) {
 
 TEST(Contact, MatchesTheIndependentReferenceForDisksAcrossTheFinger) {
   pf::FingerModel model(kFinger);
-  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   // Disks on the strain-limited side that the curling finger reaches first with segment 3, 5, 6 and 7 (found by
   // placing them 0.1 mm from a segment's middle at 1.2e5 Pa), one it never reaches, and one wide one.
@@ -159,7 +157,6 @@ TEST(Contact, UnequalChambersTakeTheGeneralPathAndMatchTheReference) {
   pf::FingerParameters params = kFinger;
   params.chamber_gap_m.back() *= 1.2;
   pf::FingerModel model(params);
-  pf::FingerWorkspace ws(model);
   ASSERT_EQ(model.distinctChamberCount(), 2);
   const pf::ContactSolver solver(model);
   int touched = 0;
@@ -171,7 +168,6 @@ TEST(Contact, UnequalChambersTakeTheGeneralPathAndMatchTheReference) {
 
 TEST(Contact, NoJointPassesItsFreeAngleNothingPenetratesAndNoJointGoesBack) {
   pf::FingerModel model(kFinger);
-  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   for (const pf::Obstacle& obstacle :
        {pf::Obstacle::disk(0.07, 0.03, 0.004), pf::Obstacle::ellipse(0.07, 0.035, 0.008, 0.004, 0.3),
@@ -196,7 +192,6 @@ TEST(Contact, NoJointPassesItsFreeAngleNothingPenetratesAndNoJointGoesBack) {
 
 TEST(Contact, ARoundEllipseIsTheDisk) {
   pf::FingerModel model(kFinger);
-  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   const pf::ContactState disk = solver.solve(2e5, pf::Obstacle::disk(0.07, 0.03, 0.004));
   const pf::ContactState ellipse = solver.solve(2e5, pf::Obstacle::ellipse(0.07, 0.03, 0.004, 0.004, 1.0));
@@ -240,7 +235,6 @@ TEST(Contact, JustOutOfReachOfTheCurlingFingerIsNoTouch) {
 
 TEST(Contact, AnObstacleOverlappingTheStraightFingerIsReportedNotSolved) {
   pf::FingerModel model(kFinger);
-  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   const pf::ContactState s = solver.solve(1e5, pf::Obstacle::disk(0.04, 0.001, 0.002));
   EXPECT_EQ(s.status, pf::ContactState::Status::kOverlapsAtRest);
@@ -311,7 +305,6 @@ TEST(Contact, AGrazingTouchCounts) {
 // solver answers, bit for bit.
 TEST(Contact, TheTrackerAnswersTheSolverBitForBitInAnyOrder) {
   pf::FingerModel model(kFinger);
-  pf::FingerWorkspace ws(model);
   const pf::ContactSolver solver(model);
   for (const pf::Obstacle& obstacle : {pf::Obstacle::disk(0.0388324, 0.00650505, 0.003),
                                        pf::Obstacle::disk(0.075, 0.035, 0.01), pf::Obstacle::disk(0.0, 0.2, 0.01),

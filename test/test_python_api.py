@@ -158,3 +158,19 @@ def test_calibrate_reproduces_the_shipped_fit():
     assert fit["objective_value"] == worst
     with pytest.raises(ValueError, match="no_such_key"):
         pf.calibrate(keys=["no_such_key"])
+    assert fit["leave_one_out"] is None  # only when asked for
+
+
+def test_leave_one_out_is_the_tools_own():
+    # The core's leave-one-out, which finger_calibrate prints into config/finger.yaml's comments (3 decimals of a
+    # degree per joint): Python gets the same rows.
+    lines = open(pf.default_config()).read().split("\n")
+    start = next(i for i, line in enumerate(lines) if line.startswith("# leave-one-out error")) + 2
+    printed = [[float(x) for x in lines[i][1:].split()[1:8]] for i in range(start, start + 4)]
+    fit = pf.calibrate(leave_one_out=True)
+    got = [[math.degrees(m - d) for m, d in zip(r["model_joint_rad"], r["measured_joint_rad"])]
+           for r in fit["leave_one_out"]]
+    assert len(got) == 4
+    for want_row, got_row in zip(printed, got):
+        for want, value in zip(want_row, got_row):
+            assert abs(want - value) <= 0.0005 + 1e-12, (printed, got)

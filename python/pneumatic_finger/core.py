@@ -33,15 +33,17 @@ def default_data():
 
 
 def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=None, average_column="",
-              compare=None):
+              compare=None, leave_one_out=False):
     """finger_calibrate from Python: fits one to three keys to what a CSV measured (gauge_pa and any of
     joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m; None: the package's data). compare: "joints",
     "average", "joint_1", "tip_angle" or "tip_position" (None: what the file has, as the tool decides); keys None: the
     tool's default for it. Returns a dict: fitted (key -> value), compared, objective_value, residuals (per row:
-    gauge_pa, measured/model joints, joints 2..N average, joint 1, tip angle and tip position), model_evaluations."""
+    gauge_pa, measured/model joints, joints 2..N average, joint 1, tip angle and tip position), model_evaluations,
+    and with leave_one_out=True the same rows as each is predicted by a fit to the others (finger_calibrate's
+    leave-one-out table; None otherwise)."""
     return _calibrate(data if data is not None else default_data(), list(keys or []), objective,
                       config if config is not None else default_config(), dict(overrides or {}), average_column,
-                      compare or "")
+                      compare or "", bool(leave_one_out))
 
 
 class FingerModel(_FingerModel):

@@ -66,24 +66,68 @@ inline void stagesTwoThree(const UniformRobustSpec& s, T g, M rare, T& delta_out
   delta_out = delta;
 }
 
-/// One pack of pressures: lanes [0, valid) are gauge_pa[0..valid), written to rows row0.. of @p out.
+/// Writes lanes [0, valid) of a pack's answers to rows row0.. of @p out: NaN throughout where a pressure was refused
+/// or failed (nothing wrong is written as a number).
 template <class T>
-inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa, int valid, std::size_t row0,
-                              const BatchOutputs& out) {
-  constexpr int kLanes = lanesOf<T>();
+__attribute__((always_inline)) inline void writeRows(const UniformRobustSpec& s, int valid, std::size_t row0,
+                                                     const BatchOutputs& out, int* status, T stretch, T bulge_m, T rad,
+                                                     T cos_half, T sin_half, T joint1, T joint, T tip_angle,
+                                                     const T* px, const T* py) {
   const int n = s.chamber_count;
-  const T zero = splat<T>(0.0), one = splat<T>(1.0);
-
-  int status[kLanes];
-  T p;
-  for (int i = 0; i < kLanes; ++i) {
-    const double x = i < valid ? gauge_pa[i] : 0.0;
-    status[i] = !__builtin_isfinite(x) ? static_cast<int>(EvaluationStatus::kNotFinite)
-                : x < 0.0              ? static_cast<int>(EvaluationStatus::kVacuum)
-                                       : static_cast<int>(EvaluationStatus::kOk);
-    p[i] = status[i] == static_cast<int>(EvaluationStatus::kOk) ? x : 0.0;  // vacuum: the rest shape (P = 0)
+  const std::size_t un = static_cast<std::size_t>(n);
+  for (int i = 0; i < valid; ++i) {
+    const std::size_t row = row0 + static_cast<std::size_t>(i);
+    const bool finite = __builtin_isfinite(stretch[i]) && __builtin_isfinite(bulge_m[i]) &&
+                        __builtin_isfinite(rad[i]) && __builtin_isfinite(cos_half[i]) &&
+                        __builtin_isfinite(sin_half[i]);
+    if (status[i] != static_cast<int>(EvaluationStatus::kNotFinite) && !finite) {
+      status[i] = static_cast<int>(EvaluationStatus::kSolverFailure);
+    }
+    if (out.status) out.status[row] = status[i];
+    // Nothing wrong is written as a number: a refused or failed pressure is NaN throughout.
+    const bool answered = status[i] == static_cast<int>(EvaluationStatus::kOk) ||
+                          status[i] == static_cast<int>(EvaluationStatus::kVacuum);
+    const double nan = __builtin_nan("");
+    if (out.stretch) {
+      for (std::size_t k = 0; k < un; ++k) out.stretch[row * un + k] = answered ? stretch[i] : nan;
+    }
+    if (out.bulge_m) {
+      for (std::size_t k = 0; k < un; ++k) out.bulge_m[row * un + k] = answered ? bulge_m[i] : nan;
+    }
+    if (out.half_angle_rad) {
+      for (std::size_t k = 0; k < un; ++k) out.half_angle_rad[row * un + k] = answered ? rad[i] : nan;
+    }
+    if (out.joint_angle_rad) {
+      out.joint_angle_rad[row * un] = answered ? joint1[i] : nan;
+      for (std::size_t k = 1; k < un; ++k) out.joint_angle_rad[row * un + k] = answered ? joint[i] : nan;
+    }
+    if (out.backbone_m) {
+      double* o = out.backbone_m + row * 2 * (un + 2);
+      o[0] = answered ? 0.0 : nan;
+      o[1] = answered ? 0.0 : nan;
+      o[2] = answered ? s.base_segment_length_m : nan;
+      o[3] = answered ? 0.0 : nan;
+      for (std::size_t k = 0; k < un; ++k) {
+        o[2 * k + 4] = answered ? px[k][i] : nan;
+        o[2 * k + 5] = answered ? py[k][i] : nan;
+      }
+    }
+    if (out.tip_angle_rad) out.tip_angle_rad[row] = answered ? tip_angle[i] : nan;
   }
+}
 
+/// Stages 1-4 of one pack, as a wall's chain in the single evaluation.
+template <class T>
+struct WallPack {
+  T stretch, bulge_m, rad, cos_half, sin_half, tan_half;
+};
+
+/// Stages 1-4 for a pack of pressures @p p (the lanes refused are 0: the rest shape): the common branch for every
+/// lane, the rare lanes (energy group > 1e30, bulge beyond 1e6 wall heights, a zero gap) by the single evaluation.
+template <class T>
+__attribute__((always_inline)) inline WallPack<T> wallPack(const UniformRobustSpec& s, T p) {
+  constexpr int kLanes = lanesOf<T>();
+  const T zero = splat<T>(0.0), one = splat<T>(1.0);
   // Stage 1, energyGroup.
   const auto loaded = p > zero;
   T g = (p / s.atmospheric_pa) * ((2.0 * s.atmospheric_pa + p) / s.shear_modulus_pa);
@@ -145,6 +189,27 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
     tan_half[i] = wall.half.tan;
   }
 
+  return {stretch, bulge_m, rad, cos_half, sin_half, tan_half};
+}
+
+/// One pack of pressures: lanes [0, valid) are gauge_pa[0..valid), written to rows row0.. of @p out.
+template <class T>
+inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa, int valid, std::size_t row0,
+                              const BatchOutputs& out) {
+  constexpr int kLanes = lanesOf<T>();
+  const int n = s.chamber_count;
+  int status[kLanes];
+  T p;
+  for (int i = 0; i < kLanes; ++i) {
+    const double x = i < valid ? gauge_pa[i] : 0.0;
+    status[i] = !__builtin_isfinite(x) ? static_cast<int>(EvaluationStatus::kNotFinite)
+                : x < 0.0              ? static_cast<int>(EvaluationStatus::kVacuum)
+                                       : static_cast<int>(EvaluationStatus::kOk);
+    p[i] = status[i] == static_cast<int>(EvaluationStatus::kOk) ? x : 0.0;  // vacuum: the rest shape (P = 0)
+  }
+  const WallPack<T> w = wallPack(s, p);
+  const T stretch = w.stretch, bulge_m = w.bulge_m, rad = w.rad, cos_half = w.cos_half, sin_half = w.sin_half,
+          tan_half = w.tan_half;
   // Stages 5-6 (jointsAndBackboneUniform): q_1 = theta_0 + theta, q_n = 2 theta; the points from uniformPoints.
   const T joint = 2.0 * rad;
   T first_c, first_s;
@@ -153,47 +218,8 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
   uniformPoints<0>(first_c, first_s, cos_half, sin_half, n, s.base_segment_length_m, s.segment_length_m, dir_c, dir_s,
                 px, py, 1);
   const T tip_angle = joint1 + static_cast<double>(n - 1) * joint;
-
-  const std::size_t un = static_cast<std::size_t>(n);
-  for (int i = 0; i < valid; ++i) {
-    const std::size_t row = row0 + static_cast<std::size_t>(i);
-    const bool finite = __builtin_isfinite(stretch[i]) && __builtin_isfinite(bulge_m[i]) &&
-                        __builtin_isfinite(rad[i]) && __builtin_isfinite(cos_half[i]) &&
-                        __builtin_isfinite(sin_half[i]);
-    if (status[i] != static_cast<int>(EvaluationStatus::kNotFinite) && !finite) {
-      status[i] = static_cast<int>(EvaluationStatus::kSolverFailure);
-    }
-    if (out.status) out.status[row] = status[i];
-    // Nothing wrong is written as a number: a refused or failed pressure is NaN throughout.
-    const bool answered = status[i] == static_cast<int>(EvaluationStatus::kOk) ||
-                          status[i] == static_cast<int>(EvaluationStatus::kVacuum);
-    const double nan = __builtin_nan("");
-    if (out.stretch) {
-      for (std::size_t k = 0; k < un; ++k) out.stretch[row * un + k] = answered ? stretch[i] : nan;
-    }
-    if (out.bulge_m) {
-      for (std::size_t k = 0; k < un; ++k) out.bulge_m[row * un + k] = answered ? bulge_m[i] : nan;
-    }
-    if (out.half_angle_rad) {
-      for (std::size_t k = 0; k < un; ++k) out.half_angle_rad[row * un + k] = answered ? rad[i] : nan;
-    }
-    if (out.joint_angle_rad) {
-      out.joint_angle_rad[row * un] = answered ? joint1[i] : nan;
-      for (std::size_t k = 1; k < un; ++k) out.joint_angle_rad[row * un + k] = answered ? joint[i] : nan;
-    }
-    if (out.backbone_m) {
-      double* o = out.backbone_m + row * 2 * (un + 2);
-      o[0] = answered ? 0.0 : nan;
-      o[1] = answered ? 0.0 : nan;
-      o[2] = answered ? s.base_segment_length_m : nan;
-      o[3] = answered ? 0.0 : nan;
-      for (std::size_t k = 0; k < un; ++k) {
-        o[2 * k + 4] = answered ? px[k][i] : nan;
-        o[2 * k + 5] = answered ? py[k][i] : nan;
-      }
-    }
-    if (out.tip_angle_rad) out.tip_angle_rad[row] = answered ? tip_angle[i] : nan;
-  }
+  writeRows<T>(s, valid, row0, out, status, stretch, bulge_m, rad, cos_half, sin_half, joint1, joint, tip_angle, px,
+               py);
 }
 
 /// The whole batch in packs of T, the last pack partly filled.

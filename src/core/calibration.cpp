@@ -11,128 +11,6 @@
 
 namespace pneumatic_finger {
 
-double Measurement::averageOuterJoints() const {
-  if (!std::isnan(given_average_rad)) return given_average_rad;
-  double sum = 0.0;
-  for (std::size_t k = 1; k < joint_rad.size(); ++k) sum += joint_rad[k];
-  return sum / static_cast<double>(joint_rad.size() - 1);
-}
-
-namespace {
-
-std::vector<std::string> splitCsv(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream s(line);
-  std::string field;
-  while (std::getline(s, field, ',')) {
-    const auto a = field.find_first_not_of(" \t\r");
-    const auto b = field.find_last_not_of(" \t\r");
-    out.push_back(a == std::string::npos ? "" : field.substr(a, b - a + 1));
-  }
-  if (!line.empty() && line.back() == ',') out.push_back("");
-  return out;
-}
-
-std::string where(const std::string& origin, int line) { return origin + ":" + std::to_string(line) + ": "; }
-
-}  // namespace
-
-std::vector<Measurement> parseMeasurementsCsv(const std::string& text, const std::string& origin,
-                                              std::size_t min_rows, const std::string& average_column) {
-  std::stringstream in(text);
-  std::string line;
-  int number = 0;
-  std::vector<std::string> header;
-  int gauge_column = -1;
-  int average_index = -1;
-  std::vector<int> joint_columns;
-  int tip_angle_index = -1, tip_x_index = -1, tip_y_index = -1;
-  std::vector<Measurement> rows;
-  while (std::getline(in, line)) {
-    ++number;
-    const auto first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    const std::vector<std::string> fields = splitCsv(line);
-    if (header.empty()) {
-      header = fields;
-      for (std::size_t i = 0; i < header.size(); ++i) {
-        if (header[i] == "gauge_pa") gauge_column = static_cast<int>(i);
-        if (header[i] == "tip_angle_rad") tip_angle_index = static_cast<int>(i);
-        if (header[i] == "tip_x_m") tip_x_index = static_cast<int>(i);
-        if (header[i] == "tip_y_m") tip_y_index = static_cast<int>(i);
-        if (!average_column.empty() && header[i] == average_column) average_index = static_cast<int>(i);
-      }
-      if (!average_column.empty() && average_index < 0) {
-        throw ParameterError(where(origin, number) + "header has no '" + average_column + "' column");
-      }
-      if (gauge_column < 0) throw ParameterError(where(origin, number) + "header has no 'gauge_pa' column");
-      for (int k = 1;; ++k) {
-        const auto it = std::find(header.begin(), header.end(), "joint_" + std::to_string(k) + "_rad");
-        if (it == header.end()) break;
-        joint_columns.push_back(static_cast<int>(it - header.begin()));
-      }
-      if (joint_columns.size() == 1) {
-        throw ParameterError(where(origin, number) + "header has joint_1_rad alone; give joint_1_rad, joint_2_rad, "
-                             "... (at least two joints), or none");
-      }
-      if ((tip_x_index < 0) != (tip_y_index < 0)) {
-        throw ParameterError(where(origin, number) + "header has " + (tip_x_index < 0 ? "tip_y_m" : "tip_x_m") +
-                             " without " + (tip_x_index < 0 ? "tip_x_m" : "tip_y_m") + "; a tip position needs both");
-      }
-      if (joint_columns.empty() && tip_angle_index < 0 && tip_x_index < 0) {
-        throw ParameterError(where(origin, number) + "header has nothing measured: give joint_1_rad, joint_2_rad, ..."
-                             " (joint angles), tip_angle_rad, or tip_x_m,tip_y_m (the tip in the finger's frame)");
-      }
-      if (average_index >= 0 && joint_columns.empty()) {
-        throw ParameterError(where(origin, number) + "column '" + average_column +
-                             "' is an average of joints 2..N, but the header has no joint columns");
-      }
-      continue;
-    }
-    if (fields.size() != header.size()) {
-      throw ParameterError(where(origin, number) + "has " + std::to_string(fields.size()) + " fields, the header " +
-                           std::to_string(header.size()));
-    }
-    auto number_at = [&](int column) {
-      const std::string& f = fields[static_cast<std::size_t>(column)];
-      char* end = nullptr;
-      const double v = std::strtod(f.c_str(), &end);
-      if (f.empty() || *end != '\0' || !std::isfinite(v)) {
-        throw ParameterError(where(origin, number) + "'" + f + "' in column " +
-                             header[static_cast<std::size_t>(column)] + " is not a finite number");
-      }
-      return v;
-    };
-    Measurement m;
-    m.line = number;
-    m.gauge_pa = number_at(gauge_column);
-    if (m.gauge_pa < 0) throw ParameterError(where(origin, number) + "gauge_pa is negative");
-    for (int c : joint_columns) m.joint_rad.push_back(number_at(c));
-    if (average_index >= 0) m.given_average_rad = number_at(average_index);
-    if (tip_angle_index >= 0) m.tip_angle_rad = number_at(tip_angle_index);
-    if (tip_x_index >= 0) {
-      m.tip_x_m = number_at(tip_x_index);
-      m.tip_y_m = number_at(tip_y_index);
-    }
-    rows.push_back(m);
-  }
-  if (header.empty()) throw ParameterError(origin + ": no header line");
-  if (rows.size() < min_rows) {
-    throw ParameterError(where(origin, number) + "only " + std::to_string(rows.size()) + " data rows; at least " +
-                         std::to_string(min_rows) + " are needed");
-  }
-  return rows;
-}
-
-std::vector<Measurement> readMeasurementsCsv(const std::string& path, std::size_t min_rows,
-                                             const std::string& average_column) {
-  std::ifstream in(path);
-  if (!in) throw ParameterError("cannot read measurement file '" + path + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  return parseMeasurementsCsv(text.str(), path, min_rows, average_column);
-}
-
 CalibrationObjective parseObjective(const std::string& name) {
   if (name == "minimax") return CalibrationObjective::kMinimax;
   if (name == "least_squares") return CalibrationObjective::kLeastSquares;
@@ -316,9 +194,11 @@ double objectiveOver(const std::vector<Residual>& rows, CalibrationQuantity quan
 
 }  // namespace
 
-CalibrationResult calibrate(const FingerParameters& base, const std::vector<std::string>& keys,
-                            const std::vector<Measurement>& data, CalibrationObjective objective,
-                            CalibrationQuantity quantity) {
+namespace {
+
+// The keys are fittable, each once, and the data has what @p quantity compares. @throws ParameterError naming it.
+void checkKeysAndData(const FingerParameters& base, const std::vector<std::string>& keys,
+                      const std::vector<Measurement>& data, CalibrationQuantity quantity) {
   if (keys.empty() || keys.size() > 3) throw ParameterError("calibration fits one to three parameters");
   for (const auto& k : keys) {
     if (!isFittableKey(k)) {
@@ -330,13 +210,13 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
   }
   const bool uses_joints = quantity == CalibrationQuantity::kOuterAverage ||
                            quantity == CalibrationQuantity::kEveryJoint || quantity == CalibrationQuantity::kFirstJoint;
-  const std::string what = quantityName(quantity);
   for (const auto& m : data) {
     const bool has = uses_joints ? m.hasJoints()
                      : quantity == CalibrationQuantity::kTipAngle ? m.hasTipAngle() || m.hasJoints()
                                                                    : m.hasTipPosition() || m.hasJoints();
     if (!has) {
-      throw ParameterError("line " + std::to_string(m.line) + ": no measurement for '" + what + "' (columns " +
+      throw ParameterError("line " + std::to_string(m.line) + ": no measurement for '" + quantityName(quantity) +
+                           "' (columns " +
                            (uses_joints ? "joint_1_rad..joint_N_rad" : quantity == CalibrationQuantity::kTipAngle
                                                                          ? "tip_angle_rad or the joints"
                                                                          : "tip_x_m,tip_y_m or the joints") +
@@ -350,13 +230,16 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
   if (quantity == CalibrationQuantity::kOuterAverage && base.chamber_count < 2) {
     throw ParameterError("the average compares joints 2..N: chamber_count must be >= 2");
   }
-  // What the data cannot determine is refused, not fitted to an arbitrary value. The chamber keys shape theta(P),
-  // which each pressure measures once (in the model all of a row's joints 2..N are one number): they need more rows
-  // than keys. base_wall_share scales joint 1 alone, which every row measures besides.
+}
+
+// What the data cannot determine is refused, not fitted to an arbitrary value. The chamber keys shape theta(P), which
+// each pressure measures once (in the model all of a row's joints 2..N are one number): they need more rows than
+// keys. base_wall_share scales joint 1 alone, which every row measures besides.
+void refuseWhatTheDataCannotTell(const std::vector<std::string>& keys, std::size_t rows, CalibrationQuantity quantity) {
   const bool share = std::count(keys.begin(), keys.end(), "base_wall_share") > 0;
   const std::size_t chamber_keys = keys.size() - (share ? 1 : 0);
-  if (chamber_keys >= data.size()) {
-    throw ParameterError(std::to_string(chamber_keys) + " chamber keys from " + std::to_string(data.size()) +
+  if (chamber_keys >= rows) {
+    throw ParameterError(std::to_string(chamber_keys) + " chamber keys from " + std::to_string(rows) +
                          " pressures: a fit needs more pressures than the keys that shape the half angle");
   }
   if (share && quantity == CalibrationQuantity::kOuterAverage) {
@@ -373,33 +256,42 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
                          "the base face's share of the bending from the chambers' (measure the joints, or fit it "
                          "alone)");
   }
-  if (share && chamber_keys > 0 && quantity == CalibrationQuantity::kEveryJoint) {
-    std::vector<std::string> chamber;
-    for (const auto& k : keys) {
-      if (k != "base_wall_share") chamber.push_back(k);
-    }
-    const CalibrationResult outer = calibrate(base, chamber, data, objective, CalibrationQuantity::kOuterAverage);
-    CalibrationResult both = calibrate(outer.parameters, {"base_wall_share"}, data, objective,
-                                       CalibrationQuantity::kFirstJoint);
-    both.model_evaluations += outer.model_evaluations;
-    both.keys = keys;
-    both.values.clear();
-    for (const auto& k : keys) {
-      both.values.push_back(k == "base_wall_share" ? both.parameters.base_wall_share
-                                                   : outer.values[static_cast<std::size_t>(
-                                                         std::find(chamber.begin(), chamber.end(), k) - chamber.begin())]);
-    }
-    both.objective_value = objectiveOver(both.residuals, quantity, objective);  // over every joint, as for any fit
-    return both;
+}
+
+// Every joint with base_wall_share and chamber keys: each key to the joints it moves. The chamber keys to the joints
+// 2..N average, then base_wall_share to joint 1.
+CalibrationResult calibrateEveryJointInTwoSteps(const FingerParameters& base, const std::vector<std::string>& keys,
+                                                const std::vector<Measurement>& data, CalibrationObjective objective) {
+  std::vector<std::string> chamber;
+  for (const auto& k : keys) {
+    if (k != "base_wall_share") chamber.push_back(k);
   }
-  // mu goes innermost: every residual is monotone in mu, so for fixed other keys the largest |error| is
-  // quasi-convex in log mu and the inner search is exact.
+  const CalibrationResult outer = calibrate(base, chamber, data, objective, CalibrationQuantity::kOuterAverage);
+  CalibrationResult both = calibrate(outer.parameters, {"base_wall_share"}, data, objective,
+                                     CalibrationQuantity::kFirstJoint);
+  both.model_evaluations += outer.model_evaluations;
+  both.keys = keys;
+  both.values.clear();
+  for (const auto& k : keys) {
+    both.values.push_back(k == "base_wall_share" ? both.parameters.base_wall_share
+                                                 : outer.values[static_cast<std::size_t>(
+                                                       std::find(chamber.begin(), chamber.end(), k) - chamber.begin())]);
+  }
+  // Over every joint, as for any fit.
+  both.objective_value = objectiveOver(both.residuals, CalibrationQuantity::kEveryJoint, objective);
+  return both;
+}
+
+// The fit itself: nested one-dimensional searches, one per key. mu goes innermost: every residual is monotone in mu,
+// so for fixed other keys the largest |error| is quasi-convex in log mu and the inner search is exact.
+CalibrationResult searchKeys(const FingerParameters& base, const std::vector<std::string>& keys,
+                             const std::vector<Measurement>& data, CalibrationObjective objective,
+                             CalibrationQuantity quantity) {
   std::vector<SearchAxis> axes;
   for (const auto& k : keys) axes.push_back(axisFor(k, base));
   std::stable_sort(axes.begin(), axes.end(), [](const SearchAxis& a, const SearchAxis& b) {
     return (a.key != "shear_modulus_pa") && (b.key == "shear_modulus_pa");
   });
-
   CalibrationResult result;
   FingerParameters trial = base;
   auto objectiveAt = [&](const std::vector<double>& x) {
@@ -411,8 +303,8 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
     result.model_evaluations += static_cast<long>(data.size());
     return objectiveOver(residuals(trial, data), quantity, objective);
   };
-  // Nested searches: axis `level` is searched with the outer ones fixed in x[0..level-1], each trial point of it
-  // solved for the inner axes first. Returns the best objective value, leaving the best inner point in x.
+  // Axis `level` is searched with the outer ones fixed in x[0..level-1], each trial point of it solved for the inner
+  // axes first. Returns the best objective value, leaving the best inner point in x.
   std::vector<double> x(axes.size());
   std::function<double(std::size_t)> searchFrom = [&](std::size_t level) -> double {
     double best_here = 0.0;
@@ -426,7 +318,7 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
     if (level + 1 < axes.size()) best_here = searchFrom(level + 1);  // the inner axes at the chosen point
     return best_here;
   };
-  const double best = searchFrom(0);
+  result.objective_value = searchFrom(0);
   for (std::size_t i = 0; i < axes.size(); ++i) setKey(trial, axes[i].key, axes[i].toValue(x[i]));
   // Report in the caller's key order.
   result.parameters = trial;
@@ -436,9 +328,22 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
       if (axes[i].key == k) result.values.push_back(axes[i].toValue(x[i]));
     }
   }
-  result.objective_value = best;
   result.residuals = residuals(trial, data);
   return result;
+}
+
+}  // namespace
+
+CalibrationResult calibrate(const FingerParameters& base, const std::vector<std::string>& keys,
+                            const std::vector<Measurement>& data, CalibrationObjective objective,
+                            CalibrationQuantity quantity) {
+  checkKeysAndData(base, keys, data, quantity);
+  refuseWhatTheDataCannotTell(keys, data.size(), quantity);
+  const bool share = std::count(keys.begin(), keys.end(), "base_wall_share") > 0;
+  if (share && keys.size() > 1 && quantity == CalibrationQuantity::kEveryJoint) {
+    return calibrateEveryJointInTwoSteps(base, keys, data, objective);
+  }
+  return searchKeys(base, keys, data, objective, quantity);
 }
 
 TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out) {
@@ -461,6 +366,25 @@ TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vecto
     position.push_back(std::max(fit[i].tip_position_error_m(), leave_one_out[i].tip_position_error_m()));
   }
   return TipUncertainty::fromLists(gauge, angle, position, "calibration");
+}
+
+std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vector<std::string>& keys,
+                                  const std::vector<Measurement>& data, CalibrationObjective objective,
+                                  CalibrationQuantity quantity) {
+  const std::size_t chamber_keys =
+      keys.size() - static_cast<std::size_t>(std::count(keys.begin(), keys.end(), std::string("base_wall_share")));
+  if (data.size() < chamber_keys + 2) {
+    throw ParameterError(std::to_string(data.size()) + " rows; fitting " + std::to_string(chamber_keys) +
+                         " chamber keys with leave-one-out needs at least " + std::to_string(chamber_keys + 2));
+  }
+  std::vector<Residual> predicted;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    std::vector<Measurement> others = data;
+    others.erase(others.begin() + static_cast<long>(i));
+    const CalibrationResult without = calibrate(base, keys, others, objective, quantity);
+    predicted.push_back(residuals(without.parameters, {data[i]})[0]);
+  }
+  return predicted;
 }
 
 }  // namespace pneumatic_finger

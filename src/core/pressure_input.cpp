@@ -36,8 +36,23 @@ void PressureInputPolicy::startTimeline(double receive_s) {
 InputDecision PressureInputPolicy::onMessage(double absolute_pa, double stamp_s, double receive_s) {
   InputDecision d;
   ++counters_.received;
-  // The clock itself went back (a bag played with --clock --loop, a simulation reset): a new timeline, as
-  // robot_state_publisher treats it. Said once, by the caller, from time_jumped.
+  noteReceived(receive_s, d);
+  if (settings_.max_rate_hz > 0 && have_accepted_ && receive_s - last_accepted_s_ < 1.0 / settings_.max_rate_hz) {
+    ++counters_.throttled;
+    d.verdict = InputVerdict::kThrottled;
+    return d;
+  }
+  if (refuseValue(absolute_pa, receive_s, d)) return d;
+  bool replaced = false;
+  const double stamp = stampOf(stamp_s, receive_s, replaced, d);
+  if (refuseStamp(stamp, replaced, receive_s, d)) return d;
+  accept(absolute_pa, stamp, replaced, receive_s, d);
+  return d;
+}
+
+// The clock itself went back (a bag played with --clock --loop, a simulation reset): a new timeline, as
+// robot_state_publisher treats it. Said once, by the caller, from time_jumped. And the input rate's window.
+void PressureInputPolicy::noteReceived(double receive_s, InputDecision& d) {
   if (have_received_ && receive_s < last_received_s_) {
     startTimeline(receive_s);
     d.time_jumped = true;
@@ -48,65 +63,73 @@ InputDecision PressureInputPolicy::onMessage(double absolute_pa, double stamp_s,
   last_received_s_ = receive_s;
   recent_.push_back(receive_s);
   while (!recent_.empty() && receive_s - recent_.front() > 1.0) recent_.pop_front();
+}
 
-  if (settings_.max_rate_hz > 0 && have_accepted_ && receive_s - last_accepted_s_ < 1.0 / settings_.max_rate_hz) {
-    ++counters_.throttled;
-    d.verdict = InputVerdict::kThrottled;
-    return d;
-  }
-  // Bad values are refused; the last valid state stays (nothing is published).
+// Bad values are refused; the last valid state stays (nothing is published). true: refused.
+bool PressureInputPolicy::refuseValue(double absolute_pa, double receive_s, InputDecision& d) {
   if (!std::isfinite(absolute_pa)) {
     ++counters_.refused_not_finite;
     d.verdict = InputVerdict::kRefusedNotFinite;
     d.problem = "pressure " + formatExact(absolute_pa) + " Pa is not finite";
-    problem(d.problem, receive_s);
-    return d;
-  }
-  if (absolute_pa < 0) {
+  } else if (absolute_pa < 0) {
     ++counters_.refused_negative_absolute;
     d.verdict = InputVerdict::kRefusedNegativeAbsolute;
     d.problem = "absolute pressure " + formatExact(absolute_pa) + " Pa is negative";
-    problem(d.problem, receive_s);
-    return d;
+  } else {
+    return false;
   }
-  // Stamps. Zero (what `rostopic pub` and many drivers send): the receive time, counted, not a problem. Far from
-  // the receive time (a regulator whose clock is wrong): the receive time, and a problem worth reporting.
-  double stamp = stamp_s;
-  bool replaced = false;
-  if (stamp == 0.0) {
+  problem(d.problem, receive_s);
+  return true;
+}
+
+// The stamp to publish with. Zero (what `rostopic pub` and many drivers send): the receive time, counted, not a
+// problem. Far from the receive time (a regulator whose clock is wrong): the receive time, and a problem worth
+// reporting.
+double PressureInputPolicy::stampOf(double stamp_s, double receive_s, bool& replaced, InputDecision& d) {
+  replaced = false;
+  if (stamp_s == 0.0) {
     ++counters_.zero_stamps;
-    stamp = receive_s;
     replaced = true;
-  } else if (std::fabs(stamp - receive_s) > settings_.stamp_tolerance_s) {
+    return receive_s;
+  }
+  if (std::fabs(stamp_s - receive_s) > settings_.stamp_tolerance_s) {
     ++counters_.far_stamps;
-    d.problem = "stamp " + seconds(stamp) + " s replaced by the receive time";
+    d.problem = "stamp " + seconds(stamp_s) + " s replaced by the receive time";
     problem(d.problem, receive_s);
-    stamp = receive_s;
     replaced = true;
+    return receive_s;
   }
-  if (have_accepted_ && !(stamp > last_stamp_s_)) {
-    if (replaced) {
-      // Two messages within one tick of the clock (simulated time advances in steps): the same instant, which
-      // tf must not see twice. Not the sender's fault: dropped like a throttled one; the next tick takes the newest.
-      ++counters_.throttled;
-      d.verdict = InputVerdict::kThrottled;
-      return d;
-    }
-    if (last_stamp_s_ - stamp > settings_.time_jump_s) {
-      // The stamps went back by more than any reordering: a new timeline (a bag replayed without --clock).
-      startTimeline(receive_s);
-      d.time_jumped = true;
-      d.problem = "the stamps jumped back from " + seconds(last_stamp_s_) + " s to " + seconds(stamp) +
-                  " s: continuing on the new time";
-    } else {
-      // Within the same timeline: tf and the planners downstream must never see time run backwards.
-      ++counters_.refused_out_of_order;
-      d.verdict = InputVerdict::kRefusedOutOfOrder;
-      d.problem = "stamp " + seconds(stamp) + " s is not newer than the last published " + seconds(last_stamp_s_) + " s";
-      problem(d.problem, receive_s);
-      return d;
-    }
+  return stamp_s;
+}
+
+// A stamp not newer than the last published one. true: refused (or dropped as the same instant).
+bool PressureInputPolicy::refuseStamp(double stamp, bool replaced, double receive_s, InputDecision& d) {
+  if (!have_accepted_ || stamp > last_stamp_s_) return false;
+  if (replaced) {
+    // Two messages within one tick of the clock (simulated time advances in steps): the same instant, which tf must
+    // not see twice. Not the sender's fault: dropped like a throttled one; the next tick takes the newest.
+    ++counters_.throttled;
+    d.verdict = InputVerdict::kThrottled;
+    return true;
   }
+  if (last_stamp_s_ - stamp > settings_.time_jump_s) {
+    // The stamps went back by more than any reordering: a new timeline (a bag replayed without --clock).
+    startTimeline(receive_s);
+    d.time_jumped = true;
+    d.problem = "the stamps jumped back from " + seconds(last_stamp_s_) + " s to " + seconds(stamp) +
+                " s: continuing on the new time";
+    return false;
+  }
+  // Within the same timeline: tf and the planners downstream must never see time run backwards.
+  ++counters_.refused_out_of_order;
+  d.verdict = InputVerdict::kRefusedOutOfOrder;
+  d.problem = "stamp " + seconds(stamp) + " s is not newer than the last published " + seconds(last_stamp_s_) + " s";
+  problem(d.problem, receive_s);
+  return true;
+}
+
+// An accepted pressure: its gauge value, flagged above the validated range, clamped above the model's.
+void PressureInputPolicy::accept(double absolute_pa, double stamp, bool replaced, double receive_s, InputDecision& d) {
   ++counters_.accepted;
   have_accepted_ = true;
   last_accepted_s_ = receive_s;
@@ -128,7 +151,6 @@ InputDecision PressureInputPolicy::onMessage(double absolute_pa, double stamp_s,
     gauge = settings_.max_gauge_pa;
   }
   d.gauge_pa = gauge;
-  return d;
 }
 
 void PressureInputPolicy::noteVacuum(double gauge_pa, double now_s) {

@@ -185,9 +185,30 @@ class PyFingerModel {
 
 // The calibration of finger_calibrate: fit keys of a parameter file to measured joint angles, tip angles or tip
 // positions; the same defaults (what to compare, which keys) as the tool.
+// Residual rows as dicts (measured and model, per row).
+py::list residualRows(const std::vector<pf::Residual>& rows) {
+  py::list out;
+  for (const pf::Residual& r : rows) {
+    py::dict row;
+    row["gauge_pa"] = r.gauge_pa;
+    row["measured_avg_rad"] = r.measured_avg_rad;
+    row["model_avg_rad"] = r.model_avg_rad;
+    row["measured_joint1_rad"] = r.measured_joint1_rad;
+    row["model_joint1_rad"] = r.model_joint1_rad;
+    row["measured_joint_rad"] = r.measured_joint_rad;
+    row["model_joint_rad"] = r.model_joint_rad;
+    row["measured_tip_angle_rad"] = r.measured_tip_angle_rad;
+    row["model_tip_angle_rad"] = r.model_tip_angle_rad;
+    row["measured_tip_m"] = py::make_tuple(r.measured_tip_x_m, r.measured_tip_y_m);
+    row["model_tip_m"] = py::make_tuple(r.model_tip_x_m, r.model_tip_y_m);
+    out.append(row);
+  }
+  return out;
+}
+
 py::dict calibrate(const std::string& data, const std::vector<std::string>& keys, const std::string& objective,
                    const std::string& config, const py::dict& overrides, const std::string& average_column,
-                   const std::string& compare) {
+                   const std::string& compare, bool with_leave_one_out) {
   const pf::FingerParameters base = pf::FingerParameters::fromRaw(loadRaw(config, overrides));
   const pf::CalibrationObjective goal = pf::parseObjective(objective);
   const std::vector<pf::Measurement> rows = pf::readMeasurementsCsv(data, 1, average_column);
@@ -202,27 +223,22 @@ py::dict calibrate(const std::string& data, const std::vector<std::string>& keys
   }
   py::dict fitted;
   for (std::size_t i = 0; i < fit.keys.size(); ++i) fitted[py::str(fit.keys[i])] = fit.values[i];
-  py::list residuals;
-  for (const pf::Residual& r : fit.residuals) {
-    py::dict row;
-    row["gauge_pa"] = r.gauge_pa;
-    row["measured_avg_rad"] = r.measured_avg_rad;
-    row["model_avg_rad"] = r.model_avg_rad;
-    row["measured_joint1_rad"] = r.measured_joint1_rad;
-    row["model_joint1_rad"] = r.model_joint1_rad;
-    row["measured_joint_rad"] = r.measured_joint_rad;
-    row["model_joint_rad"] = r.model_joint_rad;
-    row["measured_tip_angle_rad"] = r.measured_tip_angle_rad;
-    row["model_tip_angle_rad"] = r.model_tip_angle_rad;
-    row["measured_tip_m"] = py::make_tuple(r.measured_tip_x_m, r.measured_tip_y_m);
-    row["model_tip_m"] = py::make_tuple(r.model_tip_x_m, r.model_tip_y_m);
-    residuals.append(row);
+  py::list residuals = residualRows(fit.residuals);
+  py::object leave_one_out = py::none();
+  if (with_leave_one_out) {
+    std::vector<pf::Residual> loo;
+    {
+      py::gil_scoped_release release;
+      loo = pf::leaveOneOut(base, fit_keys, rows, goal, quantity);
+    }
+    leave_one_out = residualRows(loo);
   }
   py::dict d;
   d["fitted"] = fitted;
   d["compared"] = pf::quantityName(quantity);
   d["objective_value"] = fit.objective_value;
   d["residuals"] = residuals;
+  d["leave_one_out"] = leave_one_out;
   d["model_evaluations"] = fit.model_evaluations;
   return d;
 }
@@ -241,8 +257,9 @@ PYBIND11_MODULE(_core, m) {
   });
   m.def("calibrate", &calibrate, py::arg("data"), py::arg("keys"), py::arg("objective"), py::arg("config"),
         py::arg("overrides") = py::dict(), py::arg("average_column") = "", py::arg("compare") = "",
+        py::arg("leave_one_out") = false,
         "Fits keys of a parameter file to measured joint angles, tip angles or tip positions, as finger_calibrate "
-        "does");
+        "does; with leave_one_out, also each row as a fit to the others predicts it");
   py::class_<PyFingerModel>(m, "FingerModel")
       .def(py::init<const std::string&, const py::dict&, const std::string&>(), py::arg("config"),
            py::arg("overrides") = py::dict(), py::arg("solver") = "robust")

@@ -1,6 +1,7 @@
 // finger_node's report on /diagnostics (task "pressure input"): the input rules' verdict and counters, the model's
 // work, the tip's error bar and the grasp object.
 #include <string>
+#include <utility>
 
 #include "pneumatic_finger/ros/finger_node.hpp"
 
@@ -14,18 +15,22 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("seconds since last pressure", r.age_s);
   status.add("last gauge pressure (Pa)", input_.lastGaugePa());
   status.add("validated range (Pa gauge)", "0.." + formatExact(settings_.input.validated_max_gauge_pa));
-  status.add("messages received", c.received);
-  status.add("refused: not finite", c.refused_not_finite);
-  status.add("refused: negative absolute pressure", c.refused_negative_absolute);
-  status.add("refused: stamp not newer than the last", c.refused_out_of_order);
-  status.add("zero stamps (receive time used)", c.zero_stamps);
-  status.add("stamps replaced by the receive time", c.far_stamps);
-  status.add("time jumps (new timeline)", c.time_jumps);
-  status.add("vacuum (straight finger published)", c.vacuum);
-  status.add("clamped to max_gauge_pa", c.clamped);
-  status.add("above the validated range", c.out_of_range);
-  status.add("solver failures (last state kept)", c.solver_failures);
-  status.add("skipped by max_rate_hz or same instant", c.throttled);
+  // The input rules' counters, each with the name diagnostics give it.
+  const std::pair<const char*, long> counted[] = {
+      {"messages received", c.received},
+      {"refused: not finite", c.refused_not_finite},
+      {"refused: negative absolute pressure", c.refused_negative_absolute},
+      {"refused: stamp not newer than the last", c.refused_out_of_order},
+      {"zero stamps (receive time used)", c.zero_stamps},
+      {"stamps replaced by the receive time", c.far_stamps},
+      {"time jumps (new timeline)", c.time_jumps},
+      {"vacuum (straight finger published)", c.vacuum},
+      {"clamped to max_gauge_pa", c.clamped},
+      {"above the validated range", c.out_of_range},
+      {"solver failures (last state kept)", c.solver_failures},
+      {"skipped by max_rate_hz or same instant", c.throttled},
+  };
+  for (const auto& [name, count] : counted) status.add(name, count);
   status.add("model evaluations (unchanged pressures reuse the last)", workspace_->computationCount());
   if (!input_.lastProblem().empty()) status.add("last problem", input_.lastProblem());
   status.add("tip error bar", tip_uncertainty_.empty()

@@ -34,12 +34,35 @@ void FingerNode::buildModel(ros::NodeHandle& nh) {
 FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
     : settings_(readNodeSettings(private_nh)), input_(settings_.input), nh_(nh) {
   buildModel(nh);
+  if (settings_.publish_tf) publishStaticFrames();
+  sizeMessages();
+  setUpTipMarker(nh);
+  inverse_srv_ = nh.advertiseService("pressure_for_tip_angle", &FingerNode::onInverse, this);
+  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<FingerNodeConfig>>(private_nh);
+  reconfigure_->setCallback([this](FingerNodeConfig& config, uint32_t level) { onReconfigure(config, level); });
+  diagnostics_.setHardwareID(settings_.urdf.prefix + "pneumatic_finger");
+  diagnostics_.add("pressure input", this, &FingerNode::diagnose);
+  // Wall time, and force_update: under simulated time that jumps back (a looping bag, a reset) a ROS-time timer,
+  // and the updater's own rate limit, would both wait until the clock caught up again, and diagnostics would stop.
+  diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0),
+                                          [this](const ros::WallTimerEvent&) { diagnostics_.force_update(); });
+  object_sub_ = nh.subscribe(settings_.grasp_object_topic, 1, &FingerNode::onGraspObject, this);
+  // Queue of 1 when throttled (only the newest pressure matters); otherwise keep up with bursts.
+  pressure_sub_ = nh.subscribe(settings_.pressure_topic, settings_.input.max_rate_hz > 0 ? 1 : 100, &FingerNode::onPressure,
+                               this, ros::TransportHints().tcpNoDelay());
   const int n = settings_.finger.chamber_count;
   const std::string& prefix = settings_.urdf.prefix;
+  ROS_INFO("finger_node: %d chambers (%d distinct), solver %s, frames %s..%s and %s on %s; URDF in '%s'", n,
+           model_->distinctChamberCount(), solverName(settings_.solver), segmentLinkName(prefix, 0).c_str(),
+           segmentLinkName(prefix, n).c_str(), tipLinkName(prefix).c_str(), settings_.urdf.parent_frame.c_str(),
+           nh.resolveName(settings_.description_param).c_str());
+}
 
-  // Frames, with publish_tf (the default): this node is their only publisher. The two fixed ones (mount, tip) go out
-  // once, latched on /tf_static; the N joints go on /tf with each pressure. Without publish_tf, a
-  // robot_state_publisher on the (composed) description publishes all of them from joint_states.
+// With publish_tf (the default) this node is the frames' only publisher. The two fixed ones (mount, tip) go out once,
+// latched on /tf_static; the N joints go on /tf with each pressure. Without publish_tf, a robot_state_publisher on the
+// (composed) description publishes all of them from joint_states, and the node does not even advertise /tf.
+void FingerNode::publishStaticFrames() {
+  const std::string& prefix = settings_.urdf.prefix;
   const ros::Time now = ros::Time::now();
   geometry_msgs::TransformStamped mount;
   mount.header.stamp = now;
@@ -56,20 +79,23 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
   mount.transform.rotation.w = q.w();
   geometry_msgs::TransformStamped tip;
   tip.header.stamp = now;
-  tip.header.frame_id = segmentLinkName(prefix, n);
+  tip.header.frame_id = segmentLinkName(prefix, settings_.finger.chamber_count);
   tip.child_frame_id = tipLinkName(prefix);
   tip.transform.translation.x = settings_.finger.segment_length_m.back();
   tip.transform.rotation.w = 1.0;
-  if (settings_.publish_tf) {
-    tf_ = std::make_unique<tf2_ros::TransformBroadcaster>();
-    static_tf_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
-    static_tf_->sendTransform(std::vector<geometry_msgs::TransformStamped>{mount, tip});
-  }
+  tf_ = std::make_unique<tf2_ros::TransformBroadcaster>();
+  static_tf_ = std::make_unique<tf2_ros::StaticTransformBroadcaster>();
+  static_tf_->sendTransform(std::vector<geometry_msgs::TransformStamped>{mount, tip});
+}
 
-  // Messages sized once; the per-pressure cycle only writes numbers into them.
-  joint_states_.name.resize(static_cast<std::size_t>(n));
-  joint_states_.position.resize(static_cast<std::size_t>(n));
-  transforms_.resize(static_cast<std::size_t>(n));
+// Messages sized once; the per-pressure cycle only writes numbers into them.
+void FingerNode::sizeMessages() {
+  const int n = settings_.finger.chamber_count;
+  const auto un = static_cast<std::size_t>(n);
+  const std::string& prefix = settings_.urdf.prefix;
+  joint_states_.name.resize(un);
+  joint_states_.position.resize(un);
+  transforms_.resize(un);
   for (int i = 1; i <= n; ++i) {
     const auto k = static_cast<std::size_t>(i - 1);
     joint_states_.name[k] = jointName(prefix, i);
@@ -79,19 +105,23 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
         i == 1 ? settings_.finger.base_segment_length_m : settings_.finger.segment_length_m[k - 1];
   }
   finger_state_.header.frame_id = segmentLinkName(prefix, 0);
-  finger_state_.stretch.resize(static_cast<std::size_t>(n));
-  finger_state_.bulge_m.resize(static_cast<std::size_t>(n));
-  finger_state_.half_angle_rad.resize(static_cast<std::size_t>(n));
-  finger_state_.joint_angle_rad.resize(static_cast<std::size_t>(n));
-  finger_state_.backbone.resize(static_cast<std::size_t>(n + 2));
-  finger_state_.held_by_contact.resize(static_cast<std::size_t>(n));
+  for (auto* v : {&finger_state_.stretch, &finger_state_.bulge_m, &finger_state_.half_angle_rad,
+                  &finger_state_.joint_angle_rad}) {
+    v->resize(un);
+  }
+  finger_state_.backbone.resize(un + 2);
+  finger_state_.held_by_contact.resize(un);
   finger_state_.first_touch_gauge_pa = NAN;
   finger_state_.touch_gauge_pa = NAN;
+  joint_states_pub_ = nh_.advertise<sensor_msgs::JointState>(settings_.joint_states_topic, 10);
+  finger_state_pub_ = nh_.advertise<FingerModelState>(settings_.finger_state_topic, 10);
+}
 
-  joint_states_pub_ = nh.advertise<sensor_msgs::JointState>(settings_.joint_states_topic, 10);
-  finger_state_pub_ = nh.advertise<FingerModelState>(settings_.finger_state_topic, 10);
+// The tip's error bar as a sphere riding on the tip frame, latched: rviz, started later, still gets the one the finger
+// has now.
+void FingerNode::setUpTipMarker(ros::NodeHandle& nh) {
+  const std::string& prefix = settings_.urdf.prefix;
   tip_uncertainty_ = settings_.tip_uncertainty;
-  // Latched: rviz, started later, still gets the sphere the finger has now.
   tip_marker_pub_ = nh.advertise<visualization_msgs::Marker>("tip_uncertainty_marker", 1, true);
   tip_marker_.header.frame_id = tipLinkName(prefix);
   tip_marker_.header.stamp = ros::Time(0);  // "latest"
@@ -103,23 +133,6 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
     ROS_INFO("finger_node: the parameters have no tip_uncertainty (finger_calibrate writes it): the tip's error bar "
              "is published as NaN");
   }
-  inverse_srv_ = nh.advertiseService("pressure_for_tip_angle", &FingerNode::onInverse, this);
-  reconfigure_ = std::make_unique<dynamic_reconfigure::Server<FingerNodeConfig>>(private_nh);
-  reconfigure_->setCallback([this](FingerNodeConfig& config, uint32_t level) { onReconfigure(config, level); });
-  diagnostics_.setHardwareID(prefix + "pneumatic_finger");
-  diagnostics_.add("pressure input", this, &FingerNode::diagnose);
-  // Wall time, and force_update: under simulated time that jumps back (a looping bag, a reset) a ROS-time timer,
-  // and the updater's own rate limit, would both wait until the clock caught up again, and diagnostics would stop.
-  diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0),
-                                          [this](const ros::WallTimerEvent&) { diagnostics_.force_update(); });
-  object_sub_ = nh.subscribe(settings_.grasp_object_topic, 1, &FingerNode::onGraspObject, this);
-  // Queue of 1 when throttled (only the newest pressure matters); otherwise keep up with bursts.
-  pressure_sub_ = nh.subscribe(settings_.pressure_topic, settings_.input.max_rate_hz > 0 ? 1 : 100, &FingerNode::onPressure,
-                               this, ros::TransportHints().tcpNoDelay());
-  ROS_INFO("finger_node: %d chambers (%d distinct), solver %s, frames %s..%s and %s on %s; URDF in '%s'", n,
-           model_->distinctChamberCount(), solverName(settings_.solver), segmentLinkName(prefix, 0).c_str(),
-           segmentLinkName(prefix, n).c_str(), tipLinkName(prefix).c_str(), settings_.urdf.parent_frame.c_str(),
-           nh.resolveName(settings_.description_param).c_str());
 }
 
 void FingerNode::onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg) {

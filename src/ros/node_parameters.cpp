@@ -205,9 +205,11 @@ double checkNodeNumber(const std::string& key, double x) { return checkNumber(ke
 
 const std::vector<NodeParameterSpec>& nodeParameterSpecs() { return specs(); }
 
-NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
-  NodeSettings s;
-  // The actuator: the same keys, ranges and messages as the YAML loader (FingerParameters::fromRaw).
+namespace {
+
+// The actuator: the same keys, ranges and messages as the YAML loader (FingerParameters::fromRaw). Returns the keys
+// given, which a gripper file then must not repeat.
+RawParameterMap readActuatorKeys(const ros::NodeHandle& nh) {
   RawParameterMap raw;
   for (const ParameterSpec& spec : parameterSpecs()) {
     XmlRpc::XmlRpcValue v;
@@ -225,8 +227,11 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
     }
     raw[spec.key] = value;
   }
-  s.finger = FingerParameters::fromRaw(raw);
+  return raw;
+}
 
+// The finger's names and mount: the prefix, the parent frame and the mount pose.
+void readMount(const ros::NodeHandle& nh, NodeSettings& s) {
   s.urdf.prefix = readString(nh, "frame_prefix");
   s.urdf.parent_frame = readString(nh, "parent_frame");
   std::string why;
@@ -238,50 +243,52 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   }
   s.urdf.mount_xyz_m = readTriple(nh, "mount_xyz_m");
   s.urdf.mount_rpy_rad = readTriple(nh, "mount_rpy_rad");
-  s.gripper_file = readString(nh, "gripper_file");
-  if (!s.gripper_file.empty()) {
-    // The finger as the gripper file defines it (one definition for the composed URDF and the node): its mount and
-    // its actuator. Giving either here as well would be a second definition, so it is refused.
-    for (const char* key : {"parent_frame", "mount_xyz_m", "mount_rpy_rad"}) {
-      if (nh.hasParam(key)) throw ParameterError(std::string("parameter '") + key + "' is set, but gripper_file defines it");
-    }
-    if (!raw.empty()) {
-      throw ParameterError("parameter '" + raw.begin()->first + "' is set, but gripper_file defines the actuator");
-    }
-    bool found = false;
-    for (const GripperFinger& f : loadGripperFile(s.gripper_file)) {
-      if (f.mount.prefix != s.urdf.prefix) continue;
-      s.urdf = f.mount;  // max_gauge_pa is read below, as for any finger
-      s.finger = f.parameters;
-      s.tip_uncertainty = f.tip_uncertainty;
-      found = true;
-    }
-    if (!found) {
-      throw ParameterError("gripper file '" + s.gripper_file + "' has no finger with prefix '" + s.urdf.prefix + "'");
-    }
+}
+
+// The finger as the gripper file defines it (one definition for the composed URDF and the node): its mount and its
+// actuator. Giving either as a parameter as well would be a second definition, so it is refused.
+void readGripperFile(const ros::NodeHandle& nh, const RawParameterMap& actuator_keys, NodeSettings& s) {
+  for (const char* key : {"parent_frame", "mount_xyz_m", "mount_rpy_rad"}) {
+    if (nh.hasParam(key)) throw ParameterError(std::string("parameter '") + key + "' is set, but gripper_file defines it");
   }
-  // The calibration's error bar: the parameter file's tip_uncertainty mapping, which `rosparam load` puts under
-  // ~tip_uncertainty/ (or the gripper file's finger's parameter file). Checked like the file: one rule, one message.
-  {
-    const std::string base = std::string(kTipUncertaintyKey) + "/";
-    std::vector<double> lists[3];
-    const char* keys[3] = {"gauge_pa", "tip_angle_rad", "tip_position_m"};
-    bool any = false;
-    for (int i = 0; i < 3; ++i) {
-      if (!nh.hasParam(base + keys[i])) continue;
-      any = true;
-      XmlRpc::XmlRpcValue v;
-      nh.getParam(base + keys[i], v);
-      if (v.getType() != XmlRpc::XmlRpcValue::TypeArray) {
-        throw ParameterError("parameter '" + base + keys[i] + "' = " + describe(v) + " is not a list of numbers");
-      }
-      lists[i] = numbersOf(v, base + keys[i]);
-    }
-    if (any && !s.gripper_file.empty()) {
-      throw ParameterError("parameter '" + base + "*' is set, but gripper_file defines the actuator (and its error bar)");
-    }
-    if (any) s.tip_uncertainty = TipUncertainty::fromLists(lists[0], lists[1], lists[2], "rosparam");
+  if (!actuator_keys.empty()) {
+    throw ParameterError("parameter '" + actuator_keys.begin()->first + "' is set, but gripper_file defines the actuator");
   }
+  for (const GripperFinger& f : loadGripperFile(s.gripper_file)) {
+    if (f.mount.prefix != s.urdf.prefix) continue;
+    s.urdf = f.mount;  // max_gauge_pa is read later, as for any finger
+    s.finger = f.parameters;
+    s.tip_uncertainty = f.tip_uncertainty;
+    return;
+  }
+  throw ParameterError("gripper file '" + s.gripper_file + "' has no finger with prefix '" + s.urdf.prefix + "'");
+}
+
+// The calibration's error bar: the parameter file's tip_uncertainty mapping, which `rosparam load` puts under
+// ~tip_uncertainty/ (or the gripper file's finger's parameter file). Checked like the file: one rule, one message.
+void readTipUncertainty(const ros::NodeHandle& nh, NodeSettings& s) {
+  const std::string base = std::string(kTipUncertaintyKey) + "/";
+  std::vector<double> lists[3];
+  const char* keys[3] = {"gauge_pa", "tip_angle_rad", "tip_position_m"};
+  bool any = false;
+  for (int i = 0; i < 3; ++i) {
+    if (!nh.hasParam(base + keys[i])) continue;
+    any = true;
+    XmlRpc::XmlRpcValue v;
+    nh.getParam(base + keys[i], v);
+    if (v.getType() != XmlRpc::XmlRpcValue::TypeArray) {
+      throw ParameterError("parameter '" + base + keys[i] + "' = " + describe(v) + " is not a list of numbers");
+    }
+    lists[i] = numbersOf(v, base + keys[i]);
+  }
+  if (any && !s.gripper_file.empty()) {
+    throw ParameterError("parameter '" + base + "*' is set, but gripper_file defines the actuator (and its error bar)");
+  }
+  if (any) s.tip_uncertainty = TipUncertainty::fromLists(lists[0], lists[1], lists[2], "rosparam");
+}
+
+// The solver, the frame authority, the input rules' settings and the pressure range.
+void readModelAndInput(const ros::NodeHandle& nh, NodeSettings& s) {
   try {
     s.solver = parseSolverName(readString(nh, "solver"));
   } catch (const ParameterError& e) {
@@ -296,26 +303,30 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   s.input.max_gauge_pa = s.urdf.max_gauge_pa;
   s.input.atmospheric_pa = s.finger.atmospheric_pressure_pa;
   s.input.validated_max_gauge_pa = readDouble(nh, "validated_max_gauge_pa", s.urdf.max_gauge_pa);
-  s.description_param = readString(nh, "description_param");
-  s.pressure_topic = readString(nh, "pressure_topic");
-  s.joint_states_topic = readString(nh, "joint_states_topic");
-  s.finger_state_topic = readString(nh, "finger_state_topic");
-  s.grasp_object_topic = readString(nh, "grasp_object_topic");
   s.object_rate_hz = readDouble(nh, "object_rate_hz");
-  checkName("grasp_object_topic", s.grasp_object_topic);
-  checkName("description_param", s.description_param);
-  checkName("pressure_topic", s.pressure_topic);
-  checkName("joint_states_topic", s.joint_states_topic);
-  checkName("finger_state_topic", s.finger_state_topic);
-  // Every key the node was given must be one it knows: a typo is an error, not a silent default.
+}
+
+// The topics and the description parameter, each a valid ROS name.
+void readNames(const ros::NodeHandle& nh, NodeSettings& s) {
+  const std::pair<const char*, std::string*> names[] = {
+      {"description_param", &s.description_param}, {"pressure_topic", &s.pressure_topic},
+      {"joint_states_topic", &s.joint_states_topic}, {"finger_state_topic", &s.finger_state_topic},
+      {"grasp_object_topic", &s.grasp_object_topic}};
+  for (const auto& [key, value] : names) *value = readString(nh, key);
+  for (const auto& [key, value] : names) checkName(key, *value);
+}
+
+// Every key the node was given must be one it knows: a typo is an error, not a silent default.
+void refuseUnknownKeys(const ros::NodeHandle& nh) {
   std::vector<std::string> names;
   nh.getParamNames(names);
   const std::string ns = nh.getNamespace() + "/";
+  const std::string tip = std::string(kTipUncertaintyKey) + "/";
   for (const std::string& full : names) {
     if (full.compare(0, ns.size(), ns) != 0) continue;
     const std::string key = full.substr(ns.size());
-    if (key.compare(0, std::strlen(kTipUncertaintyKey) + 1, std::string(kTipUncertaintyKey) + "/") == 0) {
-      const std::string sub = key.substr(std::strlen(kTipUncertaintyKey) + 1);
+    if (key.compare(0, tip.size(), tip) == 0) {
+      const std::string sub = key.substr(tip.size());
       if (sub != "gauge_pa" && sub != "tip_angle_rad" && sub != "tip_position_m") {
         throw ParameterError("unknown parameter '" + key + "' (in " + ns + "; known: " + kTipUncertaintyKey +
                              "/gauge_pa, tip_angle_rad, tip_position_m)");
@@ -327,6 +338,21 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
     for (const auto& sp : specs()) known = known || key == sp.key;
     if (!known) throw ParameterError("unknown parameter '" + key + "' (in " + ns + ")");
   }
+}
+
+}  // namespace
+
+NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
+  NodeSettings s;
+  const RawParameterMap actuator_keys = readActuatorKeys(nh);
+  s.finger = FingerParameters::fromRaw(actuator_keys);
+  readMount(nh, s);
+  s.gripper_file = readString(nh, "gripper_file");
+  if (!s.gripper_file.empty()) readGripperFile(nh, actuator_keys, s);
+  readTipUncertainty(nh, s);
+  readModelAndInput(nh, s);
+  readNames(nh, s);
+  refuseUnknownKeys(nh);
   return s;
 }
 

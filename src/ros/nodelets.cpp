@@ -10,28 +10,25 @@
 
 namespace pneumatic_finger {
 
-class FingerNodelet : public nodelet::Nodelet {
+constexpr char kFingerNodeName[] = "finger_node";
+constexpr char kPressureRegulatorName[] = "pressure_regulator";
+
+/// A node class (built from the public and private handles) as a nodelet. A nodelet cannot exit its manager: a bad
+/// parameter is said, with the node's name, and the nodelet does nothing (nothing wrong is published).
+template <class Node, const char* kName>
+class NodeNodelet : public nodelet::Nodelet {
   void onInit() override {
     try {
-      node_ = std::make_unique<FingerNode>(getNodeHandle(), getPrivateNodeHandle());
+      node_ = std::make_unique<Node>(getNodeHandle(), getPrivateNodeHandle());
     } catch (const ParameterError& e) {
-      // A nodelet cannot exit its manager: it says why and does nothing (nothing wrong is published).
-      NODELET_FATAL("finger_node: %s", e.what());
+      NODELET_FATAL("%s: %s", kName, e.what());
     }
   }
-  std::unique_ptr<FingerNode> node_;
+  std::unique_ptr<Node> node_;
 };
 
-class PressureRegulatorNodelet : public nodelet::Nodelet {
-  void onInit() override {
-    try {
-      regulator_ = std::make_unique<PressureRegulator>(getNodeHandle(), getPrivateNodeHandle());
-    } catch (const ParameterError& e) {
-      NODELET_FATAL("pressure_regulator: %s", e.what());
-    }
-  }
-  std::unique_ptr<PressureRegulator> regulator_;
-};
+using FingerNodelet = NodeNodelet<FingerNode, kFingerNodeName>;
+using PressureRegulatorNodelet = NodeNodelet<PressureRegulator, kPressureRegulatorName>;
 
 }  // namespace pneumatic_finger
 

@@ -89,6 +89,37 @@ std::string largest(const std::array<double, 4>& w, int n, bool paper) {
   return s;
 }
 
+// The report: what was fitted to what, the error of the fit and of leave-one-out per row, and the error bar.
+std::string report(const std::string& data_name, std::size_t rows, pf::CalibrationQuantity quantity,
+                   const std::string& average_column, const std::string& objective_name,
+                   const pf::CalibrationResult& fit, const std::vector<pf::Residual>& loo, const pf::TipUncertainty& bar,
+                   int n) {
+  std::ostringstream table;
+  table << "# data: " << data_name << " ("
+        << rows << " rows)\n# compared: " << pf::quantityName(quantity)
+        << (quantity == pf::CalibrationQuantity::kOuterAverage
+                ? std::string(" (joints 2..") + std::to_string(n) + ", " +
+                      (average_column.empty() ? "mean of the measured joints" : "column " + average_column) + ")"
+                : "")
+        << "; objective: " << objective_name << "; error = model - measured\n# fitted:";
+  for (std::size_t i = 0; i < fit.keys.size(); ++i) table << " " << fit.keys[i] << " = " << pf::formatExact(fit.values[i]);
+  std::array<double, 4> worst{}, worst_loo{};
+  const std::string fit_table = errorTable(fit.residuals, n, worst);
+  const std::string loo_table = errorTable(loo, n, worst_loo);
+  table << "\n#\n# error of the fit (deg; tip_mm in mm)\n" << fit_table
+        << "# leave-one-out error: each row predicted by a fit to the others\n" << loo_table
+        << "#\n# largest |error|:" << largest(worst, n, true) << "\n# largest leave-one-out |error|:"
+        << largest(worst_loo, n, false) << "\n";
+  table << "# error bar written to the parameter file (tip_uncertainty: the larger of fit and leave-one-out):";
+  for (std::size_t i = 0; i < bar.gauge_pa.size(); ++i) {
+    table << " " << fmt("%.3f", bar.gauge_pa[i] / pf::kPaPerKgfPerCm2) << " kg/cm2 " << fmt("%.2f", bar.tip_angle_rad[i] * kDeg)
+          << " deg";
+    if (!std::isnan(bar.tip_position_m[i])) table << " " << fmt("%.1f", bar.tip_position_m[i] * 1e3) << " mm";
+    table << (i + 1 < bar.gauge_pa.size() ? ";" : "\n");
+  }
+  return table.str();
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -121,55 +152,24 @@ int main(int argc, char** argv) {
                                              : !average_column.empty() ? pf::CalibrationQuantity::kOuterAverage
                                                                        : pf::defaultQuantity(data);
     const std::vector<std::string> keys = fit_keys.empty() ? pf::defaultFitKeys(quantity) : pf::splitFields(fit_keys);
-    // Leave-one-out fits the keys to one row fewer, so the data needs two rows more than the chamber keys (the
-    // rule of pf::calibrate, one row up).
-    const std::size_t chamber_keys = keys.size() - static_cast<std::size_t>(
-        std::count(keys.begin(), keys.end(), std::string("base_wall_share")));
-    if (data.size() < chamber_keys + 2) {
-      throw pf::ParameterError(data_path + ": " + std::to_string(data.size()) + " rows; fitting " +
-                               std::to_string(chamber_keys) +
-                               " chamber keys with leave-one-out needs at least " + std::to_string(chamber_keys + 2));
-    }
     const pf::CalibrationResult fit = pf::calibrate(base, keys, data, objective, quantity);
     std::vector<pf::Residual> loo;
-    for (std::size_t i = 0; i < data.size(); ++i) {
-      std::vector<pf::Measurement> others = data;
-      others.erase(others.begin() + static_cast<long>(i));
-      const pf::CalibrationResult without = pf::calibrate(base, keys, others, objective, quantity);
-      loo.push_back(pf::residuals(without.parameters, {data[i]})[0]);
+    try {
+      loo = pf::leaveOneOut(base, keys, data, objective, quantity);
+    } catch (const pf::ParameterError& e) {
+      throw pf::ParameterError(data_path + ": " + e.what());
     }
-    const int n = base.chamber_count;
-    std::ostringstream table;
-    table << "# data: " << (default_data ? "the package's data/sierra2022_table1.csv" : data_path) << " ("
-          << data.size() << " rows)\n# compared: " << pf::quantityName(quantity)
-          << (quantity == pf::CalibrationQuantity::kOuterAverage
-                  ? std::string(" (joints 2..") + std::to_string(n) + ", " +
-                        (average_column.empty() ? "mean of the measured joints" : "column " + average_column) + ")"
-                  : "")
-          << "; objective: " << objective_name << "; error = model - measured\n# fitted:";
-    for (std::size_t i = 0; i < fit.keys.size(); ++i) table << " " << fit.keys[i] << " = " << pf::formatExact(fit.values[i]);
-    std::array<double, 4> worst{}, worst_loo{};
-    const std::string fit_table = errorTable(fit.residuals, n, worst);
-    const std::string loo_table = errorTable(loo, n, worst_loo);
-    table << "\n#\n# error of the fit (deg; tip_mm in mm)\n" << fit_table
-          << "# leave-one-out error: each row predicted by a fit to the others\n" << loo_table
-          << "#\n# largest |error|:" << largest(worst, n, true) << "\n# largest leave-one-out |error|:"
-          << largest(worst_loo, n, false) << "\n";
     const pf::TipUncertainty bar = pf::tipUncertainty(fit.residuals, loo);
-    table << "# error bar written to the parameter file (tip_uncertainty: the larger of fit and leave-one-out):";
-    for (std::size_t i = 0; i < bar.gauge_pa.size(); ++i) {
-      table << " " << fmt("%.3f", bar.gauge_pa[i] / pf::kPaPerKgfPerCm2) << " kg/cm2 " << fmt("%.2f", bar.tip_angle_rad[i] * kDeg)
-            << " deg";
-      if (!std::isnan(bar.tip_position_m[i])) table << " " << fmt("%.1f", bar.tip_position_m[i] * 1e3) << " mm";
-      table << (i + 1 < bar.gauge_pa.size() ? ";" : "\n");
-    }
-    std::cout << table.str();
+    const std::string table =
+        report(default_data ? "the package's data/sierra2022_table1.csv" : data_path, data.size(), quantity,
+               average_column, objective_name, fit, loo, bar, base.chamber_count);
+    std::cout << table;
     if (!output.empty()) {
       std::ofstream out(output);
       if (!out) throw pf::ParameterError("cannot write '" + output + "'");
       out << "# The calibrated actuator: written by `finger_calibrate --output` (see docs/ACCURACY.md).\n"
           << "# Every key's default in the code (parameters.cpp) equals this file; a test checks it.\n"
-          << table.str() << "\n"
+          << table << "\n"
           << pf::parametersToYaml(fit.parameters) << "\n"
           << pf::tipUncertaintyToYaml(bar);
     }

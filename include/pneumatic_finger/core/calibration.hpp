@@ -131,6 +131,13 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
                             const std::vector<Measurement>& data, CalibrationObjective objective,
                             CalibrationQuantity quantity = CalibrationQuantity::kOuterAverage);
 
+/// Leave-one-out: each row predicted by calibrate() on the others (the same keys, objective and quantity), as its
+/// residual. The data needs two rows more than the chamber keys (calibrate()'s rule, one row up).
+/// @throws ParameterError naming the rows there are and the rows needed
+std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vector<std::string>& keys,
+                                  const std::vector<Measurement>& data, CalibrationObjective objective,
+                                  CalibrationQuantity quantity);
+
 /// The tip's error bar from a calibration: at each row's pressure, the larger of @p fit's and @p leave_one_out's
 /// |error| of the tip angle and of the tip position (NaN where the data measured no tip position). The rows of both
 /// are the same measurements, in the same order.

@@ -100,6 +100,12 @@ class PressureInputPolicy {
  private:
   void problem(const std::string& what, double now_s);
   void startTimeline(double receive_s);
+  // onMessage's steps, in order (pressure_input.cpp).
+  void noteReceived(double receive_s, InputDecision& d);
+  bool refuseValue(double absolute_pa, double receive_s, InputDecision& d);
+  double stampOf(double stamp_s, double receive_s, bool& replaced, InputDecision& d);
+  bool refuseStamp(double stamp, bool replaced, double receive_s, InputDecision& d);
+  void accept(double absolute_pa, double stamp, bool replaced, double receive_s, InputDecision& d);
 
   PressureInputSettings settings_;
   InputCounters counters_;

@@ -47,6 +47,10 @@ class FingerNode {
   FingerNodeConfig currentConfig() const;
   /// Builds the model and publishes the URDF from settings_ (at start-up, and when the actuator is reconfigured).
   void buildModel(ros::NodeHandle& nh);
+  /// Start-up: the fixed frames (with publish_tf), the messages sized once, the tip's error-bar marker.
+  void publishStaticFrames();
+  void sizeMessages();
+  void setUpTipMarker(ros::NodeHandle& nh);
   /// Publishes the finger at a pressure the input rules accepted: the free model, then the contact rule when an
   /// object is within reach. False (nothing published) when a solver found no finite answer.
   bool publishAt(double gauge_pa, const ros::Time& stamp, bool clamped);
