@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The unit tests again under sanitizers, each in a build of its own inside build/ (which rosrun and rospack skip); any
 # sanitizer report fails the test binary. Called by scripts/test.sh after scripts/setup.sh.
-#  - AddressSanitizer and UndefinedBehaviorSanitizer: test_core, in build/sanitized/;
+#  - AddressSanitizer and UndefinedBehaviorSanitizer: test_core and test_tools (the tools built likewise), in
+#    build/sanitized/;
 #  - ThreadSanitizer: test_concurrency (one model shared by threads, each with its own workspace), in build/tsan/.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
@@ -29,7 +30,8 @@ sanitize() {
 }
 
 # test_no_allocation is left out: it replaces malloc, as the sanitizers do.
-sanitize sanitized "-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer" test_core \
-  || status=1
+asan="-fsanitize=address,undefined -fno-sanitize-recover=undefined -fno-omit-frame-pointer"
+sanitize sanitized "$asan" test_core || status=1
+sanitize sanitized "$asan" test_tools || status=1  # the tools themselves, built with the sanitizers
 sanitize tsan "-fsanitize=thread -fno-omit-frame-pointer" test_concurrency || status=1
 exit $status

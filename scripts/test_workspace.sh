@@ -14,7 +14,7 @@ catkin_make -C "$WS" -DPYTHON_EXECUTABLE=/usr/bin/python3 -DPython3_EXECUTABLE=/
   all tests >"$ROOT/build/workspace.log" 2>&1 || { tail -40 "$ROOT/build/workspace.log"; exit 1; }
 mkdir -p "$ROOT/build/test_results/workspace"
 status=0
-for t in test_core test_concurrency test_no_allocation; do
+for t in test_core test_tools test_concurrency test_no_allocation; do
   "$WS/devel/lib/pneumatic_finger/$t" --gtest_output="xml:$ROOT/build/test_results/workspace/gtest-${t}_workspace.xml" \
     >"$ROOT/build/workspace_$t.log" 2>&1 || { status=1; tail -30 "$ROOT/build/workspace_$t.log"; }
   grep -E "^\[  (PASSED|FAILED) " "$ROOT/build/workspace_$t.log" | sed "s/^/catkin workspace $t: /" || true

@@ -10,7 +10,7 @@
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/GraspObject.h"
 #include "cell_watch.hpp"
-#include "ros_test_main.hpp"
+#include "ros_test_support.hpp"
 
 TEST(CellMissedGrasp, AMissedGraspLeavesTheObjectAndSaysSo) {
   ros::NodeHandle nh;

@@ -28,7 +28,7 @@
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "pneumatic_finger/GraspObject.h"
 #include "pneumatic_finger/core/contact.hpp"
-#include "ros_test_main.hpp"
+#include "ros_test_support.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -37,11 +37,7 @@ namespace {
 const std::string kPrefix = "test_";
 const std::array<double, 3> kMountXyz{{0.01, -0.02, 0.03}}, kMountRpy{{0.1, -0.2, 0.3}};
 
-pf::FingerParameters packageParameters() {
-  pf::RawParameterMap raw;
-  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml", raw);
-  return pf::FingerParameters::fromRaw(raw);
-}
+using pf_test::packageParameters;
 
 // Collects everything the node publishes, with who published each tf child frame.
 struct Listener {

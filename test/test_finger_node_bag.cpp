@@ -9,7 +9,7 @@
 #include <mutex>
 #include <string>
 #include <vector>
-#include "ros_test_main.hpp"
+#include "ros_test_support.hpp"
 
 namespace {
 

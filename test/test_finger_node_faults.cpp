@@ -17,19 +17,15 @@
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
-#include "ros_test_main.hpp"
+#include "ros_test_support.hpp"
 
 namespace pf = pneumatic_finger;
 
 namespace {
 
-constexpr double kAtm = 101325.0;
+using pf_test::kAtm;
 
-pf::FingerParameters packageParameters() {
-  pf::RawParameterMap raw;
-  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml", raw);
-  return pf::FingerParameters::fromRaw(raw);
-}
+using pf_test::packageParameters;
 
 class FaultTest : public testing::Test {
  protected:

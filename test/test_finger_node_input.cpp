@@ -12,11 +12,11 @@
 #include <vector>
 
 #include "pneumatic_finger/FingerModelState.h"
-#include "ros_test_main.hpp"
+#include "ros_test_support.hpp"
 
 namespace {
 
-constexpr double kAtm = 101325.0;
+using pf_test::kAtm;
 
 struct Finger {
   std::string ns, hardware_id;

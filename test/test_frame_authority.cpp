@@ -12,7 +12,7 @@
 #include <set>
 #include <string>
 #include <tuple>
-#include "ros_test_main.hpp"
+#include "ros_test_support.hpp"
 
 namespace {
 

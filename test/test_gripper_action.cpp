@@ -12,7 +12,7 @@
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
-#include "ros_test_main.hpp"
+#include "ros_test_support.hpp"
 
 namespace pf = pneumatic_finger;
 using State = actionlib::SimpleClientGoalState;

@@ -5,12 +5,13 @@
 #include <limits>
 
 #include "pneumatic_finger/core/pressure_input.hpp"
+#include "pneumatic_finger/core/units.hpp"
 
 namespace pf = pneumatic_finger;
 
 namespace {
 
-constexpr double kAtm = 101325.0;
+constexpr double kAtm = pf::kStandardAtmospherePa;
 
 pf::PressureInputSettings settings() {
   pf::PressureInputSettings s;

@@ -16,7 +16,13 @@
 #include <std_msgs/UInt32.h>
 #include <visualization_msgs/MarkerArray.h>
 
+#include <signal.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iterator>
 #include <memory>
 #include <mutex>
 #include <stdexcept>
@@ -420,7 +426,21 @@ class CellSequencer {
 
 }  // namespace
 
+// The last cycle is done: the launch ends as Ctrl-C ends it (roslaunch stops every node and exits 0), instead of
+// roslaunch finding its required sequencer gone and saying "REQUIRED process has died", which reads as a failure.
+// Only when roslaunch started this process; the sequencer then waits to be stopped with the others.
+void endLaunch() {
+  const pid_t parent = getppid();
+  std::ifstream cmdline("/proc/" + std::to_string(parent) + "/cmdline");
+  const std::string command((std::istreambuf_iterator<char>(cmdline)), std::istreambuf_iterator<char>());
+  if (command.find("roslaunch") == std::string::npos) return;
+  ROS_INFO("cell_sequencer: the run is complete; stopping the cell");
+  if (kill(parent, SIGINT) == 0) ros::waitForShutdown();
+}
+
 int main(int argc, char** argv) {
+  // Line by line even into a pipe or a file, so that the nodes' lines of one cell interleave in time order.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   ros::init(argc, argv, "cell_sequencer");
   ros::NodeHandle nh, pnh("~");
   Settings settings;
@@ -440,5 +460,6 @@ int main(int argc, char** argv) {
   CellSequencer sequencer(nh, settings, *arm);
   if (!sequencer.waitForGripper(nh)) return 2;
   sequencer.run();
+  if (ros::ok()) endLaunch();
   return 0;
 }

@@ -2,10 +2,14 @@
 // nodelet pneumatic_finger/PressureRegulatorNodelet (src/ros/nodelets.cpp).
 #include <ros/ros.h>
 
+#include <cstdio>
+
 #include "pneumatic_finger/cell/pressure_regulator.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 
 int main(int argc, char** argv) {
+  // Line by line even into a pipe or a file, so that the nodes' lines of one cell interleave in time order.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   ros::init(argc, argv, "pressure_regulator");
   ros::NodeHandle nh, pnh("~");
   try {

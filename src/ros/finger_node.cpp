@@ -301,6 +301,8 @@ bool FingerNode::acceptObject(const GraspObject::ConstPtr& msg) {
     return false;
   }
   object_ = msg;
+  object_since_ = ros::WallTime::now();
+  object_located_once_ = false;
   grasp_->setObject(object_in_frame_);
   const std::string finger_frame = segmentLinkName(settings_.urdf.prefix, 0);
   if (msg->header.frame_id != finger_frame && msg->header.frame_id != settings_.urdf.parent_frame && !tf_buffer_) {
@@ -349,9 +351,17 @@ bool FingerNode::updateObject() {
   Eigen::Isometry3d finger_from_frame;
   std::string why;
   if (!objectPose(finger_from_frame, why)) {
-    ROS_WARN_THROTTLE(5.0, "finger_node: grasp object '%s': %s", object_->id.c_str(), why.c_str());
+    // At start-up the frames come a moment after the object (robot_state_publisher's first joint states): that
+    // wait is not a problem worth a WARN. A transform still missing after it, or lost later, is.
+    const bool starting = !object_located_once_ && (ros::WallTime::now() - object_since_).toSec() < kTransformGraceS;
+    if (starting) {
+      ROS_DEBUG("finger_node: grasp object '%s': waiting for tf: %s", object_->id.c_str(), why.c_str());
+    } else {
+      ROS_WARN_THROTTLE(5.0, "finger_node: grasp object '%s': %s", object_->id.c_str(), why.c_str());
+    }
     return grasp_->lostTransform(why);
   }
+  object_located_once_ = true;
   const bool changed = grasp_->locate(finger_from_frame);
   if (changed && grasp_->status() == GraspObjectStatus::kOverlapsAtRest) {
     ROS_WARN_THROTTLE(5.0, "finger_node: grasp object '%s' %s", object_->id.c_str(), grasp_->problem().c_str());

@@ -1,6 +1,7 @@
 // finger_node: creates the private handle, builds the wrapper, spins. A bad parameter stops it with a message.
 #include <ros/ros.h>
 
+#include <cstdio>
 #include <iostream>
 
 #include "pneumatic_finger/ros/finger_node.hpp"
@@ -19,6 +20,8 @@ void printParameters() {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Line by line even into a pipe or a file, so that the nodes' lines of one cell interleave in time order.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   if (argc > 1 && std::string(argv[1]) == "--parameters") {
     printParameters();
     return 0;

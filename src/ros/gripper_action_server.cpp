@@ -6,6 +6,7 @@
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
 
+#include <cstdio>
 #include <cmath>
 #include <map>
 #include <mutex>
@@ -116,7 +117,8 @@ class GripperActionServer {
       const pf::FingerModelState& s = *states[i].state;
       object = object || !s.object_id.empty();
       answers.push_back({fingers_[i], srv.response.success ? srv.response.gauge_pa : NAN, s.touch_gauge_pa});
-      if (!srv.response.success) ROS_INFO("gripper_action_server: %s: %s", name.c_str(), srv.response.message.c_str());
+      // Expected when the goal lies beyond the object (the touch comes first): the plan below says what it does.
+      if (!srv.response.success) ROS_DEBUG("gripper_action_server: %s: %s", name.c_str(), srv.response.message.c_str());
     }
     // max_effort, within the fingers' range (their max_gauge_pa, where they clamp).
     const double limit = goal->max_effort > 0 ? std::min(goal->max_effort, max_gauge_pa_) : max_gauge_pa_;
@@ -177,6 +179,8 @@ class GripperActionServer {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Line by line even into a pipe or a file, so that the nodes' lines of one cell interleave in time order.
+  std::setvbuf(stdout, nullptr, _IOLBF, 0);
   ros::init(argc, argv, "gripper_action_server");
   ros::NodeHandle nh, pnh("~");
   try {

@@ -109,6 +109,10 @@ class FingerNode {
   SolidObject object_in_frame_;                   ///< the object in its message's frame
   std::string object_refused_;                    ///< why the last object was refused, empty when it was not
   std::unique_ptr<GraspObjectTracker> grasp_;     ///< section, touch events, status: the core's, made with the model
+  ros::WallTime object_since_;                    ///< when the object arrived
+  bool object_located_once_ = false;              ///< its pose was known once since
+  /// A transform missing this long after the object arrived is a problem (WARN); before, the frames are coming.
+  static constexpr double kTransformGraceS = 3.0;
   // The last accepted pressure: an object that moves re-publishes the finger at it.
   bool have_pressure_ = false, last_clamped_ = false;
   double last_gauge_pa_ = 0.0;
