@@ -260,7 +260,7 @@ solver without the state: `tipAngleAt` solves the half angles and sums them, and
 {stages}
 
 The table's polynomials alone, per instruction set (N = 7: 16 functions of one segment at one x; every variant gives
-the same bits, test/test_batch.cpp). `evaluate()` runs the widest this CPU has ({table_widest}); the rest of a table
+the same bits, test/test_simd_math.cpp). `evaluate()` runs the widest this CPU has ({table_widest}); the rest of a table
 evaluation (the √P and the segment, the columns) is the same for all; every variant writes θ and the points straight
 into the state. The calibrated
 finger's table has {runs[f"table_polynomials/{table_widest}"]["segments"]:.0f} segments
@@ -276,7 +276,7 @@ finger's table has {runs[f"table_polynomials/{table_widest}"]["segments"]:.0f} s
 validated pressures, writing every output (stretch, bulge, half and joint angles, backbone, tip angle, status; 47
 numbers per pressure) into arrays the caller owns; the last column writes only the backbone. With the robust solver
 and identical chambers it runs the chain on packs of pressures, one per SIMD lane (`src/core/batch_kernel.hpp`); the
-model picks the widest pack the CPU has. Every path writes the bits of the single evaluation (test/test_batch.cpp), so
+model picks the widest pack the CPU has. Every path writes the bits of the single evaluation (test/test_finger_batch.cpp), so
 the error column is the same for all. In the same run, one evaluation at a time (the first table) took
 {robust_ns:.0f} ns.
 

@@ -9,7 +9,7 @@
 // branch for every lane and selects; an iteration stops per lane where the single one stops, and the pack goes on
 // until its last lane stops (lanes that stopped keep their value). The rare branches (energy group > 1e30, bulge
 // beyond 1e6 wall heights, a zero gap) are left to the single evaluation, lane by lane.
-// test/test_batch.cpp checks the bits against FingerModel::evaluate over ordinary and hard pressures.
+// test/test_finger_batch.cpp checks the bits against FingerModel::evaluate over ordinary and hard pressures.
 #pragma once
 
 #include <cmath>

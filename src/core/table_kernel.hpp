@@ -2,7 +2,7 @@
 // polynomials at one x, a pack of functions at a time. Compiled once per instruction set beside the batch kernel
 // (batch_generic.cpp, batch_avx2.cpp, batch_avx512.cpp); the model picks the widest the CPU has. Every variant does
 // the same operations in the same order as tableFunction (chamber_table.hpp) and nothing fuses a multiply with an add
-// (-ffp-contract=off), so all of them give the same bits (test/test_batch.cpp).
+// (-ffp-contract=off), so all of them give the same bits (test/test_simd_math.cpp).
 #pragma once
 
 #include "simd_kernels.hpp"

@@ -1,5 +1,5 @@
-// Properties the model must have whatever the numbers: contact, monotonicity, geometry, finiteness,
-// scalar/list equivalence, and "model only what a scene needs".
+// FingerModel (finger_model.cpp): properties the model must have whatever the numbers: contact, monotonicity,
+// geometry, finiteness, scalar/list equivalence, and "model only what a scene needs".
 #include <gtest/gtest.h>
 
 #include <cfloat>
@@ -11,7 +11,6 @@
 #include <vector>
 
 #include "pneumatic_finger/core/finger_model.hpp"
-#include "test_support.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -19,7 +18,7 @@ namespace {
 const pf::FingerParameters kPaper = pf::FingerParameters::defaults();
 }
 
-TEST(Property, HalfAngleIsZeroBelowContactAndPositiveAbove) {
+TEST(FingerModel, HalfAngleIsZeroBelowContactAndPositiveAbove) {
   pf::FingerModel model(kPaper);
   pf::FingerWorkspace ws(model);
   const double pc = model.contactGaugePa();
@@ -30,7 +29,7 @@ TEST(Property, HalfAngleIsZeroBelowContactAndPositiveAbove) {
   EXPECT_TRUE(model.evaluate(pc * 2, ws).walls_in_contact);
 }
 
-TEST(Property, HalfAngleIsNonDecreasingInPressure) {
+TEST(FingerModel, HalfAngleIsNonDecreasingInPressure) {
   for (auto solver : {pf::SolverKind::kRobust, pf::SolverKind::kTable}) {
     pf::ModelOptions options;
     options.solver = solver;
@@ -45,7 +44,7 @@ TEST(Property, HalfAngleIsNonDecreasingInPressure) {
   }
 }
 
-TEST(Property, TipDirectionIsTheSumOfJointAngles) {
+TEST(FingerModel, TipDirectionIsTheSumOfJointAngles) {
   pf::FingerModel model(kPaper);
   pf::FingerWorkspace ws(model);
   for (double p : {3e4, 1e5, 2e5, 5e5, 2e6}) {
@@ -58,7 +57,7 @@ TEST(Property, TipDirectionIsTheSumOfJointAngles) {
   }
 }
 
-TEST(Property, NoNaNForAnyFiniteInput) {
+TEST(FingerModel, NoNaNForAnyFiniteInput) {
   // Random bit patterns cover subnormals, huge values and both signs; plus every accepted extreme geometry.
   std::mt19937_64 rng(20221121);
   std::vector<pf::FingerModel> models;
@@ -87,7 +86,7 @@ TEST(Property, NoNaNForAnyFiniteInput) {
   }
 }
 
-TEST(Property, ListOfEqualValuesEqualsItsScalar) {
+TEST(FingerModel, ListOfEqualValuesEqualsItsScalar) {
   pf::RawParameterMap scalar, list;
   scalar["chamber_gap_m"] = {{4e-5}, false};
   list["chamber_gap_m"] = {std::vector<double>(7, 4e-5), true};
@@ -103,7 +102,7 @@ TEST(Property, ListOfEqualValuesEqualsItsScalar) {
   }
 }
 
-TEST(Property, IdenticalChambersAreSolvedOnce) {
+TEST(FingerModel, IdenticalChambersAreSolvedOnce) {
   EXPECT_EQ(pf::FingerModel(kPaper).distinctChamberCount(), 1);
   pf::RawParameterMap raw;
   raw["chamber_gap_m"] = {{5e-5, 5e-5, 5e-5, 6e-5, 5e-5, 5e-5, 5e-5}, true};
@@ -115,7 +114,7 @@ TEST(Property, IdenticalChambersAreSolvedOnce) {
   EXPECT_EQ(pf::FingerModel(pf::FingerParameters::fromRaw(visual)).distinctChamberCount(), 1);
 }
 
-TEST(Property, UnchangedPressureIsNotRecomputed) {
+TEST(FingerModel, UnchangedPressureIsNotRecomputed) {
   pf::FingerModel model(kPaper);
   pf::FingerWorkspace ws(model);
   const long before = ws.computationCount();
@@ -130,66 +129,7 @@ TEST(Property, UnchangedPressureIsNotRecomputed) {
   EXPECT_EQ(ws.computationCount(), before + 3);
 }
 
-TEST(Property, TableSolverErrorIsMeasuredAndWithinTolerance) {
-  pf::ModelOptions options;
-  options.solver = pf::SolverKind::kTable;
-  pf::FingerModel table(kPaper, options);
-  pf::FingerWorkspace table_ws(table);
-  EXPECT_GT(table.tableSegmentCount(), 0);
-  EXPECT_GT(table.tableMeasuredErrorRad(), 0.0);  // measured, so never exactly 0 for a real interpolant
-  EXPECT_LE(table.tableMeasuredErrorRad(), options.table_tolerance_rad);
-  // Against the quad reference on a grid the table builder never saw (offset primes), inside its range.
-  pf_test::FingerError worst;
-  for (double p = 13.0; p <= options.table_max_gauge_pa; p += 997.0) {
-    worst.merge(pf_test::fingerError(table.evaluate(p, table_ws), pf_test::referenceFinger(kPaper, p)));
-  }
-  EXPECT_LE(worst.half_angle_rad, pf_test::kAngleTolerance);
-  EXPECT_LE(worst.point_m, pf_test::kPointTolerance);
-  RecordProperty("table_max_half_angle_error_rad", pf_test::scientific(worst.half_angle_rad));
-  // Outside its range it hands over to the robust solver.
-  pf::FingerModel robust(kPaper);
-  pf::FingerWorkspace robust_ws(robust);
-  EXPECT_EQ(table.evaluate(1e6, table_ws).half_angle_rad[0], robust.evaluate(1e6, robust_ws).half_angle_rad[0]);
-}
-
-TEST(Property, TableSolverHoldsItsBoundForOtherFingers) {
-  // The table of identical chambers holds the whole shape (points and theta), one function set per chamber count:
-  // 1 and 3 chambers, 20 (above the counts unrolled at compile time), a turning base face, unequal segment lengths;
-  // unequal chambers take the table of theta, cos and sin instead. Each against the quad reference, on a grid the
-  // builder never saw, inside the table's range.
-  std::vector<std::pair<std::string, pf::FingerParameters>> fingers;
-  for (int n : {1, 3, 20}) {
-    pf::RawParameterMap raw;
-    pf::parseParameterAssignment("chamber_count=" + std::to_string(n), raw);
-    std::string lengths = "segment_length_m=[";
-    for (int i = 0; i < n; ++i) lengths += (i ? "," : "") + std::to_string(0.01 * (1.0 + 0.05 * i));
-    pf::parseParameterAssignment(lengths + "]", raw);
-    fingers.emplace_back("N = " + std::to_string(n), pf::FingerParameters::fromRaw(raw));
-  }
-  pf::RawParameterMap turning;
-  turning["base_wall_share"] = {{0.3}, false};
-  fingers.emplace_back("s0 = 0.3", pf::FingerParameters::fromRaw(turning));
-  pf::RawParameterMap unequal;
-  unequal["chamber_gap_m"] = {{3e-5, 4e-5, 5e-5, 6e-5, 5e-5, 4e-5, 3e-5}, true};
-  fingers.emplace_back("unequal gaps", pf::FingerParameters::fromRaw(unequal));
-  for (const auto& [name, params] : fingers) {
-    pf::ModelOptions options;
-    options.solver = pf::SolverKind::kTable;
-    pf::FingerModel table(params, options);
-    pf::FingerWorkspace table_ws(table);
-    EXPECT_GT(table.tableSegmentCount(), 0) << name;
-    EXPECT_LE(table.tableMeasuredErrorRad(), options.table_tolerance_rad) << name;
-    pf_test::FingerError worst;
-    for (double p = 13.0; p <= options.table_max_gauge_pa; p += 2999.0) {
-      worst.merge(pf_test::fingerError(table.evaluate(p, table_ws), pf_test::referenceFinger(params, p)));
-    }
-    EXPECT_LE(worst.half_angle_rad, pf_test::kAngleTolerance) << name;
-    EXPECT_LE(worst.joint_angle_rad, pf_test::kAngleTolerance) << name;
-    EXPECT_LE(worst.point_m, pf_test::kPointTolerance) << name;
-  }
-}
-
-TEST(Property, WithoutChamberDetailStretchAndBulgeAreNaNNotPlaceholders) {
+TEST(FingerModel, WithoutChamberDetailStretchAndBulgeAreNaNNotPlaceholders) {
   // chamber_detail = false leaves stretch and bulge out (the table solver then skips the chain): the state says so
   // with NaN rather than a rest value, and everything else is what the full evaluation gives, bit for bit.
   pf::RawParameterMap raw;
@@ -219,41 +159,10 @@ TEST(Property, WithoutChamberDetailStretchAndBulgeAreNaNNotPlaceholders) {
   }
 }
 
-TEST(Property, InverseModelRoundTrips) {
-  pf::FingerModel model(kPaper);
-  pf::FingerWorkspace ws(model);
-  for (double p : {1e4, 5e4, 1e5, 1.5e5, 2e5}) {
-    const double tip = model.evaluate(p, ws).tip_angle_rad;
-    double back = 0;
-    std::string why;
-    ASSERT_TRUE(model.gaugeForTipAngle(tip, 1e6, back, why)) << why;
-    EXPECT_NEAR(back, p, 1e-9 * p);
-  }
-  double out = 0;
-  std::string why;
-  EXPECT_FALSE(model.gaugeForTipAngle(-0.1, 1e6, out, why));
-  EXPECT_NE(why.find("-0.1"), std::string::npos) << why;
-  EXPECT_FALSE(model.gaugeForTipAngle(3.0, 2e5, out, why));  // needs more than 2e5 Pa
-  EXPECT_NE(why.find("needs more than"), std::string::npos) << why;
-  EXPECT_FALSE(model.gaugeForTipAngle(100.0, 1e300, out, why));  // beyond (2N-1) pi/2
-}
-
-TEST(Property, InverseModelBisectsForUnequalChambers) {
-  pf::RawParameterMap raw;
-  raw["chamber_gap_m"] = {{3e-5, 4e-5, 5e-5, 6e-5, 7e-5, 8e-5, 9e-5}, true};
-  pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
-  pf::FingerWorkspace ws(model);
-  const double tip = model.evaluate(1.2e5, ws).tip_angle_rad;
-  double back = 0;
-  std::string why;
-  ASSERT_TRUE(model.gaugeForTipAngle(tip, 1e6, back, why)) << why;
-  EXPECT_NEAR(back, 1.2e5, 1e-6);
-}
-
 // Nothing non-finite leaves the model: where a solver has no answer, evaluate() says so in its status and keeps the
 // previous state. The paper's closed forms have no root for P >= 1e9 Pa (test/test_hard_cases.cpp), so this runs
 // into that on purpose, for every solver.
-TEST(Property, SolverFailureIsAStatusAndNeverANonFiniteNumber) {
+TEST(FingerModel, SolverFailureIsAStatusAndNeverANonFiniteNumber) {
   int failures = 0;
   for (auto solver : {pf::SolverKind::kRobust, pf::SolverKind::kPaper, pf::SolverKind::kTable}) {
     pf::ModelOptions options;
@@ -281,4 +190,3 @@ TEST(Property, SolverFailureIsAStatusAndNeverANonFiniteNumber) {
   }
   EXPECT_GT(failures, 0) << "the paper solver's known failures were not reached: the test would prove nothing";
 }
-
