@@ -6,6 +6,7 @@ Exits 1 when a function or a file is over its limit, and lists them.
 """
 import argparse
 import pathlib
+import shutil
 import subprocess
 import sys
 
@@ -18,7 +19,8 @@ def sources():
 
 
 def functions(files):
-    out = subprocess.run(["ctags", "-x", "--_xformat=%N\t%F\t%n\t%e\t%K", "--fields=+ne", "--kinds-C++=f",
+    ctags = shutil.which("ctags-universal") or "ctags"  # Debian's universal-ctags; plain ctags may be another
+    out = subprocess.run([ctags, "-x", "--_xformat=%N\t%F\t%n\t%e\t%K", "--fields=+ne", "--kinds-C++=f",
                           "--language-force=C++", *map(str, files)], capture_output=True, text=True, check=True).stdout
     for line in out.splitlines():
         name, path, start, end, _ = line.split("\t")

@@ -36,8 +36,8 @@ PACKAGES=("$@"
   libbenchmark-dev libgsl-dev pkg-config
   # tests (package.xml: gtest; test_depend) and the docs' plots
   libgtest-dev googletest python3-matplotlib
-  # lint (checked by scripts/test.sh)
-  catkin-lint
+  # lint (checked by scripts/test.sh): catkin_lint, and Universal Ctags for the function lengths
+  catkin-lint universal-ctags
 )
 
 missing=()
