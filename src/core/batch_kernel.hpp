@@ -2,10 +2,10 @@
 // is one pressure). Internal header of src/core; see simd_math.hpp for why everything here has internal linkage.
 //
 // It computes what the single evaluation computes (stages.cpp: solveWall; finger_model.cpp: the uniform joints and
-// backbone), so that every lane rounds as the single evaluation does: most of the arithmetic is the same templates
-// (wall_chain.hpp: the series of stages 2-4, stage 4's solve; joint_chain.hpp: joint 1's direction, the points); stage 1 and the stretch's
-// Halley steps above the series' limit are transcribed here, operation for operation and in the same order. Where the
-// single evaluation branches, the kernel computes the common
+// backbone), so that every lane rounds as the single evaluation does: every stage is the same template, instantiated
+// for a pack here and for a double there (wall_chain.hpp: stage 1's product, stage 2's first guess and Halley step,
+// stage 3's bulge, the series of stages 2-4 and stage 4's solve; joint_chain.hpp: joint 1's direction, the points).
+// What is the kernel's own is the control: where the single evaluation branches, the kernel computes the common
 // branch for every lane and selects; an iteration stops per lane where the single one stops, and the pack goes on
 // until its last lane stops (lanes that stopped keep their value). The rare branches (energy group > 1e30, bulge
 // beyond 1e6 wall heights, a zero gap) are left to the single evaluation, lane by lane.
@@ -44,25 +44,20 @@ inline T absOf(T x) {
 template <class T, class M>
 inline void stagesTwoThree(const UniformRobustSpec& s, T g, M rare, T& delta_out, T& h_out) {
   const T zero = splat<T>(0.0);
-  // Stage 2, stretchExcess: the rational first guess, then Halley until the step is below 4e-6 delta.
-  const T sq = sqrtOf(g * (1.0 / 3.0));
-  T delta = sq * (1.0 + sq * (1.2637079407904241 + sq * 0.602317462994015)) /
-            (1.0 + sq * (0.9303746074570908 + sq * 0.34774814939720705));
+  // Stage 2, stretchExcess: the rational first guess, then Halley until the step is small enough.
+  T delta = stretchExcessFirstGuess(g);
   // stretchExcess returns 0 for g = 0, which also a positive pressure gives where P/P_o underflows.
   const auto stretched = g > zero;
   delta = stretched ? delta : zero;
   auto active = stretched & ~rare;
   for (int i = 0; i < 16 && anyOf(active); ++i) {
-    const T f = delta * delta * (3.0 + delta) - g * (1.0 + delta);
-    const T fp = delta * (3.0 * delta + 6.0) - g;
-    const T fpp = 6.0 * delta + 6.0;
-    const T step = 2.0 * f * fp / (2.0 * fp * fp - f * fpp);
+    const T step = stretchExcessHalleyStep(g, delta);
     delta = active ? delta - step : delta;
-    active = active & (absOf(step) > 4e-6 * delta);
+    active = active & (absOf(step) > kStretchHalleyStop * delta);
   }
 
   // Stage 3, bulge.
-  h_out = s.chamber_height_m * delta * (2.0 + delta) / (sqrtOf(1.0 + delta * (4.0 + 2.0 * delta)) + 1.0);
+  h_out = bulgeOf(delta, s.chamber_height_m);
   delta_out = delta;
 }
 
@@ -130,9 +125,9 @@ __attribute__((always_inline)) inline WallPack<T> wallPack(const UniformRobustSp
   const T zero = splat<T>(0.0), one = splat<T>(1.0);
   // Stage 1, energyGroup.
   const auto loaded = p > zero;
-  T g = (p / s.atmospheric_pa) * ((2.0 * s.atmospheric_pa + p) / s.shear_modulus_pa);
+  T g = energyGroupProduct(p, s.atmospheric_pa, s.shear_modulus_pa);
   g = loaded ? g : zero;
-  auto rare = g > splat<T>(1e30);
+  auto rare = g > splat<T>(kStretchHalleyMaxEnergyGroup);
 
   // Stages 2-3 as solveWall takes them: by their series in s = sqrt(g/3) where s is below the limit, else stage by stage
   // (a pack computes both only when its lanes straddle the limit).

@@ -38,7 +38,7 @@ double energyGroup(double gauge_pa, double atmospheric_pa, double shear_modulus_
   if (!(gauge_pa > 0.0)) return 0.0;  // also NaN; callers refuse NaN before this
   // (P/P_o)(2 P_o + P)/mu: each factor is O(1) for sane inputs, and the product form avoids
   // ((P_abs/P_o)^2 - 1), which cancels for small P.
-  const double g = (gauge_pa / atmospheric_pa) * ((2.0 * atmospheric_pa + gauge_pa) / shear_modulus_pa);
+  const double g = energyGroupProduct(gauge_pa, atmospheric_pa, shear_modulus_pa);
   return g < kMaxEnergyGroup ? g : kMaxEnergyGroup;
 }
 
@@ -63,31 +63,17 @@ double stretchExcessLarge(double g, double delta) {
 
 double stretchExcess(double g) {
   if (!(g > 0.0)) return 0.0;
-  // Initial guess: a rational function of s = sqrt(g/3) that matches both ends of the root,
-  // delta = s + s^2/3 - s^3/18 + ... (g -> 0) and delta = sqrt(g) - 1 + ... (g -> inf): within 0.43 % everywhere.
-  const double s = std::sqrt(g * (1.0 / 3.0));
-  double delta = s * (1.0 + s * (1.2637079407904241 + s * 0.602317462994015)) /
-                 (1.0 + s * (0.9303746074570908 + s * 0.34774814939720705));
-  if (g > 1e30) return stretchExcessLarge(g, delta);
-  // Halley on F(delta) = delta^2 (3 + delta) - g (1 + delta). No cancellation at the root beyond F's own
-  // (|F| errs by ~ulp(g), F' ~ 6 delta, so delta keeps its relative accuracy even as delta -> 0), F' > 0 there,
-  // and for g <= 1e30 no product overflows. Cubic convergence: from 0.43 %, two steps.
+  double delta = stretchExcessFirstGuess(g);
+  if (g > kStretchHalleyMaxEnergyGroup) return stretchExcessLarge(g, delta);
   for (int i = 0; i < 16; ++i) {
-    const double f = delta * delta * (3.0 + delta) - g * (1.0 + delta);
-    const double fp = delta * (3.0 * delta + 6.0) - g;
-    const double fpp = 6.0 * delta + 6.0;
-    const double step = 2.0 * f * fp / (2.0 * fp * fp - f * fpp);
+    const double step = stretchExcessHalleyStep(g, delta);
     delta -= step;
-    // After a Halley step of relative size r the error is O(r^3): below 1e-16 once r < 4e-6.
-    if (!(std::fabs(step) > 4e-6 * delta)) break;
+    if (!(std::fabs(step) > kStretchHalleyStop * delta)) break;
   }
   return delta;
 }
 
-double bulge(double stretch_excess, double chamber_height_m) {
-  const double d = stretch_excess;
-  return chamber_height_m * d * (2.0 + d) / (std::sqrt(1.0 + d * (4.0 + 2.0 * d)) + 1.0);
-}
+double bulge(double stretch_excess, double chamber_height_m) { return bulgeOf(stretch_excess, chamber_height_m); }
 
 namespace {
 

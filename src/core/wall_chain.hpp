@@ -9,6 +9,47 @@
 namespace pneumatic_finger {
 namespace {  // NOLINT(build/namespaces): internal linkage per instruction set (simd_math.hpp)
 
+/// Stage 1's energy group g = (P/P_o)(2 P_o + P)/mu, a product of O(1) factors: ((P_abs/P_o)^2 - 1) would cancel for
+/// small P. (energyGroup, stages.cpp, also clamps it to kMaxEnergyGroup; the batch leaves huge ones to it.)
+template <class T>
+inline T energyGroupProduct(T gauge_pa, double atmospheric_pa, double shear_modulus_pa) {
+  return (gauge_pa / atmospheric_pa) * ((2.0 * atmospheric_pa + gauge_pa) / shear_modulus_pa);
+}
+
+/// Above this energy group, the stretch polynomial's products would overflow: a fixed point answers (stages.cpp).
+constexpr double kStretchHalleyMaxEnergyGroup = 1e30;
+
+/// Stage 2's first guess: a rational function of s = sqrt(g/3) that matches both ends of the root,
+/// delta = s + s^2/3 - s^3/18 + ... (g -> 0) and delta = sqrt(g) - 1 + ... (g -> inf): within 0.43 % everywhere.
+template <class T>
+inline T stretchExcessFirstGuess(T g) {
+  const T s = sqrtOf(g * (1.0 / 3.0));
+  return s * (1.0 + s * (1.2637079407904241 + s * 0.602317462994015)) /
+         (1.0 + s * (0.9303746074570908 + s * 0.34774814939720705));
+}
+
+/// One Halley step on F(delta) = delta^2 (3 + delta) - g (1 + delta), the step to subtract. No cancellation at the
+/// root beyond F's own (|F| errs by ~ulp(g), F' ~ 6 delta, so delta keeps its relative accuracy even as delta -> 0),
+/// F' > 0 there, and for g <= kStretchHalleyMaxEnergyGroup no product overflows. Cubic convergence: from 0.43 %, two
+/// steps.
+template <class T>
+inline T stretchExcessHalleyStep(T g, T delta) {
+  const T f = delta * delta * (3.0 + delta) - g * (1.0 + delta);
+  const T fp = delta * (3.0 * delta + 6.0) - g;
+  const T fpp = 6.0 * delta + 6.0;
+  return 2.0 * f * fp / (2.0 * fp * fp - f * fpp);
+}
+
+/// After a Halley step of relative size r the error is O(r^3): below 1e-16 once r < this.
+constexpr double kStretchHalleyStop = 4e-6;
+
+/// Stage 3: the bulge h of a wall of height L from the stretch excess delta, without cancellation for small delta.
+template <class T>
+inline T bulgeOf(T stretch_excess, double chamber_height_m) {
+  const T d = stretch_excess;
+  return chamber_height_m * d * (2.0 + d) / (sqrtOf(1.0 + d * (4.0 + 2.0 * d)) + 1.0);
+}
+
 /// Stages 2 and 3 together (docs/MODEL.md) for small energy groups: with s = sqrt(g/3) <= 1/20, the stretch excess
 /// delta and the bulge h as power series in s, delta = s (1 + s/3 - s^2/18 - ...) and h = L s (1 - s/6 + 11 s^2/18 - ...).
 /// Both come from s at once, so the chain skips the cubic's Halley steps and the bulge's square root and division
