@@ -266,11 +266,11 @@ void benchStages(benchmark::State& state, int stage) {
     }
     if (++i == pressures.size()) i = 0;
   }
-  state.SetLabel(stage == 1   ? "one wall, stages 1-4 (solveWall)"
-                 : stage == 2 ? "stage 4 alone, theta(h)"
-                 : stage == 3 ? "robust: the tip angle only, no state written (tipAngleAt)"
-                 : stage == 4 ? "table: the tip angle only, no state written (tipAngleAt)"
-                              : "joints + backbone (N = 7, general path)");
+  static const char* const kLabels[] = {"", "one wall, stages 1-4 (solveWall)", "stage 4 alone, theta(h)",
+                                       "robust: the tip angle only, no state written (tipAngleAt)",
+                                       "table: the tip angle only, no state written (tipAngleAt)",
+                                       "joints + backbone (N = 7, general path)"};
+  state.SetLabel(kLabels[stage]);
 }
 
 // The table solver's polynomials alone (table_kernel.hpp), per instruction set: what evaluate() runs for a finger of
@@ -340,11 +340,12 @@ void benchContact(benchmark::State& state, int which) {
     benchmark::DoNotOptimize(s.backbone_m.data());
     if (++i == pressures.size()) i = 0;
   }
-  state.SetLabel(which == 0   ? "contact: obstacle out of reach"
-                 : which == 1 ? "contact: disk at the tip, one touch, from scratch"
-                 : which == 2 ? "contact: the same, ContactTracker (events kept)"
-                 : which == 3 ? "contact: from scratch, inert base face (base_wall_share = 0)"
-                              : "contact: from scratch, unequal chambers (search in sqrt(P))");
+  static const char* const kLabels[] = {"contact: obstacle out of reach",
+                                       "contact: disk at the tip, one touch, from scratch",
+                                       "contact: the same, ContactTracker (events kept)",
+                                       "contact: from scratch, inert base face (base_wall_share = 0)",
+                                       "contact: from scratch, unequal chambers (search in sqrt(P))"};
+  state.SetLabel(kLabels[which]);
 }
 
 // The batch entry point (FingerModel::evaluateMany) over the validated pressures, every output written to arrays the

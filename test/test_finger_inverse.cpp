@@ -9,12 +9,8 @@
 
 namespace pf = pneumatic_finger;
 
-namespace {
-const pf::FingerParameters kPaper = pf::FingerParameters::defaults();
-}
-
 TEST(FingerInverse, InverseModelRoundTrips) {
-  pf::FingerModel model(kPaper);
+  pf::FingerModel model(pf::FingerParameters::defaults());
   pf::FingerWorkspace ws(model);
   for (double p : {1e4, 5e4, 1e5, 1.5e5, 2e5}) {
     const double tip = model.evaluate(p, ws).tip_angle_rad;
