@@ -38,8 +38,10 @@ NodeParameterSpec triple(const char* key, double limit, const char* unit, const 
 }
 
 const std::vector<NodeParameterSpec>& specs() {
+  // The defaults are the settings structs' own: each is defined once, there.
   static const FingerUrdfOptions urdf;
   static const PressureInputSettings input;
+  static const NodeSettings node;
   static const std::vector<NodeParameterSpec> table = {
       text("frame_prefix", urdf.prefix, "empty, or a letter then letters, digits, '_'",
            "prepended to every link, joint and frame of this finger, so several fingers coexist"),
@@ -50,8 +52,8 @@ const std::vector<NodeParameterSpec>& specs() {
       text("gripper_file", "", "empty, or a gripper file (YAML)",
            "take this finger's mount and actuator from the gripper file's entry with frame_prefix, the file the "
            "composed URDF is made from (then parent_frame, the mounts and the actuator keys must not be set)"),
-      text("solver", "robust", "robust, paper, table", "the model's solver (see Solvers)"),
-      flag("publish_tf", true,
+      text("solver", solverName(node.solver), "robust, paper, table", "the model's solver (see Solvers)"),
+      flag("publish_tf", node.publish_tf,
            "true: this node broadcasts its finger's frames (lowest latency); false: it publishes joint_states only and a "
            "robot_state_publisher on the (composed) description publishes the frames"),
       number("max_rate_hz", input.max_rate_hz, 0, false, 1e5, "Hz",
@@ -70,14 +72,14 @@ const std::vector<NodeParameterSpec>& specs() {
       number("validated_max_gauge_pa", input.validated_max_gauge_pa, 0, true, 1e7, "Pa",
              "top of the validated range (the paper: 2 kg/cm^2); above it finger_state says so and diagnostics warn",
              "(0, max_gauge_pa]"),
-      text("description_param", "robot_description", "a ROS name",
+      text("description_param", node.description_param, "a ROS name",
            "parameter (resolved in the node's namespace) that receives the generated URDF"),
-      text("pressure_topic", "pressure", "a ROS name", "subscribed sensor_msgs/FluidPressure"),
-      text("joint_states_topic", "joint_states", "a ROS name", "published sensor_msgs/JointState"),
-      text("finger_state_topic", "finger_state", "a ROS name", "published pneumatic_finger/FingerModelState"),
-      text("grasp_object_topic", "grasp_object", "a ROS name",
+      text("pressure_topic", node.pressure_topic, "a ROS name", "subscribed sensor_msgs/FluidPressure"),
+      text("joint_states_topic", node.joint_states_topic, "a ROS name", "published sensor_msgs/JointState"),
+      text("finger_state_topic", node.finger_state_topic, "a ROS name", "published pneumatic_finger/FingerModelState"),
+      text("grasp_object_topic", node.grasp_object_topic, "a ROS name",
            "subscribed pneumatic_finger/GraspObject (latched): the object the finger closes on"),
-      number("object_rate_hz", 30.0, 0, true, 1000, "Hz",
+      number("object_rate_hz", node.object_rate_hz, 0, true, 1000, "Hz",
              "while there is a grasp object: how often its pose in the finger's frame is looked up (tf) and, when it "
              "changed (the arm or the object moved), the finger re-solved and re-published"),
   };

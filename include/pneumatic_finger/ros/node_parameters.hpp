@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/pressure_input.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
@@ -36,11 +37,13 @@ struct NodeSettings {
   TipUncertainty tip_uncertainty;  ///< the calibration's error bar (rosparam tip_uncertainty/*, or the gripper file's)
   FingerUrdfOptions urdf;
   PressureInputSettings input;  ///< the input rules' settings (atmospheric_pa and max_gauge_pa follow finger, urdf)
-  SolverKind solver;
+  // The defaults of the node's own parameters (nodeParameterSpecs() shows these, the one definition).
+  SolverKind solver = ModelOptions().solver;
   bool publish_tf = true;
   std::string gripper_file;
   double object_rate_hz = 30.0;
-  std::string description_param, pressure_topic, joint_states_topic, finger_state_topic, grasp_object_topic;
+  std::string description_param = "robot_description", pressure_topic = "pressure", joint_states_topic = "joint_states",
+              finger_state_topic = "finger_state", grasp_object_topic = "grasp_object";
 };
 
 /// Reads and validates every parameter from the private handle.
