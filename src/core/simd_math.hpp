@@ -12,6 +12,8 @@
 
 #include <cstddef>
 
+#include "pneumatic_finger/core/units.hpp"
+
 #if defined(__x86_64__)
 #include <immintrin.h>
 #endif
@@ -101,7 +103,7 @@ inline T atanGeneral(T t) {
   const auto mid = t > splat<T>(0.4142135623730950488);
   const T one = splat<T>(1.0);
   // pi/2 and pi/4 as a double plus the part a double leaves out, added last to the small term.
-  const T base_hi = big ? splat<T>(1.5707963267948966) : (mid ? splat<T>(0.7853981633974483) : splat<T>(0.0));
+  const T base_hi = big ? splat<T>(kHalfPi) : (mid ? splat<T>(kPi / 4) : splat<T>(0.0));
   const T base_lo = big ? splat<T>(6.123233995736766e-17) : (mid ? splat<T>(3.061616997868383e-17) : splat<T>(0.0));
   T x;
   if constexpr (lanesOf<T>() == 1) {
