@@ -129,6 +129,20 @@ TEST(FingerModel, UnchangedPressureIsNotRecomputed) {
   EXPECT_EQ(ws.computationCount(), before + 3);
 }
 
+// A workspace of the same shape may serve two models: its cache answers only for the model that filled it, so the
+// second model's state at the same pressure is its own, not the first's.
+TEST(FingerModel, TheCacheOfAWorkspaceBelongsToTheModelThatFilledIt) {
+  pf::FingerParameters stiffer = kPaper;
+  for (double& mu : stiffer.shear_modulus_pa) mu *= 2.0;
+  const pf::FingerModel a(kPaper), b(stiffer);
+  pf::FingerWorkspace shared(a), alone(b);
+  const double tip_a = a.evaluate(1.5e5, shared).tip_angle_rad;
+  const double tip_b = b.evaluate(1.5e5, shared).tip_angle_rad;
+  EXPECT_EQ(tip_b, b.evaluate(1.5e5, alone).tip_angle_rad);
+  EXPECT_NE(tip_a, tip_b);
+  EXPECT_EQ(shared.computationCount(), 2);
+}
+
 TEST(FingerModel, WithoutChamberDetailStretchAndBulgeAreNaNNotPlaceholders) {
   // chamber_detail = false leaves stretch and bulge out (the table solver then skips the chain): the state says so
   // with NaN rather than a rest value, and everything else is what the full evaluation gives, bit for bit.

@@ -341,7 +341,9 @@ const FingerState& FingerModel::evaluate(double gauge_pa, FingerWorkspace& ws) c
     ws.has_last_ = false;  // the next finite pressure recomputes and resets the status
     return state;
   }
-  if (ws.has_last_ && gauge_pa == ws.last_gauge_pa_) return state;  // unchanged pressure: nothing to do
+  // Unchanged pressure on the same model: nothing to do. (A workspace of the same shape may have been used with
+  // another model last: its state is that model's, so it is recomputed.)
+  if (ws.has_last_ && gauge_pa == ws.last_gauge_pa_ && ws.last_model_ == this) return state;
   const bool vacuum = gauge_pa < 0.0;
   ++ws.computations_;
   if (!writeState(vacuum ? 0.0 : gauge_pa, ws, state)) {
@@ -353,6 +355,7 @@ const FingerState& FingerModel::evaluate(double gauge_pa, FingerWorkspace& ws) c
   state.status = vacuum ? EvaluationStatus::kVacuum : EvaluationStatus::kOk;
   ws.has_last_ = true;
   ws.last_gauge_pa_ = gauge_pa;
+  ws.last_model_ = this;
   return state;
 }
 

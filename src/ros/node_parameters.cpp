@@ -52,7 +52,7 @@ const std::vector<NodeParameterSpec>& specs() {
       text("gripper_file", "", "empty, or a gripper file (YAML)",
            "take this finger's mount and actuator from the gripper file's entry with frame_prefix, the file the "
            "composed URDF is made from (then parent_frame, the mounts and the actuator keys must not be set)"),
-      text("solver", solverName(node.solver), "robust, paper, table", "the model's solver (see Solvers)"),
+      text("solver", solverName(node.solver), "robust, paper, table", "the model's solver (docs/LIBRARY.md, Solvers)"),
       flag("publish_tf", node.publish_tf,
            "true: this node broadcasts its finger's frames (lowest latency); false: it publishes joint_states only and a "
            "robot_state_publisher on the (composed) description publishes the frames"),

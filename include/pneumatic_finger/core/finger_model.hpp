@@ -109,6 +109,7 @@ class FingerWorkspace {
   FingerState state_;
   bool has_last_ = false;
   double last_gauge_pa_ = 0.0;
+  const FingerModel* last_model_ = nullptr;  // the model last_gauge_pa_'s state belongs to
   long computations_ = 0;
   std::vector<ChamberGroupSolution> group_solutions_;  // per distinct chamber geometry
   std::vector<HalfAngle> chamber_half_;                // per chamber
