@@ -7,6 +7,9 @@ import os
 import re
 import socket
 import subprocess
+import time
+
+import pytest
 
 
 def free_port():
@@ -46,3 +49,52 @@ def test_a_finished_cell_run_reads_clean_in_time_order():
     stamps = [float(m.group(1)) for m in re.finditer(r"\[ ?(?:INFO|WARN|ERROR)\] \[(\d+\.\d+)\]", out)]
     assert len(stamps) > 20, out
     assert all(b >= a - 1e-3 for a, b in zip(stamps, stamps[1:])), out
+
+
+@pytest.fixture(scope="module")
+def master():
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI=f"http://localhost:{port}", ROS_HOSTNAME="localhost")
+    core = subprocess.Popen(["roscore", "-p", str(port)], env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    for _ in range(100):
+        if subprocess.run(["rosparam", "list"], env=env, capture_output=True).returncode == 0:
+            break
+        time.sleep(0.1)
+    yield env
+    core.terminate()
+    core.wait()
+
+
+# Every node reads its parameters with the one reader: a wrong type, a value out of range or an unknown key stops it
+# with exit 2 and a message naming the key, the value and what is allowed (the core's words for a range).
+REFUSALS = [
+    ("gripper_action_server", {"finger_namespaces": "[/f]", "settle_timeout_s": "0.0625"},
+     "parameter 'settle_timeout_s' = 0.0625 is outside its allowed range [0.1, 600] s"),
+    ("gripper_action_server", {"finger_namespaces": "[/f]", "squeeze_margin": "1"},
+     "unknown parameter 'squeeze_margin'"),
+    ("gripper_action_server", {"finger_namespaces": "[/f, 3]"},
+     "parameter 'finger_namespaces' = ['/f', 3] must be a non-empty list of non-empty strings"),
+    ("gripper_action_server", {}, "parameter 'finger_namespaces' is missing"),
+    ("pressure_regulator", {"finger_count": "0"},
+     "parameter 'finger_count' = 0 is outside its allowed range integer in [1, 64]"),
+    ("pressure_regulator", {"flow_m3_per_s": "fast"}, "parameter 'flow_m3_per_s' = 'fast' is not a number"),
+    ("cell_sequencer", {"arm_joint_names": "[j1]", "home": "[0]", "above_pick": "[0]", "pick": "[0]",
+                        "above_place": "[0]", "place": "[0, 1]"},
+     "parameter 'place' = [0, 1] must be a list of 1 numbers"),
+    ("cell_sequencer", {"arm_joint_names": "[j1]", "home": "[0]", "above_pick": "[0]", "pick": "[0]",
+                        "above_place": "[0]", "place": "[0]", "cycle_time_s": "1.5"},
+     "parameter 'cycle_time_s' = 1.5 is outside its allowed range [2, 600] s"),
+    ("finger_node", {"max_rate_hz": "-1"}, "parameter 'max_rate_hz' = -1 is outside its allowed range [0, 100000] Hz"),
+]
+
+
+@pytest.mark.parametrize("node,params,message", REFUSALS)
+def test_every_node_refuses_a_bad_parameter_by_name(master, node, params, message):
+    subprocess.run(["rosparam", "delete", "/"], env=master, capture_output=True)
+    for key, value in params.items():
+        subprocess.run(["rosparam", "set", f"/{node}/{key}", value], env=master, check=True)
+    done = subprocess.run(["timeout", "30", "rosrun", "pneumatic_finger", node], env=master, capture_output=True,
+                          text=True)
+    out = done.stdout + done.stderr
+    assert done.returncode == 2, out
+    assert message in out, out

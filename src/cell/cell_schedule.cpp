@@ -27,7 +27,10 @@ CellSchedule::CellSchedule(CellWaypoints waypoints, double cycle_time_s)
   for (const ArmJoints* v : {&w.above_pick, &w.pick, &w.above_place, &w.place}) {
     if (v->size() != w.home.size()) throw std::invalid_argument("every waypoint needs as many joints as 'home'");
   }
-  if (!(cycle_time_s >= 2.0 && cycle_time_s <= 600.0)) throw std::invalid_argument("cycle_time_s must be in [2, 600]");
+  if (!(cycle_time_s >= kMinCycleTimeS && cycle_time_s <= kMaxCycleTimeS)) {
+    throw std::invalid_argument("cycle_time_s must be in [" + std::to_string(int(kMinCycleTimeS)) + ", " +
+                                std::to_string(int(kMaxCycleTimeS)) + "]");
+  }
   // Fractions of the cycle: the grasp and release phases last 15 % (1.8 s of a 12 s cycle), long enough for the
   // regulator's fill to finish before the arm moves.
   segments_ = {

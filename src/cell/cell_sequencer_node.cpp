@@ -32,6 +32,7 @@
 #include "pneumatic_finger/GraspObject.h"
 #include "pneumatic_finger/GripperCommandAction.h"
 #include "pneumatic_finger/cell/cell_schedule.hpp"
+#include "pneumatic_finger/ros/parameter_reader.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -40,51 +41,55 @@ namespace {
 struct Settings {
   std::vector<std::string> joint_names;
   pf::CellWaypoints waypoints;
-  double cycle_time_s = 12.0, grasp_position_rad = 3.0, grasp_max_effort_pa = 0.0, object_offset_m = 0.075,
-         object_radius_m = 0.016, object_height_m = 0.035, publish_rate_hz = 50.0;
+  double cycle_time_s = 0, grasp_position_rad = 0, grasp_max_effort_pa = 0, object_offset_m = 0, object_radius_m = 0,
+         object_height_m = 0, publish_rate_hz = 0;
   int loop_count = 0;
-  std::string base_link = "world", tool_link = "tool0", object_id = "cylinder";
+  std::string base_link = "world", tool_link = "tool0", object_id;
 };
 
-pf::ArmJoints readJoints(const ros::NodeHandle& pnh, const std::string& key, std::size_t n) {
-  pf::ArmJoints v;
-  if (!pnh.getParam(key, v) || v.size() != n) {
-    throw std::runtime_error("parameter '" + key + "' must be a list of " + std::to_string(n) + " joint values (rad)");
-  }
-  return v;
+// The sequencer's parameters: their one definition (`cell_sequencer --parameters` prints it for docs/).
+const std::vector<pf::NodeParameterSpec>& parameterSpecs() {
+  static const std::vector<pf::NodeParameterSpec> table = {
+      pf::listParameter("arm_joint_names", "string[]", "-", "the arm's joints", "the arm's joints, in the waypoints' order"),
+      pf::listParameter("home", "double[]", "rad", "one per arm joint", "waypoint: where a cycle starts and ends"),
+      pf::listParameter("above_pick", "double[]", "rad", "one per arm joint", "waypoint: above the pick table"),
+      pf::listParameter("pick", "double[]", "rad", "one per arm joint", "waypoint: the grasp pose"),
+      pf::listParameter("above_place", "double[]", "rad", "one per arm joint", "waypoint: above the place table"),
+      pf::listParameter("place", "double[]", "rad", "one per arm joint", "waypoint: the release pose"),
+      pf::numberParameter("cycle_time_s", 12.0, pf::kMinCycleTimeS, false, pf::kMaxCycleTimeS, "s",
+                          "one pick-and-place cycle"),
+      pf::integerParameter("loop_count", 0, 0, 1000000, "cycles to run, then stop the launch (0: forever)"),
+      pf::numberParameter("grasp_position_rad", 3.0, 0, true, 20, "rad",
+                          "the grasp goal's closing angle: beyond the object, so that the object stops the fingers"),
+      pf::numberParameter("grasp_max_effort_pa", 0.0, 0, false, 1e7, "Pa",
+                          "the grasp goal's pressure limit (gauge); 0: the fingers' range"),
+      pf::textParameter("object_id", "cylinder", "not empty", "the object's name (grasp_object, markers)"),
+      pf::numberParameter("object_offset_m", 0.075, 0, true, 1, "m", "the object's centre along tool0's z while held"),
+      pf::numberParameter("object_radius_m", 0.016, 0, true, 1, "m", "the cylinder's radius"),
+      pf::numberParameter("object_height_m", 0.035, 0, true, 1, "m", "the cylinder's height"),
+      pf::numberParameter("publish_rate_hz", 50.0, 0, true, 1000, "Hz", "the arm's joint_states and the object's rate"),
+  };
+  return table;
 }
 
 Settings readSettings(const ros::NodeHandle& pnh) {
+  const pf::NodeParameterReader in(pnh, parameterSpecs());
   Settings s;
-  if (!pnh.getParam("arm_joint_names", s.joint_names) || s.joint_names.empty()) {
-    throw std::runtime_error("parameter 'arm_joint_names' is missing");
-  }
+  s.joint_names = in.texts("arm_joint_names");
   const std::size_t n = s.joint_names.size();
-  s.waypoints = {readJoints(pnh, "home", n), readJoints(pnh, "above_pick", n), readJoints(pnh, "pick", n),
-                 readJoints(pnh, "above_place", n), readJoints(pnh, "place", n)};
-  pnh.param("cycle_time_s", s.cycle_time_s, s.cycle_time_s);
-  pnh.param("loop_count", s.loop_count, s.loop_count);
-  pnh.param("grasp_position_rad", s.grasp_position_rad, s.grasp_position_rad);
-  pnh.param("grasp_max_effort_pa", s.grasp_max_effort_pa, s.grasp_max_effort_pa);
-  pnh.param("object_id", s.object_id, s.object_id);
-  pnh.param("object_offset_m", s.object_offset_m, s.object_offset_m);
-  pnh.param("object_radius_m", s.object_radius_m, s.object_radius_m);
-  pnh.param("object_height_m", s.object_height_m, s.object_height_m);
-  pnh.param("publish_rate_hz", s.publish_rate_hz, s.publish_rate_hz);
-  if (s.loop_count < 0) throw std::runtime_error("parameter 'loop_count' must be >= 0 (0: forever)");
-  if (!(s.grasp_position_rad > 0 && s.grasp_position_rad <= 20)) {
-    throw std::runtime_error("parameter 'grasp_position_rad' must be in (0, 20]");
-  }
-  if (!(s.grasp_max_effort_pa >= 0 && s.grasp_max_effort_pa <= 1e7)) {
-    throw std::runtime_error("parameter 'grasp_max_effort_pa' must be in [0, 1e7] (0: the fingers' range)");
-  }
-  if (s.object_id.empty()) throw std::runtime_error("parameter 'object_id' must not be empty");
-  for (double x : {s.object_offset_m, s.object_radius_m, s.object_height_m}) {
-    if (!(x > 0 && x < 1)) throw std::runtime_error("object_offset_m, object_radius_m and object_height_m must be in (0, 1) m");
-  }
-  if (!(s.publish_rate_hz > 0 && s.publish_rate_hz <= 1000)) {
-    throw std::runtime_error("parameter 'publish_rate_hz' must be in (0, 1000]");
-  }
+  s.waypoints = {in.numbers("home", n), in.numbers("above_pick", n), in.numbers("pick", n),
+                 in.numbers("above_place", n), in.numbers("place", n)};
+  s.cycle_time_s = in.number("cycle_time_s");
+  s.loop_count = static_cast<int>(in.number("loop_count"));
+  s.grasp_position_rad = in.number("grasp_position_rad");
+  s.grasp_max_effort_pa = in.number("grasp_max_effort_pa");
+  s.object_id = in.text("object_id");
+  if (s.object_id.empty()) throw pf::ParameterError("parameter 'object_id' must not be empty");
+  s.object_offset_m = in.number("object_offset_m");
+  s.object_radius_m = in.number("object_radius_m");
+  s.object_height_m = in.number("object_height_m");
+  s.publish_rate_hz = in.number("publish_rate_hz");
+  in.refuseUnknownKeys();
   return s;
 }
 
@@ -441,6 +446,7 @@ void endLaunch() {
 int main(int argc, char** argv) {
   // Line by line even into a pipe or a file, so that the nodes' lines of one cell interleave in time order.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  if (pf::printParametersIfAsked(argc, argv, parameterSpecs())) return 0;
   ros::init(argc, argv, "cell_sequencer");
   ros::NodeHandle nh, pnh("~");
   Settings settings;

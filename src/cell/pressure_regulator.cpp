@@ -7,23 +7,31 @@
 #include "pneumatic_finger/core/regulator.hpp"
 #include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
+#include "pneumatic_finger/ros/parameter_reader.hpp"
 
 namespace pneumatic_finger {
 
+const std::vector<NodeParameterSpec>& PressureRegulator::parameterSpecs() {
+  static const std::vector<NodeParameterSpec> table = {
+      textParameter("config", "", "empty, or a finger file (YAML)",
+                    "the finger's parameter file, for its rest volume V_o and P_o (empty: the default finger)"),
+      numberParameter("flow_m3_per_s", 1.6e-5, 0, true, 1.0, "m^3/s",
+                      "the source's constant flow Q (1.6e-5: about 1 L/min, three fingers to 2 kg/cm^2 in 1 s)"),
+      integerParameter("finger_count", 3, 1, 64, "fingers the regulator fills (their chambers' volumes add)"),
+      numberParameter("publish_rate_hz", 100.0, 0, true, 10000, "Hz", "how often the pressure is published"),
+  };
+  return table;
+}
+
 PressureRegulator::PressureRegulator(ros::NodeHandle& nh, ros::NodeHandle& pnh) {
-  double flow = 0, rate_hz = 0;
-  int finger_count = 0;
-  std::string config;
-  pnh.param("config", config, std::string());
-  pnh.param("flow_m3_per_s", flow, 1.6e-5);  // about 1 L/min: fills three fingers to 2 kg/cm^2 in about 1 s
-  pnh.param("finger_count", finger_count, 3);
-  pnh.param("publish_rate_hz", rate_hz, 100.0);
+  const NodeParameterReader in(pnh, parameterSpecs());
+  const std::string config = in.text("config");
+  const double flow = in.number("flow_m3_per_s"), rate_hz = in.number("publish_rate_hz");
+  const int finger_count = static_cast<int>(in.number("finger_count"));
+  in.refuseUnknownKeys();
   RawParameterMap raw;
   if (!config.empty()) loadRawParametersFromYamlFile(config, raw);
   const FingerParameters finger = FingerParameters::fromRaw(raw);
-  if (!(flow > 0) || !std::isfinite(flow)) throw ParameterError("parameter 'flow_m3_per_s' must be > 0");
-  if (finger_count < 1) throw ParameterError("parameter 'finger_count' must be >= 1");
-  if (!(rate_hz > 0 && rate_hz <= 10000)) throw ParameterError("parameter 'publish_rate_hz' must be in (0, 10000]");
   p_o_ = finger.atmospheric_pressure_pa;
   const double volume = restVolumeM3(finger, finger_count);
   fill_rate_pa_per_s_ = fillRatePaPerS(flow, volume, p_o_);

@@ -10,6 +10,9 @@
 int main(int argc, char** argv) {
   // Line by line even into a pipe or a file, so that the nodes' lines of one cell interleave in time order.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  if (pneumatic_finger::printParametersIfAsked(argc, argv, pneumatic_finger::PressureRegulator::parameterSpecs())) {
+    return 0;
+  }
   ros::init(argc, argv, "pressure_regulator");
   ros::NodeHandle nh, pnh("~");
   try {

@@ -48,17 +48,24 @@ const std::vector<ParameterSpec> kSpecs = {
      "density of the elastomer, for the URDF's link masses and inertias (not used by the model)"},
 };
 
+// " m" after a range; nothing for a dimensionless key.
+std::string unitSuffix(const ParameterSpec& spec) {
+  return std::string(spec.unit) == "-" ? std::string() : " " + std::string(spec.unit);
+}
+
 std::string keyAndValue(const ParameterSpec& spec, double value) {
   std::ostringstream s;
   s << "parameter '" << spec.key << "' = " << formatExact(value) << " is outside its allowed range "
-    << describeRange(spec) << " " << spec.unit;
+    << describeRange(spec) << unitSuffix(spec);
   return s.str();
 }
 
-void checkValue(const ParameterSpec& spec, double value) {
+}  // namespace
+
+void checkParameterValue(const ParameterSpec& spec, double value) {
   if (!std::isfinite(value)) {
     throw ParameterError(std::string("parameter '") + spec.key + "' = " + formatExact(value) +
-                         " is not a finite number; allowed: " + describeRange(spec) + " " + spec.unit);
+                         " is not a finite number; allowed: " + describeRange(spec) + unitSuffix(spec));
   }
   const bool above_min = spec.min_inclusive ? value >= spec.min_value : value > spec.min_value;
   if (!above_min || value > spec.max_value) throw ParameterError(keyAndValue(spec, value));
@@ -68,12 +75,14 @@ void checkValue(const ParameterSpec& spec, double value) {
   }
 }
 
+namespace {
+
 // Expands a scalar or checks a list against N.
 std::vector<double> perChamber(const ParameterSpec& spec, const RawParameterMap& raw, int chamber_count) {
   const auto it = raw.find(spec.key);
   if (it == raw.end()) return std::vector<double>(static_cast<std::size_t>(chamber_count), spec.default_value);
   const RawParameterValue& v = it->second;
-  for (double x : v.values) checkValue(spec, x);
+  for (double x : v.values) checkParameterValue(spec, x);
   if (!v.is_list) return std::vector<double>(static_cast<std::size_t>(chamber_count), v.values.at(0));
   if (v.values.size() != static_cast<std::size_t>(chamber_count)) {
     std::ostringstream s;
@@ -90,7 +99,7 @@ double scalar(const ParameterSpec& spec, const RawParameterMap& raw) {
   if (it->second.is_list || it->second.values.size() != 1) {
     throw ParameterError(std::string("parameter '") + spec.key + "' must be a single number, not a list");
   }
-  checkValue(spec, it->second.values[0]);
+  checkParameterValue(spec, it->second.values[0]);
   return it->second.values[0];
 }
 

@@ -6,26 +6,11 @@
 
 #include "pneumatic_finger/ros/finger_node.hpp"
 
-namespace {
-
-// `finger_node --parameters`: the node's own parameters as Markdown, for the README (no ROS master needed).
-void printParameters() {
-  std::cout << "| parameter | type | default | unit | allowed | meaning |\n|---|---|---|---|---|---|\n";
-  for (const auto& s : pneumatic_finger::nodeParameterSpecs()) {
-    std::cout << "| `~" << s.key << "` | " << s.type << " | `" << s.default_text << "` | " << s.unit << " | "
-              << s.allowed << " | " << s.description << " |\n";
-  }
-}
-
-}  // namespace
-
 int main(int argc, char** argv) {
   // Line by line even into a pipe or a file, so that the nodes' lines of one cell interleave in time order.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  if (argc > 1 && std::string(argv[1]) == "--parameters") {
-    printParameters();
-    return 0;
-  }
+  // `finger_node --parameters`: the node's own parameters as Markdown, for docs/ (no ROS master needed).
+  if (pneumatic_finger::printParametersIfAsked(argc, argv, pneumatic_finger::nodeParameterSpecs())) return 0;
   ros::init(argc, argv, "finger_node");
   ros::NodeHandle nh;
   ros::NodeHandle private_nh("~");

@@ -19,34 +19,41 @@
 #include "pneumatic_finger/PressureForTipAngle.h"
 #include "pneumatic_finger/core/grasp_plan.hpp"
 #include "pneumatic_finger/core/units.hpp"
+#include "pneumatic_finger/ros/parameter_reader.hpp"
 
 namespace pf = pneumatic_finger;
 
 namespace {
 
-double readNumber(const ros::NodeHandle& pnh, const std::string& key, double def, double lo, double hi) {
-  double x = def;
-  pnh.param(key, x, def);
-  if (!(x >= lo && x <= hi)) {
-    std::ostringstream s;
-    s << "parameter '" << key << "' = " << x << " is outside its allowed range [" << lo << ", " << hi << "]";
-    throw std::runtime_error(s.str());
-  }
-  return x;
+// The server's parameters: their one definition (`gripper_action_server --parameters` prints it for docs/).
+const std::vector<pf::NodeParameterSpec>& parameterSpecs() {
+  static const std::vector<pf::NodeParameterSpec> table = {
+      pf::listParameter("finger_namespaces", "string[]", "-", "each finger_node's namespace",
+                        "the fingers the action drives (their pressure_for_tip_angle service and finger_state)"),
+      pf::numberParameter("squeeze_margin_pa", 0.1 * pf::kPaPerKgfPerCm2, 0, false, 1e6, "Pa",
+                          "a grasp's pressure beyond the last finger's touch (0.1 kg/cm^2)"),
+      pf::numberParameter("goal_tolerance_rad", 0.01, 1e-6, false, 1.0, "rad", "`reached_goal` tolerance"),
+      pf::numberParameter("settle_tolerance_pa", 200.0, 1e-3, false, 1e5, "Pa",
+                          "settled: every finger's pressure this close to the command"),
+      pf::numberParameter("settle_timeout_s", 10.0, 0.1, false, 600, "s", "no settling within this aborts the goal"),
+      pf::numberParameter("max_gauge_pa", pf::kModelMaxGaugePa, 1e-3, false, 1e7, "Pa",
+                          "the fingers' range (their max_gauge_pa): the highest pressure the action commands"),
+  };
+  return table;
 }
 
 class GripperActionServer {
  public:
   GripperActionServer(ros::NodeHandle& nh, ros::NodeHandle& pnh)
       : server_(nh, "gripper_action", [this](const pf::GripperCommandGoalConstPtr& goal) { execute(goal); }, false) {
-    if (!pnh.getParam("finger_namespaces", fingers_) || fingers_.empty()) {
-      throw std::runtime_error("parameter 'finger_namespaces' must list each finger_node's namespace");
-    }
-    squeeze_margin_pa_ = readNumber(pnh, "squeeze_margin_pa", 9806.65, 0, 1e6);
-    goal_tolerance_rad_ = readNumber(pnh, "goal_tolerance_rad", 0.01, 1e-6, 1.0);
-    settle_tolerance_pa_ = readNumber(pnh, "settle_tolerance_pa", 200.0, 1e-3, 1e5);
-    settle_timeout_s_ = readNumber(pnh, "settle_timeout_s", 10.0, 0.1, 600);
-    max_gauge_pa_ = readNumber(pnh, "max_gauge_pa", pf::kModelMaxGaugePa, 1e-3, 1e7);
+    const pf::NodeParameterReader in(pnh, parameterSpecs());
+    fingers_ = in.texts("finger_namespaces");
+    squeeze_margin_pa_ = in.number("squeeze_margin_pa");
+    goal_tolerance_rad_ = in.number("goal_tolerance_rad");
+    settle_tolerance_pa_ = in.number("settle_tolerance_pa");
+    settle_timeout_s_ = in.number("settle_timeout_s");
+    max_gauge_pa_ = in.number("max_gauge_pa");
+    in.refuseUnknownKeys();
     for (const std::string& ns : fingers_) {
       subs_.push_back(nh.subscribe<pf::FingerModelState>(
           ros::names::append(ns, "finger_state"), 1,
@@ -181,6 +188,7 @@ class GripperActionServer {
 int main(int argc, char** argv) {
   // Line by line even into a pipe or a file, so that the nodes' lines of one cell interleave in time order.
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  if (pf::printParametersIfAsked(argc, argv, parameterSpecs())) return 0;
   ros::init(argc, argv, "gripper_action_server");
   ros::NodeHandle nh, pnh("~");
   try {

@@ -34,6 +34,10 @@ struct CellStep {
   ObjectPlace object = ObjectPlace::kOnPickTable;  ///< where the object is when the grasp succeeds
 };
 
+/// The cycle times a schedule runs (s): the phases need a few tenths of a second each, and a cycle longer than ten
+/// minutes is a configuration mistake.
+constexpr double kMinCycleTimeS = 2.0, kMaxCycleTimeS = 600.0;
+
 class CellSchedule {
  public:
   /// @throws std::invalid_argument when a waypoint's size differs from the others or cycle_time_s is not in [2, 600]

@@ -6,12 +6,18 @@
 #include <ros/ros.h>
 #include <std_msgs/Float64.h>
 
+#include <vector>
+
+#include "pneumatic_finger/ros/parameter_reader.hpp"
+
 namespace pneumatic_finger {
 
 class PressureRegulator {
  public:
   /// Reads ~config, ~flow_m3_per_s, ~finger_count, ~publish_rate_hz. @throws ParameterError naming a bad one.
   PressureRegulator(ros::NodeHandle& nh, ros::NodeHandle& private_nh);
+  /// Its parameters' one definition (`pressure_regulator --parameters`).
+  static const std::vector<NodeParameterSpec>& parameterSpecs();
 
  private:
   void onSetpoint(const std_msgs::Float64::ConstPtr& m);

@@ -101,6 +101,11 @@ std::string formatExact(double value);  // NaN as "nan", whatever its sign bit
 /// parameter files are written.
 std::string formatShortest(double value);
 
+/// The one check of a number against its definition: finite, in range, whole for an integer key. Every reader of
+/// parameters (the YAML loader, --set, the ROS nodes' private handles, dynamic_reconfigure) calls it.
+/// @throws ParameterError naming the key, the value and the allowed range with its unit
+void checkParameterValue(const ParameterSpec& spec, double value);
+
 /// Describes the allowed range of @p spec, e.g. "(0, 1]" or "integer in [1, 64]".
 std::string describeRange(const ParameterSpec& spec);
 

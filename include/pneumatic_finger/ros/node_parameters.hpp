@@ -12,23 +12,11 @@
 #include "pneumatic_finger/core/pressure_input.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
+#include "pneumatic_finger/ros/parameter_reader.hpp"
 
 namespace pneumatic_finger {
 
-/// The node's own parameters (besides the actuator keys of parameterSpecs()): one definition of each (type,
-/// default, unit, range, meaning), read by readNodeSettings() and printed by `finger_node --parameters` for the README.
-struct NodeParameterSpec {
-  std::string key;
-  std::string type;           ///< "string", "double", "double[3]", "bool"
-  std::string default_text;   ///< the default as text (strings, triples)
-  double default_value;       ///< the default of a "double"
-  double min_value;           ///< range of a "double" (of every entry of a "double[3]": |x| <= max_value)
-  bool min_open;              ///< whether min_value itself is excluded
-  double max_value;
-  std::string unit;
-  std::string allowed;        ///< the range as text (generated for numbers)
-  std::string description;
-};
+/// The node's own parameters (besides the actuator keys of parameterSpecs()), printed by `finger_node --parameters`.
 const std::vector<NodeParameterSpec>& nodeParameterSpecs();
 
 /// Everything the node reads at start-up, validated.
