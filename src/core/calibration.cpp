@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "golden_section.hpp"
+#include "joint_chain.hpp"
 
 namespace pneumatic_finger {
 
@@ -158,11 +159,11 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
       r.measured_avg_rad = m.averageOuterJoints();
       r.measured_joint1_rad = m.joint_rad[0];
       // The measured finger's tip: its joints along the model's segments (eq 38).
-      double angle = 0.0, x = parameters.base_segment_length_m, y = 0.0;
+      double angle = 0.0, x = parameters.base_segment_length_m, y = 0.0, dir_c = 1.0, dir_s = 0.0;
       for (std::size_t k = 0; k < m.joint_rad.size() && k < parameters.segment_length_m.size(); ++k) {
         angle += m.joint_rad[k];
-        x += parameters.segment_length_m[k] * std::cos(angle);
-        y += parameters.segment_length_m[k] * std::sin(angle);
+        advanceBackbone(std::cos(m.joint_rad[k]), std::sin(m.joint_rad[k]), parameters.segment_length_m[k], dir_c, dir_s,
+                        x, y);
       }
       r.measured_tip_angle_rad = angle;
       r.measured_tip_x_m = x;

@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "pneumatic_finger/core/units.hpp"
+#include "joint_chain.hpp"
 #include "simd_math.hpp"
 #include "touch_search.hpp"
 
@@ -42,20 +43,18 @@ void ContactSolver::backbone(const JointAngles& q, BackbonePoints& points) const
   const FingerParameters& p = model_.parameters();
   const int n = p.chamber_count;
   points.resize(2, n + 2);
+  double x = p.base_segment_length_m, y = 0.0;
   points.col(0) = Vec::Zero();
-  points.col(1) = Vec(p.base_segment_length_m, 0.0);
-  // The direction turns by q_i at joint i: a rotation, composed; a joint whose angle equals the previous one's (the
-  // free joints of identical chambers, a frozen run) reuses its sine and cosine.
+  points.col(1) = Vec(x, y);
+  // The direction turns by q_i at joint i (eq 38); a joint whose angle equals the previous one's (the free joints of
+  // identical chambers, a frozen run) reuses its sine and cosine.
   double dir_c = 1.0, dir_s = 0.0, rot_c = 1.0, rot_s = 0.0;
   for (int i = 0; i < n; ++i) {
     if (i == 0 || q[i] != q[i - 1]) {
       cosSin(q[i], rot_c, rot_s);
     }
-    const double c = dir_c * rot_c - dir_s * rot_s;
-    dir_s = dir_s * rot_c + dir_c * rot_s;
-    dir_c = c;
-    const double z = p.segment_length_m[static_cast<std::size_t>(i)];
-    points.col(i + 2) = points.col(i + 1) + z * Vec(dir_c, dir_s);
+    advanceBackbone(rot_c, rot_s, p.segment_length_m[static_cast<std::size_t>(i)], dir_c, dir_s, x, y);
+    points.col(i + 2) = Vec(x, y);
   }
 }
 

@@ -230,12 +230,7 @@ void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half
     // (cos, sin)(q) = (cos, sin)(theta_{n-1}) * (cos, sin)(theta_n); Theta_n = Theta_{n-1} + q.
     const double rot_c = cos_prev * h.cos - sin_prev * h.sin;
     const double rot_s = sin_prev * h.cos + cos_prev * h.sin;
-    const double c_new = dir_c * rot_c - dir_s * rot_s;
-    dir_s = dir_s * rot_c + dir_c * rot_s;
-    dir_c = c_new;
-    const double z = parameters.segment_length_m[static_cast<std::size_t>(i)];  // eq 38
-    x += z * dir_c;
-    y += z * dir_s;
+    advanceBackbone(rot_c, rot_s, parameters.segment_length_m[static_cast<std::size_t>(i)], dir_c, dir_s, x, y);
     out.backbone_m(0, i + 2) = x;
     out.backbone_m(1, i + 2) = y;
     theta_prev = h.rad;

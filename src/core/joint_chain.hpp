@@ -1,5 +1,5 @@
-// Stages 5-6 of docs/MODEL.md for identical chambers, written once for a plain double and for a pack of doubles:
-// joint 1's angle and direction, and the backbone's points. The single evaluation (uniform_shape.hpp) and the batch
+// Stages 5-6 of docs/MODEL.md, written once for a plain double and for a pack of doubles: the backbone's step (eq 38),
+// and for identical chambers joint 1's angle and direction and the backbone's points. The single evaluation (uniform_shape.hpp) and the batch
 // kernel (batch_kernel.hpp) instantiate the same templates, so both round alike. Internal header of src/core; internal
 // linkage as in simd_math.hpp.
 #pragma once
@@ -15,6 +15,19 @@ namespace {  // NOLINT(build/namespaces): internal linkage per instruction set (
 template <class T>
 inline T firstJointAngle(double base_wall_share, T theta) {
   return base_wall_share == 0.0 ? theta : base_wall_share * theta + theta;
+}
+
+/// Eq 38, one segment of the backbone: the direction (dir_c, dir_s) turns by the joint's rotation (rot_c, rot_s) =
+/// (cos q, sin q), and the point (x, y) advances by the segment's length z along it. The sequential form, for joints
+/// that are not all alike: the general chain (finger_model.cpp), the contact rule's held joints (contact.cpp) and
+/// measured joints (calibration.cpp). Identical free chambers take uniformPoints below (powers of one rotation).
+template <class T>
+inline void advanceBackbone(T rot_c, T rot_s, double z, T& dir_c, T& dir_s, T& x, T& y) {
+  const T c = dir_c * rot_c - dir_s * rot_s;
+  dir_s = dir_s * rot_c + dir_c * rot_s;
+  dir_c = c;
+  x += z * dir_c;
+  y += z * dir_s;
 }
 
 /// Up to this tan(theta), joint 1's direction comes from its series (FirstJointSeries, stages.hpp).
