@@ -169,8 +169,9 @@ TEST_F(FingerNodeTest, TipFrameResolvesFromTheParentAndEqualsTheModel) {
 TEST_F(FingerNodeTest, FingerStateCarriesTheModel) {
   pf::FingerModel model(packageParameters());
   pf::FingerWorkspace ws(model);
-  const pf::TipUncertainty bars =
-      pf::tipUncertaintyFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml");
+  pf::TipUncertainty bars;
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml", raw, &bars);
   ASSERT_EQ(bars.gauge_pa.size(), 4u);
   for (double p : {5e4, 250000.0}) {
     const ros::Time stamp = publishAndWait(p);

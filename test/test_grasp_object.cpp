@@ -31,7 +31,6 @@ class GraspObjectTest : public ::testing::Test {
 
 TEST_F(GraspObjectTest, WithoutAnObjectTheFingerIsFreeAndNothingIsCut) {
   EXPECT_EQ(tracker_.status(), pf::GraspObjectStatus::kNone);
-  EXPECT_FALSE(tracker_.hasObject());
   EXPECT_FALSE(tracker_.inReach());
   EXPECT_FALSE(tracker_.locate(Eigen::Isometry3d::Identity()));  // nothing to locate
   EXPECT_TRUE(std::isnan(tracker_.touchGaugePa()));

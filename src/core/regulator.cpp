@@ -17,11 +17,6 @@ double fillRatePaPerS(double flow_m3_per_s, double rest_volume_m3, double atmosp
   return atmospheric_pa * flow_m3_per_s / rest_volume_m3;
 }
 
-double fillEnergyJ(double flow_m3_per_s, double rest_volume_m3, double atmospheric_pa, double seconds) {
-  const double v = rest_volume_m3 + flow_m3_per_s * seconds;
-  return atmospheric_pa / (2.0 * rest_volume_m3) * (v * v - rest_volume_m3 * rest_volume_m3);
-}
-
 double regulatorStep(double gauge_pa, double setpoint_pa, double rate_pa_per_s, double dt_s) {
   const double step = rate_pa_per_s * dt_s;
   return gauge_pa < setpoint_pa ? std::min(gauge_pa + step, setpoint_pa) : std::max(gauge_pa - step, setpoint_pa);

@@ -8,6 +8,7 @@
 #include <sstream>
 
 #include "pneumatic_finger/core/parameters.hpp"
+#include "yaml_node.hpp"
 
 namespace pneumatic_finger {
 
@@ -61,13 +62,7 @@ TipUncertainty TipUncertainty::fromLists(const std::vector<double>& gauge_pa, co
   return {gauge_pa, tip_angle_rad, tip_position_m};
 }
 
-TipUncertainty tipUncertaintyFromYamlText(const std::string& text, const std::string& origin) {
-  YAML::Node root;
-  try {
-    root = YAML::Load(text);
-  } catch (const YAML::Exception& e) {
-    throw ParameterError(origin + ": not valid YAML: " + e.what());
-  }
+TipUncertainty tipUncertaintyFromYamlNode(const YAML::Node& root, const std::string& origin) {
   if (!root.IsMap() || !root[kTipUncertaintyKey]) return {};
   const YAML::Node node = root[kTipUncertaintyKey];
   if (!node.IsMap()) throw ParameterError(origin + ": " + kTipUncertaintyKey + " must be a mapping");
@@ -95,14 +90,6 @@ TipUncertainty tipUncertaintyFromYamlText(const std::string& text, const std::st
     }
   }
   return TipUncertainty::fromLists(list("gauge_pa"), list("tip_angle_rad"), list("tip_position_m"), origin);
-}
-
-TipUncertainty tipUncertaintyFromYamlFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw ParameterError("cannot read parameter file '" + path + "'");
-  std::stringstream text;
-  text << in.rdbuf();
-  return tipUncertaintyFromYamlText(text.str(), path);
 }
 
 std::string tipUncertaintyToYaml(const TipUncertainty& u) {

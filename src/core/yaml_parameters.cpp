@@ -1,11 +1,11 @@
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 
-#include "pneumatic_finger/core/tip_uncertainty.hpp"
-
 #include <yaml-cpp/yaml.h>
 
 #include <fstream>
 #include <sstream>
+
+#include "yaml_node.hpp"
 
 namespace pneumatic_finger {
 
@@ -41,7 +41,8 @@ void fromNode(const YAML::Node& root, const std::string& origin, RawParameterMap
 
 }  // namespace
 
-void loadRawParametersFromYamlText(const std::string& text, const std::string& origin, RawParameterMap& raw) {
+void loadRawParametersFromYamlText(const std::string& text, const std::string& origin, RawParameterMap& raw,
+                                   TipUncertainty* tip_uncertainty) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -49,15 +50,17 @@ void loadRawParametersFromYamlText(const std::string& text, const std::string& o
     throw ParameterError(origin + ": not valid YAML: " + e.what());
   }
   fromNode(root, origin, raw);
-  tipUncertaintyFromYamlText(text, origin);  // a malformed error bar is refused by every reader of the file
+  // A malformed error bar is refused by every reader of the file, whether it asked for it or not.
+  const TipUncertainty read = tipUncertaintyFromYamlNode(root, origin);
+  if (tip_uncertainty != nullptr) *tip_uncertainty = read;
 }
 
-void loadRawParametersFromYamlFile(const std::string& path, RawParameterMap& raw) {
+void loadRawParametersFromYamlFile(const std::string& path, RawParameterMap& raw, TipUncertainty* tip_uncertainty) {
   std::ifstream in(path);
   if (!in) throw ParameterError("cannot read parameter file '" + path + "'");
   std::stringstream text;
   text << in.rdbuf();
-  loadRawParametersFromYamlText(text.str(), path, raw);
+  loadRawParametersFromYamlText(text.str(), path, raw, tip_uncertainty);
 }
 
 std::string parametersToYaml(const FingerParameters& parameters) {

@@ -282,8 +282,7 @@ std::vector<GripperFinger> loadGripperFile(const std::string& path) {
     if (f["config"]) {
       const std::string config = f["config"].as<std::string>();
       g.config_path = !config.empty() && config[0] == '/' ? config : folder + "/" + config;
-      loadRawParametersFromYamlFile(g.config_path, raw);
-      g.tip_uncertainty = tipUncertaintyFromYamlFile(g.config_path);
+      loadRawParametersFromYamlFile(g.config_path, raw, &g.tip_uncertainty);
     }
     try {
       g.parameters = FingerParameters::fromRaw(raw);

@@ -46,7 +46,6 @@ class CellSchedule {
   /// The step at @p t_s seconds since the start (t >= 0).
   CellStep at(double t_s) const;
 
-  double cycleTimeS() const { return cycle_time_s_; }
 
  private:
   struct Segment {

@@ -38,7 +38,6 @@ class GraspObjectTracker {
   void setObject(const SolidObject& solid);
   /// No object: the free finger.
   void clear();
-  bool hasObject() const { return has_object_; }
 
   /// The pose of the object's frame in the finger's frame (segment_0: x along the unbent finger, y toward the
   /// strain-limited side, z normal to the bending plane). An unchanged pose keeps the touch events; a new one cuts the

@@ -13,9 +13,6 @@ double restVolumeM3(const FingerParameters& parameters, int finger_count);
 /// Gauge pressure rise rate of a constant flow (Pa/s): dP/dt = P_o Q / V_o (ideal spring).
 double fillRatePaPerS(double flow_m3_per_s, double rest_volume_m3, double atmospheric_pa);
 
-/// Energy of eq 4 after filling for @p seconds at constant flow (J).
-double fillEnergyJ(double flow_m3_per_s, double rest_volume_m3, double atmospheric_pa, double seconds);
-
 /// One step of a regulator that fills (or vents) at @p rate_pa_per_s toward @p setpoint_pa and then holds it.
 double regulatorStep(double gauge_pa, double setpoint_pa, double rate_pa_per_s, double dt_s);
 

@@ -41,12 +41,7 @@ struct TipUncertainty {
 /// The parameter file's key for it (a mapping of gauge_pa, tip_angle_rad and tip_position_m lists).
 constexpr const char* kTipUncertaintyKey = "tip_uncertainty";
 
-/// Reads tip_uncertainty from parameter-file text (empty when the file has none). @throws ParameterError naming
-/// @p origin for a malformed entry.
-TipUncertainty tipUncertaintyFromYamlText(const std::string& text, const std::string& origin);
-
-/// Same, from a file. @throws ParameterError for an unreadable file or a malformed entry.
-TipUncertainty tipUncertaintyFromYamlFile(const std::string& path);
+// It is read with the file's keys, from one parse: loadRawParametersFromYamlFile's tip_uncertainty (yaml_parameters.hpp).
 
 /// The parameter file's tip_uncertainty entry, with a comment that says what it is.
 std::string tipUncertaintyToYaml(const TipUncertainty& uncertainty);
