@@ -388,6 +388,30 @@ void benchBatch(benchmark::State& state, pf::BatchPath path, bool backbone_only)
                  (backbone_only ? ", backbone only" : ", every output"));
 }
 
+// The batch as a Python sweep uses it (scripts/bench_python.py times the same calls from Python in the same run of
+// scripts/benchmarks.py): 2 million pressures, uniform over the validated range, into arrays allocated (and touched)
+// once; the tip angle alone (the kernel leaves the backbone out), or every output.
+void benchBatchSweep(benchmark::State& state, bool tip_only) {
+  constexpr std::size_t kCount = 2000000;
+  std::vector<double> pressures(kCount);
+  std::mt19937_64 random(2);
+  std::uniform_real_distribution<double> uniform(0.0, pf::kValidatedMaxGaugePa);
+  for (double& p : pressures) p = uniform(random);
+  pf::BatchBuffers rows(kCount, kParams.chamber_count);
+  pf::BatchOutputs out = rows.outputs();
+  if (tip_only) out = pf::BatchOutputs{nullptr, nullptr, nullptr, nullptr, nullptr, rows.tip_angle_rad.data(), nullptr};
+  const pf::FingerModel model(kParams);
+  pf::FingerWorkspace workspace(model);
+  for (auto _ : state) {
+    model.evaluateMany(pressures.data(), kCount, out, workspace);
+    benchmark::DoNotOptimize(rows.tip_angle_rad.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kCount));
+  state.counters["pressures"] = static_cast<double>(kCount);
+  state.SetLabel(tip_only ? "C++ evaluateMany, 2 M pressures, tip angle only" : "C++ evaluateMany, 2 M pressures, every output");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -435,6 +459,11 @@ int main(int argc, char** argv) {
           (std::string(backbone_only ? "batch_backbone/" : "batch/") + pf::batchPathName(path)).c_str(),
           [path, backbone_only](benchmark::State& s) { benchBatch(s, path, backbone_only); });
     }
+  }
+  for (bool tip_only : {true, false}) {
+    benchmark::RegisterBenchmark(tip_only ? "batch_sweep/tip" : "batch_sweep/full",
+                                 [tip_only](benchmark::State& s) { benchBatchSweep(s, tip_only); })
+        ->Unit(benchmark::kMillisecond);
   }
   benchmark::Initialize(&argc, argv);
   benchmark::RunSpecifiedBenchmarks();

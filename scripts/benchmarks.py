@@ -78,12 +78,21 @@ ax.legend(fontsize=7.5, loc="center left", bbox_to_anchor=(1.01, 0.5))
 fig.tight_layout()
 fig.savefig(ROOT / "docs/speed_vs_error.png")
 
-rows = []
-for key, label in SOLVERS:
-    v, h = runs[f"{key}/validated"], runs[f"{key}/hard"]
-    rows.append(f"| {label} | {v['real_time']:.0f} | {fmt_err(v['max_theta_error_rad'])} | {fmt_err(v['max_tip_error_m'])} | "
-                f"{h['real_time']:.0f} | {fmt_err(h['max_theta_error_rad'])} | {fmt_err(h['max_tip_error_m'])} | "
-                f"{int(h['failures'])} of {int(h['pressures'])} |")
+
+
+def md_row(*cells):
+    """One Markdown table row."""
+    return "| " + " | ".join(str(c) for c in cells) + " |"
+
+
+def speed_and_error(run, time_format=".0f"):
+    """A run's time, then its largest errors of theta and of the tip."""
+    return (format(run["real_time"], time_format), fmt_err(run["max_theta_error_rad"]), fmt_err(run["max_tip_error_m"]))
+
+
+rows = [md_row(label, *speed_and_error(runs[f"{key}/validated"]), *speed_and_error(runs[f"{key}/hard"]),
+               f"{int(runs[f'{key}/hard']['failures'])} of {int(runs[f'{key}/hard']['pressures'])}")
+        for key, label in SOLVERS]
 stages = "\n".join(f"| {runs[f'robust_stage/{i}']['label']} | {runs[f'robust_stage/{i}']['real_time']:.1f} |"
                    for i in range(1, 6))
 lat = {runs[f"latency/{i}"]["label"]: runs[f"latency/{i}"]["real_time"] for i in range(4)}
@@ -132,13 +141,16 @@ BATCH_PATHS = [("scalar", "one at a time (the single evaluation in a loop)"),
                ("generic", "packs of 4, baseline instruction set (SSE2)"),
                ("avx2", "packs of 4, AVX2"), ("avx512", "packs of 8, AVX-512")]
 batch_ran = [(k, label) for k, label in BATCH_PATHS if "error_message" not in runs.get(f"batch/{k}", {"error_message": 1})]
-batch_rows = []
-for k, label in batch_ran:
+
+
+def batch_row(k, label):
     full, bone = runs[f"batch/{k}"], runs[f"batch_backbone/{k}"]
-    batch_rows.append(f"| {label} | {full['real_time'] / full['pressures']:.1f} | {full['items_per_second'] / 1e6:.1f} | "
-                      f"{runs['batch/scalar']['real_time'] / full['real_time']:.1f}× | "
-                      f"{bone['items_per_second'] / 1e6:.1f} | {fmt_err(full['max_theta_error_rad'])} |")
-batch_rows = "\n".join(batch_rows)
+    speedup = runs["batch/scalar"]["real_time"] / full["real_time"]
+    return md_row(label, f"{full['real_time'] / full['pressures']:.1f}", f"{full['items_per_second'] / 1e6:.1f}",
+                  f"{speedup:.1f}×", f"{bone['items_per_second'] / 1e6:.1f}", fmt_err(full["max_theta_error_rad"]))
+
+
+batch_rows = "\n".join(batch_row(k, label) for k, label in batch_ran)
 best_batch_key = max(batch_ran, key=lambda kl: runs[f"batch/{kl[0]}"]["items_per_second"])[0]
 best_batch = runs[f"batch/{best_batch_key}"]["items_per_second"]
 TABLE_VARIANTS = ["generic", "avx2", "avx512"]

@@ -2,6 +2,8 @@
 // geometry, finiteness, scalar/list equivalence, and "model only what a scene needs".
 #include <gtest/gtest.h>
 
+#include <optional>
+
 #include <cfloat>
 #include <cmath>
 #include <cstring>
@@ -141,6 +143,22 @@ TEST(FingerModel, TheCacheOfAWorkspaceBelongsToTheModelThatFilledIt) {
   EXPECT_EQ(tip_b, b.evaluate(1.5e5, alone).tip_angle_rad);
   EXPECT_NE(tip_a, tip_b);
   EXPECT_EQ(shared.computationCount(), 2);
+}
+
+// The same when the second model is built where the first one was (a loop over designs): the cache knows models by
+// their identity, not by their address.
+TEST(FingerModel, TheCacheDoesNotMistakeAModelBuiltAtAFreedModelsAddress) {
+  pf::FingerParameters stiffer = kPaper;
+  for (double& mu : stiffer.shear_modulus_pa) mu *= 2.0;
+  std::optional<pf::FingerModel> model(std::in_place, kPaper);
+  pf::FingerWorkspace shared(*model);
+  const double tip_first = model->evaluate(1.5e5, shared).tip_angle_rad;
+  const pf::FingerModel* address = &*model;
+  model.emplace(stiffer);  // the same storage: the same address
+  ASSERT_EQ(&*model, address);
+  pf::FingerWorkspace alone(*model);
+  EXPECT_EQ(model->evaluate(1.5e5, shared).tip_angle_rad, model->evaluate(1.5e5, alone).tip_angle_rad);
+  EXPECT_NE(model->evaluate(1.5e5, shared).tip_angle_rad, tip_first);
 }
 
 TEST(FingerModel, WithoutChamberDetailStretchAndBulgeAreNaNNotPlaceholders) {

@@ -65,7 +65,7 @@ inline void stagesTwoThree(const UniformRobustSpec& s, T g, M rare, T& delta_out
 /// or failed (nothing wrong is written as a number).
 template <class T>
 __attribute__((always_inline)) inline void writeRows(const UniformRobustSpec& s, int valid, std::size_t row0,
-                                                     const BatchOutputs& out, int* status, T stretch, T bulge_m, T rad,
+                                                     const BatchOutputs& out, std::uint8_t* status, T stretch, T bulge_m, T rad,
                                                      T cos_half, T sin_half, T joint1, T joint, T tip_angle,
                                                      const T* px, const T* py) {
   const int n = s.chamber_count;
@@ -75,13 +75,13 @@ __attribute__((always_inline)) inline void writeRows(const UniformRobustSpec& s,
     const bool finite = __builtin_isfinite(stretch[i]) && __builtin_isfinite(bulge_m[i]) &&
                         __builtin_isfinite(rad[i]) && __builtin_isfinite(cos_half[i]) &&
                         __builtin_isfinite(sin_half[i]);
-    if (status[i] != static_cast<int>(EvaluationStatus::kNotFinite) && !finite) {
-      status[i] = static_cast<int>(EvaluationStatus::kSolverFailure);
+    if (status[i] != static_cast<std::uint8_t>(EvaluationStatus::kNotFinite) && !finite) {
+      status[i] = static_cast<std::uint8_t>(EvaluationStatus::kSolverFailure);
     }
     if (out.status) out.status[row] = status[i];
     // Nothing wrong is written as a number: a refused or failed pressure is NaN throughout.
-    const bool answered = status[i] == static_cast<int>(EvaluationStatus::kOk) ||
-                          status[i] == static_cast<int>(EvaluationStatus::kVacuum);
+    const bool answered = status[i] == static_cast<std::uint8_t>(EvaluationStatus::kOk) ||
+                          status[i] == static_cast<std::uint8_t>(EvaluationStatus::kVacuum);
     const double nan = __builtin_nan("");
     if (out.stretch) {
       for (std::size_t k = 0; k < un; ++k) out.stretch[row * un + k] = answered ? stretch[i] : nan;
@@ -193,14 +193,14 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
                               const BatchOutputs& out) {
   constexpr int kLanes = lanesOf<T>();
   const int n = s.chamber_count;
-  int status[kLanes];
+  std::uint8_t status[kLanes];
   T p;
   for (int i = 0; i < kLanes; ++i) {
     const double x = i < valid ? gauge_pa[i] : 0.0;
-    status[i] = !__builtin_isfinite(x) ? static_cast<int>(EvaluationStatus::kNotFinite)
-                : x < 0.0              ? static_cast<int>(EvaluationStatus::kVacuum)
-                                       : static_cast<int>(EvaluationStatus::kOk);
-    p[i] = status[i] == static_cast<int>(EvaluationStatus::kOk) ? x : 0.0;  // vacuum: the rest shape (P = 0)
+    status[i] = !__builtin_isfinite(x) ? static_cast<std::uint8_t>(EvaluationStatus::kNotFinite)
+                : x < 0.0              ? static_cast<std::uint8_t>(EvaluationStatus::kVacuum)
+                                       : static_cast<std::uint8_t>(EvaluationStatus::kOk);
+    p[i] = status[i] == static_cast<std::uint8_t>(EvaluationStatus::kOk) ? x : 0.0;  // vacuum: the rest shape (P = 0)
   }
   const WallPack<T> w = wallPack(s, p);
   const T stretch = w.stretch, bulge_m = w.bulge_m, rad = w.rad, cos_half = w.cos_half, sin_half = w.sin_half,
@@ -210,8 +210,10 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
   T first_c, first_s;
   const T joint1 = firstJoint(s.base_wall_share, s.first_joint, rad, tan_half, cos_half, sin_half, first_c, first_s);
   T dir_c[kMaxChamberCount], dir_s[kMaxChamberCount], px[kMaxChamberCount], py[kMaxChamberCount];
-  uniformPoints<0>(first_c, first_s, cos_half, sin_half, n, s.base_segment_length_m, s.segment_length_m, dir_c, dir_s,
-                px, py, 1);
+  if (out.backbone_m) {  // the points only for a caller who asked for them
+    uniformPoints<0>(first_c, first_s, cos_half, sin_half, n, s.base_segment_length_m, s.segment_length_m, dir_c,
+                     dir_s, px, py, 1);
+  }
   const T tip_angle = joint1 + static_cast<double>(n - 1) * joint;
   writeRows<T>(s, valid, row0, out, status, stretch, bulge_m, rad, cos_half, sin_half, joint1, joint, tip_angle, px,
                py);

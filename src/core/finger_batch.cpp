@@ -108,7 +108,7 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
       else std::fill(o, o + 2 * (n + 2), nan);
     }
     if (out.tip_angle_rad) out.tip_angle_rad[i] = answered ? s.tip_angle_rad : nan;
-    if (out.status) out.status[i] = static_cast<int>(status);
+    if (out.status) out.status[i] = static_cast<std::uint8_t>(status);
   }
 }
 

@@ -1,6 +1,7 @@
 #include "pneumatic_finger/core/finger_model.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <array>
 #include <limits>
 #include <cmath>
@@ -64,6 +65,8 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
     for (auto& g : groups_) buildTable(g);
   }
   shape_ = static_cast<std::uint64_t>(n) << 32 | static_cast<std::uint64_t>(groups_.size());
+  static std::atomic<std::uint64_t> next_id{1};
+  id_ = next_id.fetch_add(1, std::memory_order_relaxed);
 }
 
 FingerWorkspace::FingerWorkspace(const FingerModel& model)
@@ -338,7 +341,7 @@ const FingerState& FingerModel::evaluate(double gauge_pa, FingerWorkspace& ws) c
   }
   // Unchanged pressure on the same model: nothing to do. (A workspace of the same shape may have been used with
   // another model last: its state is that model's, so it is recomputed.)
-  if (ws.has_last_ && gauge_pa == ws.last_gauge_pa_ && ws.last_model_ == this) return state;
+  if (ws.has_last_ && gauge_pa == ws.last_gauge_pa_ && ws.last_model_id_ == id_) return state;
   const bool vacuum = gauge_pa < 0.0;
   ++ws.computations_;
   if (!writeState(vacuum ? 0.0 : gauge_pa, ws, state)) {
@@ -350,7 +353,7 @@ const FingerState& FingerModel::evaluate(double gauge_pa, FingerWorkspace& ws) c
   state.status = vacuum ? EvaluationStatus::kVacuum : EvaluationStatus::kOk;
   ws.has_last_ = true;
   ws.last_gauge_pa_ = gauge_pa;
-  ws.last_model_ = this;
+  ws.last_model_id_ = id_;
   return state;
 }
 

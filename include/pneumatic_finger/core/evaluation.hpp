@@ -3,19 +3,20 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 
 namespace pneumatic_finger {
 
 /// Outcome of one evaluation.
-enum class EvaluationStatus {
+enum class EvaluationStatus : std::uint8_t {
   kOk,            ///< pressure in the model's domain
   kVacuum,        ///< gauge < 0: outside the model; the straight (rest) finger is returned
   kNotFinite,     ///< NaN or infinite pressure: refused (evaluate() keeps the previous state; a batch writes NaN)
   kSolverFailure, ///< the solver produced no finite answer (the paper's closed forms can): nothing is computed
 };
 
-/// Where FingerModel::evaluateMany writes: row-major arrays the caller owns, for `count` pressures; a null pointer
-/// is not written.
+/// Where FingerModel::evaluateMany writes: row-major arrays the caller owns, for `count` pressures. A null pointer
+/// is neither written nor, where the batch kernel can leave it out, computed: a tip-angle sweep skips the backbone.
 struct BatchOutputs {
   double* stretch = nullptr;          ///< count x N
   double* bulge_m = nullptr;          ///< count x N
@@ -23,7 +24,7 @@ struct BatchOutputs {
   double* joint_angle_rad = nullptr;  ///< count x N
   double* backbone_m = nullptr;       ///< count x (N + 2) x 2: O_0 .. O_{N+1}, each (x, y)
   double* tip_angle_rad = nullptr;    ///< count
-  int* status = nullptr;              ///< count: EvaluationStatus as an int
+  std::uint8_t* status = nullptr;     ///< count: EvaluationStatus as its code
 };
 
 /// How FingerModel::evaluateMany runs. Every path writes the same bits; they differ only in speed, and exist side by

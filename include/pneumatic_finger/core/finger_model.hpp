@@ -76,7 +76,7 @@ FingerState restState(const FingerParameters& parameters);
 struct BatchBuffers {
   BatchBuffers(std::size_t count, int chamber_count);
   std::vector<double> stretch, bulge_m, half_angle_rad, joint_angle_rad, backbone_m, tip_angle_rad;
-  std::vector<int> status;
+  std::vector<std::uint8_t> status;
   /// Where evaluateMany writes: every array.
   BatchOutputs outputs();
 };
@@ -109,7 +109,9 @@ class FingerWorkspace {
   FingerState state_;
   bool has_last_ = false;
   double last_gauge_pa_ = 0.0;
-  const FingerModel* last_model_ = nullptr;  // the model last_gauge_pa_'s state belongs to
+  // The model last_gauge_pa_'s state belongs to, by its id: not its address, which a model built after another was
+  // destroyed may reuse (a design sweep does just that).
+  std::uint64_t last_model_id_ = 0;
   long computations_ = 0;
   std::vector<ChamberGroupSolution> group_solutions_;  // per distinct chamber geometry
   std::vector<HalfAngle> chamber_half_;                // per chamber
@@ -247,6 +249,7 @@ class FingerModel {
   double contact_gauge_pa_ = 0.0;
   double table_error_rad_ = 0.0;
   std::uint64_t shape_ = 0;  // chamber count << 32 | group count: what a workspace must have been sized for
+  std::uint64_t id_;         // unique per construction (a copy shares it: the same model); keys a workspace's cache
 };
 
 /// Gauge pressure (Pa) at which a chamber's bulge reaches its gap (the contact pressure): the inverse chain
