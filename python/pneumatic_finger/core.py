@@ -4,6 +4,9 @@
     model = pf.FingerModel()                       # config/finger.yaml, the robust solver
     state = model.evaluate(numpy.linspace(0, 2e5, 101))
     state["joint_angle_rad"]                      # (101, 7)
+    tips = model.evaluate(p, outputs=["tip_angle_rad"])["tip_angle_rad"]   # computes and allocates only that
+    model.evaluate(p, out={"tip_angle_rad": tips})                        # fills the caller's array
+    pf.STATUS[state["status"][0]]                  # 'ok': status is a uint8 array of codes
 
 FingerModel(config=None, overrides={}, solver="robust"): config is a parameter file (YAML) with the keys of
 `finger_model --parameters`; None takes the package's config/finger.yaml. overrides sets keys on top of it (a number,
@@ -11,10 +14,11 @@ or a list with one number per chamber). A bad file, key or value raises ValueErr
 """
 import os
 
+from pneumatic_finger._core import CONTACT_STATUS, STATUS
 from pneumatic_finger._core import FingerModel as _FingerModel
 from pneumatic_finger._core import calibrate as _calibrate
 
-__all__ = ["FingerModel", "calibrate", "default_config", "default_data"]
+__all__ = ["FingerModel", "calibrate", "default_config", "default_data", "STATUS", "CONTACT_STATUS"]
 
 
 def _share(*parts):

@@ -7,12 +7,15 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <cstdint>
+#include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "pneumatic_finger/core/calibration.hpp"
 #include "pneumatic_finger/core/contact.hpp"
+#include "pneumatic_finger/core/design_sweep.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 
@@ -23,14 +26,13 @@ namespace {
 
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
-const char* statusName(int status) {
-  switch (static_cast<pf::EvaluationStatus>(status)) {
-    case pf::EvaluationStatus::kOk: return "ok";
-    case pf::EvaluationStatus::kVacuum: return "vacuum";
-    case pf::EvaluationStatus::kNotFinite: return "not finite";
-    case pf::EvaluationStatus::kSolverFailure: return "solver failure";
-  }
-  return "?";
+// The status codes' names, indexed by code: pf.STATUS and pf.CONTACT_STATUS in Python.
+const std::vector<const char*> kEvaluationStatus = {"ok", "vacuum", "not finite", "solver failure"};
+const std::vector<const char*> kContactStatus = {"free", "in contact", "overlaps at rest", "solver failure"};
+
+std::uint8_t contactStatusCode(pf::ContactState::Status status) {
+  using S = pf::ContactState::Status;
+  return status == S::kFree ? 0 : status == S::kInContact ? 1 : status == S::kOverlapsAtRest ? 2 : 3;
 }
 
 // Python's value of an override: a number, or a list of numbers (one per chamber).
@@ -71,6 +73,165 @@ Array pressures(const py::object& gauge_pa, bool& scalar) {
   return p;
 }
 
+// One output a call can write: its name, its element type and its shape after the leading axis (-1: the chamber
+// count N, -2: N + 2).
+enum class Element { kFloat64, kCode, kFlag };  // float64, uint8 (a status code), bool
+
+py::dtype dtypeOf(Element e) {
+  return e == Element::kFloat64 ? py::dtype::of<double>()
+         : e == Element::kCode  ? py::dtype::of<std::uint8_t>()
+                                : py::dtype::of<bool>();
+}
+
+struct OutputField {
+  const char* name;
+  Element element;
+  std::vector<int> trailing;
+};
+
+std::string shapeText(const std::vector<py::ssize_t>& shape) {
+  std::string out = "(";
+  for (std::size_t i = 0; i < shape.size(); ++i) out += (i ? ", " : "") + std::to_string(shape[i]);
+  return out + (shape.size() == 1 ? ",)" : ")");
+}
+
+// The arrays of a call: the caller's (out=, checked) or fresh ones (numpy's, not zero-filled), only for the outputs
+// asked for. outputs None: every field, or with out= exactly out's keys.
+class OutputArrays {
+ public:
+  OutputArrays(const std::vector<OutputField>& fields, const py::object& outputs, const py::object& out,
+               py::ssize_t count, py::ssize_t chambers)
+      : fields_(fields) {
+    if (!out.is_none() && !py::isinstance<py::dict>(out)) throw py::value_error("out must be a dict of numpy arrays");
+    const py::dict given = out.is_none() ? py::dict() : out.cast<py::dict>();
+    for (const std::string& name : requested(outputs, given)) {
+      const OutputField& f = field(name);
+      std::vector<py::ssize_t> shape = {count};
+      for (int t : f.trailing) shape.push_back(t == -1 ? chambers : t == -2 ? chambers + 2 : t);
+      arrays_[name] = given.contains(name) ? checked(f, given[name.c_str()], shape) : fresh(f, shape);
+    }
+    for (const auto& item : given) {
+      const std::string key = py::str(item.first);
+      if (!arrays_.count(key)) throw py::value_error("out['" + key + "']: not among the outputs asked for");
+    }
+  }
+
+  /// The array of @p name, or null when it was not asked for.
+  template <class T>
+  T* data(const char* name) {
+    const auto it = arrays_.find(name);
+    return it == arrays_.end() ? nullptr : static_cast<T*>(it->second.mutable_data());
+  }
+
+  /// The overlap of any two arrays, or of one with the input, refused: the core would read what it writes.
+  void refuseOverlap(const void* input, std::size_t input_bytes) const {
+    std::vector<std::pair<const char*, std::pair<const char*, const char*>>> ranges;
+    const char* in = static_cast<const char*>(input);
+    ranges.push_back({"gauge_pa", {in, in + input_bytes}});
+    for (const auto& [name, a] : arrays_) {
+      const char* begin = static_cast<const char*>(a.data());
+      ranges.push_back({name.c_str(), {begin, begin + a.nbytes()}});
+    }
+    for (std::size_t i = 0; i < ranges.size(); ++i) {
+      for (std::size_t j = i + 1; j < ranges.size(); ++j) {
+        const auto& a = ranges[i].second;
+        const auto& b = ranges[j].second;
+        if (a.first < a.second && b.first < b.second && a.first < b.second && b.first < a.second) {
+          throw py::value_error(std::string("out: '") + ranges[j].first + "' shares memory with '" + ranges[i].first +
+                                "'");
+        }
+      }
+    }
+  }
+
+  /// The result: each array, or for a scalar call its one row (a status code as its name from @p status_names).
+  py::dict result(bool scalar, const std::vector<const char*>& status_names) const {
+    py::dict d;
+    for (const auto& [name, a] : arrays_) {
+      if (!scalar) {
+        d[name.c_str()] = a;
+      } else if (name == "status") {
+        d[name.c_str()] = status_names.at(static_cast<const std::uint8_t*>(a.data())[0]);
+      } else {
+        d[name.c_str()] = a[py::int_(0)];
+      }
+    }
+    return d;
+  }
+
+ private:
+  const OutputField& field(const std::string& name) const {
+    for (const OutputField& f : fields_) {
+      if (name == f.name) return f;
+    }
+    std::string known;
+    for (const OutputField& f : fields_) known += (known.empty() ? "" : ", ") + std::string(f.name);
+    throw py::value_error("unknown output '" + name + "' (known: " + known + ")");
+  }
+
+  std::vector<std::string> requested(const py::object& outputs, const py::dict& given) const {
+    std::vector<std::string> names;
+    if (outputs.is_none() && given.size() > 0) {
+      for (const auto& item : given) names.push_back(py::str(item.first));
+    } else if (outputs.is_none()) {
+      for (const OutputField& f : fields_) names.push_back(f.name);
+    } else if (py::isinstance<py::str>(outputs)) {
+      throw py::value_error("outputs must be a sequence of names, e.g. ['tip_angle_rad'], not a string");
+    } else {
+      for (const py::handle& h : outputs) {
+        if (!py::isinstance<py::str>(h)) throw py::value_error("outputs must be names (strings)");
+        names.push_back(h.cast<std::string>());
+      }
+    }
+    for (const std::string& name : names) field(name);  // an unknown name is refused
+    return names;
+  }
+
+  static py::array fresh(const OutputField& f, const std::vector<py::ssize_t>& shape) {
+    return py::array(dtypeOf(f.element), shape);  // numpy's empty(): not zero-filled
+  }
+
+  static py::array checked(const OutputField& f, const py::handle& given, const std::vector<py::ssize_t>& shape) {
+    const std::string where = std::string("out['") + f.name + "']: ";
+    const std::string wanted = std::string(py::str(dtypeOf(f.element))) + " array of shape " + shapeText(shape);
+    if (!py::isinstance<py::array>(given)) throw py::value_error(where + "expected a numpy " + wanted);
+    const py::array a = py::reinterpret_borrow<py::array>(given);
+    const bool dtype_ok = a.dtype().is(dtypeOf(f.element));
+    const std::vector<py::ssize_t> got(a.shape(), a.shape() + a.ndim());
+    if (!dtype_ok || got != shape) {
+      throw py::value_error(where + "expected a " + wanted + ", got " + std::string(py::str(a.dtype())) + " of shape " +
+                            shapeText(got));
+    }
+    if (!(a.flags() & py::array::c_style)) throw py::value_error(where + "must be C-contiguous");
+    if (!a.writeable()) throw py::value_error(where + "must be writeable");
+    return a;
+  }
+
+  const std::vector<OutputField>& fields_;
+  std::map<std::string, py::array> arrays_;
+};
+
+using E = Element;
+const std::vector<OutputField> kStateFields = {
+    {"stretch", E::kFloat64, {-1}},         {"bulge_m", E::kFloat64, {-1}},      {"half_angle_rad", E::kFloat64, {-1}},
+    {"joint_angle_rad", E::kFloat64, {-1}}, {"backbone_m", E::kFloat64, {-2, 2}}, {"tip_angle_rad", E::kFloat64, {}},
+    {"status", E::kCode, {}}};
+const std::vector<OutputField> kContactFields = {
+    {"joint_angle_rad", E::kFloat64, {-1}}, {"backbone_m", E::kFloat64, {-2, 2}}, {"held", E::kFlag, {-1}},
+    {"first_touch_gauge_pa", E::kFloat64, {}}, {"status", E::kCode, {}}};
+const std::vector<OutputField> kDesignFields = {{"tip_angle_rad", E::kFloat64, {}}, {"tip_x_m", E::kFloat64, {}},
+                                                {"tip_y_m", E::kFloat64, {}},       {"contact_gauge_pa", E::kFloat64, {}},
+                                                {"status", E::kCode, {}}};
+
+// Where contact() writes (null: not asked for).
+struct ContactRows {
+  double* joint_angle_rad;
+  double* backbone_m;
+  bool* held;
+  double* first_touch_gauge_pa;
+  std::uint8_t* status;
+};
+
 class PyFingerModel {
  public:
   PyFingerModel(const std::string& config, const py::dict& overrides, const std::string& solver) {
@@ -79,44 +240,31 @@ class PyFingerModel {
     model_ = std::make_unique<pf::FingerModel>(pf::FingerParameters::fromRaw(loadRaw(config, overrides)), options);
   }
 
-  // A scalar gives arrays without the leading pressure axis; an array of P pressures gives (P, ...).
-  py::dict evaluate(const py::object& gauge_pa) {
+  // A scalar gives arrays without the leading pressure axis; an array of P pressures gives (P, ...). Only the outputs
+  // asked for are allocated, written and, where the batch kernel can leave them out, computed.
+  py::dict evaluate(const py::object& gauge_pa, const py::object& outputs, const py::object& out) const {
     bool scalar = false;
     const Array p = pressures(gauge_pa, scalar);
-    const auto count = static_cast<py::ssize_t>(p.size());
-    const py::ssize_t n = model_->chamberCount();
-    // The batch's arrays are the core's BatchBuffers (one definition of their shapes); numpy views them, and a capsule
-    // keeps them alive as long as any view does.
-    auto* rows = new pf::BatchBuffers(static_cast<std::size_t>(count), static_cast<int>(n));
-    const py::capsule owner(rows, [](void* r) { delete static_cast<pf::BatchBuffers*>(r); });
-    const double* gauges = p.data();
+    if (scalar && !out.is_none()) throw py::value_error("out= needs gauge_pa as a 1-D array");
+    const auto count = static_cast<std::size_t>(p.size());
+    OutputArrays arrays(kStateFields, outputs, out, p.size(), model_->chamberCount());
+    arrays.refuseOverlap(p.data(), count * sizeof(double));
+    pf::BatchOutputs rows;
+    rows.stretch = arrays.data<double>("stretch");
+    rows.bulge_m = arrays.data<double>("bulge_m");
+    rows.half_angle_rad = arrays.data<double>("half_angle_rad");
+    rows.joint_angle_rad = arrays.data<double>("joint_angle_rad");
+    rows.backbone_m = arrays.data<double>("backbone_m");
+    rows.tip_angle_rad = arrays.data<double>("tip_angle_rad");
+    rows.status = arrays.data<std::uint8_t>("status");
     {
       // The loop runs in C++ without the GIL. The model is const; each call has its own workspace, so calls from
       // several Python threads run at once.
       py::gil_scoped_release release;
       pf::FingerWorkspace workspace(*model_);
-      model_->evaluateMany(gauges, static_cast<std::size_t>(count), rows->outputs(), workspace);
+      model_->evaluateMany(p.data(), count, rows, workspace);
     }
-    auto view = [&owner](std::vector<double>& v, std::vector<py::ssize_t> shape) {
-      return Array(std::move(shape), v.data(), owner);
-    };
-    const Array stretch = view(rows->stretch, {count, n}), bulge = view(rows->bulge_m, {count, n}),
-                half = view(rows->half_angle_rad, {count, n}), joints = view(rows->joint_angle_rad, {count, n}),
-                backbone = view(rows->backbone_m, {count, n + 2, py::ssize_t(2)}), tip = view(rows->tip_angle_rad, {count});
-    py::list names;
-    for (py::ssize_t i = 0; i < count; ++i) names.append(statusName(rows->status[static_cast<std::size_t>(i)]));
-    py::dict d;
-    auto put = [&](const char* key, const Array& a) {
-      d[key] = scalar ? py::object(a[py::int_(0)]) : py::object(a);
-    };
-    put("stretch", stretch);
-    put("bulge_m", bulge);
-    put("half_angle_rad", half);
-    put("joint_angle_rad", joints);
-    put("backbone_m", backbone);
-    put("tip_angle_rad", tip);
-    d["status"] = scalar ? py::object(names[0]) : py::object(names);
-    return d;
+    return arrays.result(scalar, kEvaluationStatus);
   }
 
   double gaugeForTipAngle(double tip_angle_rad, const py::object& max_gauge_pa) const {
@@ -127,43 +275,37 @@ class PyFingerModel {
     return gauge;
   }
 
-  // The finger closing on a disk of the finger's plane (docs/GRASP.md), at one pressure or an array of them.
-  py::dict contact(const py::object& gauge_pa, const std::vector<double>& disk) const {
-    if (disk.size() != 3) throw py::value_error("disk must be (x_m, y_m, radius_m)");
-    const pf::Obstacle obstacle = pf::Obstacle::disk(disk[0], disk[1], disk[2]);
-    const std::string problem = obstacle.problem();
-    if (!problem.empty()) throw py::value_error(problem);
+  // The finger closing on a disk of the finger's plane (docs/GRASP.md), at one pressure or an array of them; one
+  // disk (3,) for all, or one per pressure (P, 3). Consecutive pressures on the same disk share its tracker (its
+  // touch events), so a sweep of pressures per disk costs one search per disk.
+  py::dict contact(const py::object& gauge_pa, const py::object& disk, const py::object& outputs,
+                   const py::object& out) const {
     bool scalar = false;
     const Array p = pressures(gauge_pa, scalar);
-    const auto count = static_cast<py::ssize_t>(p.size());
-    const py::ssize_t n = model_->chamberCount();
-    Array joints({count, n}), backbone({count, n + 2, py::ssize_t(2)}), first({count});
-    py::array_t<bool> held({count, n});
-    std::vector<std::string> status(static_cast<std::size_t>(count));
+    if (scalar && !out.is_none()) throw py::value_error("out= needs gauge_pa as a 1-D array");
+    const Array disks = Array::ensure(disk);
+    const bool per_pressure = disks && disks.ndim() == 2;
+    if (!disks || !((disks.ndim() == 1 && disks.shape(0) == 3) ||
+                    (per_pressure && disks.shape(0) == p.size() && disks.shape(1) == 3 && !scalar))) {
+      throw py::value_error("disk must be (x_m, y_m, radius_m), or an array of shape (P, 3): one per pressure");
+    }
+    const auto count = static_cast<std::size_t>(p.size());
+    OutputArrays arrays(kContactFields, outputs, out, p.size(), model_->chamberCount());
+    arrays.refuseOverlap(p.data(), count * sizeof(double));
+    ContactRows rows{arrays.data<double>("joint_angle_rad"), arrays.data<double>("backbone_m"), arrays.data<bool>("held"),
+                     arrays.data<double>("first_touch_gauge_pa"), arrays.data<std::uint8_t>("status")};
+    std::vector<pf::Obstacle> obstacles;
+    for (py::ssize_t i = 0; i < (per_pressure ? disks.shape(0) : 1); ++i) {
+      const double* d = disks.data() + 3 * i;
+      obstacles.push_back(pf::Obstacle::disk(d[0], d[1], d[2]));
+      const std::string problem = obstacles.back().problem();
+      if (!problem.empty()) throw py::value_error((per_pressure ? "disk " + std::to_string(i) + ": " : "") + problem);
+    }
     {
       py::gil_scoped_release release;
-      pf::ContactTracker tracker(*model_, obstacle);  // const methods of the model only: thread-safe
-      for (py::ssize_t i = 0; i < count; ++i) {
-        const pf::ContactState s = tracker.solve(p.data()[i]);
-        std::copy(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n, joints.mutable_data() + i * n);
-        std::copy(s.backbone_m.data(), s.backbone_m.data() + 2 * (n + 2), backbone.mutable_data() + i * 2 * (n + 2));
-        for (py::ssize_t k = 0; k < n; ++k) held.mutable_data()[i * n + k] = s.held[static_cast<std::size_t>(k)];
-        first.mutable_data()[i] = s.first_touch_gauge_pa;
-        using S = pf::ContactState::Status;
-        status[static_cast<std::size_t>(i)] = s.status == S::kFree             ? "free"
-                                              : s.status == S::kInContact      ? "in contact"
-                                              : s.status == S::kOverlapsAtRest ? "overlaps at rest"
-                                                                               : "solver failure";
-      }
+      solveContacts(p.data(), count, obstacles, rows);
     }
-    py::dict d;
-    auto pick = [&](const py::array& a) { return scalar ? py::object(a[py::int_(0)]) : py::object(a); };
-    d["joint_angle_rad"] = pick(joints);
-    d["backbone_m"] = pick(backbone);
-    d["held"] = pick(held);
-    d["first_touch_gauge_pa"] = pick(first);
-    d["status"] = scalar ? py::object(py::str(status[0])) : py::object(py::cast(status));
-    return d;
+    return arrays.result(scalar, kContactStatus);
   }
 
   py::dict parameters() const {
@@ -175,11 +317,61 @@ class PyFingerModel {
   }
 
   int chamberCount() const { return model_->chamberCount(); }
+
+  // Many designs at one pressure (pf.sweep_designs): this model's parameters with @p keys set per row of @p values.
+  py::dict sweepDesigns(const std::vector<std::string>& keys, const py::object& values, double gauge_pa,
+                        const py::object& outputs) const {
+    const Array v = Array::ensure(values);
+    if (keys.empty() || !v || v.ndim() != 2 || v.shape(1) != static_cast<py::ssize_t>(keys.size())) {
+      throw py::value_error("values must be an array of shape (designs, len(keys)), and keys not empty");
+    }
+    OutputArrays arrays(kDesignFields, outputs, py::none(), v.shape(0), 0);
+    const pf::DesignOutputs rows{arrays.data<double>("tip_angle_rad"), arrays.data<double>("tip_x_m"),
+                                 arrays.data<double>("tip_y_m"), arrays.data<double>("contact_gauge_pa"),
+                                 arrays.data<std::uint8_t>("status")};
+    std::vector<pf::DesignRefusal> refused;
+    {
+      py::gil_scoped_release release;
+      refused = pf::sweepDesigns(model_->parameters(), model_->options(), keys, v.data(),
+                                 static_cast<std::size_t>(v.shape(0)), gauge_pa, rows);
+    }
+    py::dict d = arrays.result(false, kEvaluationStatus);
+    py::list refusals;
+    for (const pf::DesignRefusal& r : refused) refusals.append(py::make_tuple(r.design, r.message));
+    d["refused"] = refusals;
+    return d;
+  }
   double contactGaugePa() const { return model_->contactGaugePa(); }
   std::string solver() const { return pf::solverName(model_->options().solver); }
 
 
  private:
+  void solveContacts(const double* gauge_pa, std::size_t count, const std::vector<pf::Obstacle>& obstacles,
+                     const ContactRows& rows) const {
+    const auto n = static_cast<std::size_t>(model_->chamberCount());
+    std::unique_ptr<pf::ContactTracker> tracker;  // const methods of the model only: thread-safe
+    for (std::size_t i = 0; i < count; ++i) {
+      const std::size_t which = obstacles.size() == 1 ? 0 : i;
+      if (!tracker || (which > 0 && !sameDisk(obstacles[which], obstacles[which - 1]))) {
+        tracker = std::make_unique<pf::ContactTracker>(*model_, obstacles[which]);
+      }
+      const pf::ContactState s = tracker->solve(gauge_pa[i]);
+      if (rows.joint_angle_rad) std::copy(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n, rows.joint_angle_rad + i * n);
+      if (rows.backbone_m) {
+        std::copy(s.backbone_m.data(), s.backbone_m.data() + 2 * (n + 2), rows.backbone_m + i * 2 * (n + 2));
+      }
+      for (std::size_t k = 0; rows.held && k < n; ++k) rows.held[i * n + k] = s.held[k];
+      if (rows.first_touch_gauge_pa) rows.first_touch_gauge_pa[i] = s.first_touch_gauge_pa;
+      if (rows.status) rows.status[i] = contactStatusCode(s.status);
+    }
+  }
+
+  static bool sameDisk(const pf::Obstacle& a, const pf::Obstacle& b) {
+    Eigen::Vector2d ca, cb;
+    double ra = 0, rb = 0;
+    return a.asDisk(ca, ra) && b.asDisk(cb, rb) && ca == cb && ra == rb;
+  }
+
   std::unique_ptr<const pf::FingerModel> model_;
 };
 
@@ -255,6 +447,8 @@ PYBIND11_MODULE(_core, m) {
       PyErr_SetString(PyExc_ValueError, error.what());
     }
   });
+  m.attr("STATUS") = py::tuple(py::cast(std::vector<std::string>(kEvaluationStatus.begin(), kEvaluationStatus.end())));
+  m.attr("CONTACT_STATUS") = py::tuple(py::cast(std::vector<std::string>(kContactStatus.begin(), kContactStatus.end())));
   m.def("calibrate", &calibrate, py::arg("data"), py::arg("keys"), py::arg("objective"), py::arg("config"),
         py::arg("overrides") = py::dict(), py::arg("average_column") = "", py::arg("compare") = "",
         py::arg("leave_one_out") = false,
@@ -263,14 +457,24 @@ PYBIND11_MODULE(_core, m) {
   py::class_<PyFingerModel>(m, "FingerModel")
       .def(py::init<const std::string&, const py::dict&, const std::string&>(), py::arg("config"),
            py::arg("overrides") = py::dict(), py::arg("solver") = "robust")
-      .def("evaluate", &PyFingerModel::evaluate, py::arg("gauge_pa"),
+      .def("evaluate", &PyFingerModel::evaluate, py::arg("gauge_pa"), py::arg("outputs") = py::none(),
+           py::arg("out") = py::none(),
            "The free finger at a gauge pressure (Pa) or a 1-D array of them: a dict of numpy arrays stretch, bulge_m, "
-           "half_angle_rad, joint_angle_rad (P, N), backbone_m (P, N+2, 2), tip_angle_rad (P,), and status")
+           "half_angle_rad, joint_angle_rad (P, N), backbone_m (P, N+2, 2), tip_angle_rad (P,) and status (P,) uint8 "
+           "codes (STATUS names them; a scalar call gives the name). outputs: the names to compute (None: all); "
+           "out: a dict of arrays to fill (float64, uint8 for status, C-contiguous, of the shapes above)")
       .def("gauge_for_tip_angle", &PyFingerModel::gaugeForTipAngle, py::arg("tip_angle_rad"),
            py::arg("max_gauge_pa") = py::none(), "The gauge pressure (Pa) for a tip angle; ValueError when none up to max")
-      .def("contact", &PyFingerModel::contact, py::arg("gauge_pa"), py::arg("disk"),
-           "The finger closing on a disk (x_m, y_m, radius_m) of its plane: joint_angle_rad, backbone_m, held, "
-           "first_touch_gauge_pa, status")
+      .def("contact", &PyFingerModel::contact, py::arg("gauge_pa"), py::arg("disk"), py::arg("outputs") = py::none(),
+           py::arg("out") = py::none(),
+           "The finger closing on a disk (x_m, y_m, radius_m) of its plane, or one disk per pressure (P, 3): "
+           "joint_angle_rad (P, N), backbone_m (P, N+2, 2), held (P, N) bool, first_touch_gauge_pa (P,) and status (P,) "
+           "uint8 codes (CONTACT_STATUS names them); outputs and out as for evaluate")
+      .def("sweep_designs", &PyFingerModel::sweepDesigns, py::arg("keys"), py::arg("values"), py::arg("gauge_pa"),
+           py::arg("outputs") = py::none(),
+           "Many designs at one pressure: this model with keys set to each row of values (designs, len(keys)): "
+           "tip_angle_rad, tip_x_m, tip_y_m, contact_gauge_pa (designs,) and status; refused: [(design, message)] "
+           "for designs the parameters refuse (NaN in every output)")
       .def_property_readonly("parameters", &PyFingerModel::parameters)
       .def_property_readonly("chamber_count", &PyFingerModel::chamberCount)
       .def_property_readonly("contact_gauge_pa", &PyFingerModel::contactGaugePa)

@@ -1,0 +1,69 @@
+// sweepDesigns: one model per design, each evaluated once. The raw map of the base is built once and only the swept
+// keys change in it, so a design costs the loader's validation, the model's construction and one evaluation.
+#include "pneumatic_finger/core/design_sweep.hpp"
+
+#include <limits>
+#include <optional>
+
+namespace pneumatic_finger {
+
+namespace {
+
+void writeNan(const DesignOutputs& out, std::size_t d) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  for (double* o : {out.tip_angle_rad, out.tip_x_m, out.tip_y_m, out.contact_gauge_pa}) {
+    if (o) o[d] = nan;
+  }
+  if (out.status) out.status[d] = static_cast<std::uint8_t>(EvaluationStatus::kNotFinite);
+}
+
+}  // namespace
+
+std::vector<DesignRefusal> sweepDesigns(const FingerParameters& base, const ModelOptions& options,
+                                        const std::vector<std::string>& keys, const double* values,
+                                        std::size_t designs, double gauge_pa, const DesignOutputs& out) {
+  for (const std::string& key : keys) {
+    if (findParameterSpec(key) == nullptr) throw ParameterError("unknown parameter '" + key + "'");
+  }
+  RawParameterMap raw = base.toRaw();
+  std::vector<DesignRefusal> refused;
+  const bool wants_shape = out.tip_angle_rad || out.tip_x_m || out.tip_y_m || out.status;
+  const bool wants_points = out.tip_x_m || out.tip_y_m;
+  std::optional<FingerWorkspace> workspace;
+  std::optional<BatchBuffers> row;
+  int layout_chambers = 0, layout_groups = 0;
+  for (std::size_t d = 0; d < designs; ++d) {
+    for (std::size_t j = 0; j < keys.size(); ++j) raw[keys[j]] = {{values[d * keys.size() + j]}, false};
+    std::optional<FingerModel> model;
+    try {
+      model.emplace(FingerParameters::fromRaw(raw), options);
+    } catch (const ParameterError& e) {
+      refused.push_back({d, e.what()});
+      writeNan(out, d);
+      continue;
+    }
+    if (out.contact_gauge_pa) out.contact_gauge_pa[d] = model->contactGaugePa();
+    if (!wants_shape) continue;
+    const int n = model->chamberCount(), groups = model->distinctChamberCount();
+    // The scratch is sized once per chamber layout: a sweep of one layout allocates nothing for it after its first
+    // design. (The workspace's cache is never consulted: evaluateMany neither reads nor writes it.)
+    if (!workspace || n != layout_chambers || groups != layout_groups) {
+      row.emplace(1, n);
+      workspace.emplace(*model);
+      layout_chambers = n;
+      layout_groups = groups;
+    }
+    BatchOutputs one;
+    one.tip_angle_rad = row->tip_angle_rad.data();
+    one.backbone_m = wants_points ? row->backbone_m.data() : nullptr;
+    one.status = row->status.data();
+    model->evaluateMany(&gauge_pa, 1, one, *workspace, BatchPath::kScalar);
+    if (out.tip_angle_rad) out.tip_angle_rad[d] = row->tip_angle_rad[0];
+    if (out.tip_x_m) out.tip_x_m[d] = row->backbone_m[2 * static_cast<std::size_t>(n + 1)];
+    if (out.tip_y_m) out.tip_y_m[d] = row->backbone_m[2 * static_cast<std::size_t>(n + 1) + 1];
+    if (out.status) out.status[d] = row->status[0];
+  }
+  return refused;
+}
+
+}  // namespace pneumatic_finger

@@ -1,0 +1,74 @@
+// sweepDesigns against one model per design, built and evaluated on its own: the same bits, NaN and the loader's
+// message for a refused design, and an unknown key refused before anything runs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <vector>
+
+#include "pneumatic_finger/core/design_sweep.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+struct Swept {
+  std::vector<double> tip, x, y, contact;
+  std::vector<std::uint8_t> status;
+  std::vector<pf::DesignRefusal> refused;
+};
+
+Swept sweep(const std::vector<std::string>& keys, const std::vector<double>& values, double gauge_pa) {
+  const std::size_t designs = values.size() / keys.size();
+  Swept s{std::vector<double>(designs), std::vector<double>(designs), std::vector<double>(designs),
+          std::vector<double>(designs), std::vector<std::uint8_t>(designs), {}};
+  const pf::DesignOutputs out{s.tip.data(), s.x.data(), s.y.data(), s.contact.data(), s.status.data()};
+  s.refused = pf::sweepDesigns(pf::FingerParameters::defaults(), pf::ModelOptions(), keys, values.data(), designs,
+                               gauge_pa, out);
+  return s;
+}
+
+}  // namespace
+
+TEST(DesignSweep, EachDesignIsItsOwnModelBitForBit) {
+  // Two keys, a chamber count among them: the layout changes within the sweep.
+  const std::vector<std::string> keys = {"chamber_gap_m", "chamber_count"};
+  const std::vector<double> values = {2e-5, 7, 5e-5, 7, 1e-4, 4, 5e-5, 12, 2e-4, 12};
+  const Swept s = sweep(keys, values, 1.5e5);
+  ASSERT_TRUE(s.refused.empty());
+  for (std::size_t d = 0; d < 5; ++d) {
+    pf::RawParameterMap raw = pf::FingerParameters::defaults().toRaw();
+    raw["chamber_gap_m"] = {{values[2 * d]}, false};
+    raw["chamber_count"] = {{values[2 * d + 1]}, false};
+    const pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
+    pf::FingerWorkspace ws(model);
+    const pf::FingerState& state = model.evaluate(1.5e5, ws);
+    EXPECT_EQ(s.tip[d], state.tip_angle_rad) << d;
+    EXPECT_EQ(s.x[d], state.tip().x()) << d;
+    EXPECT_EQ(s.y[d], state.tip().y()) << d;
+    EXPECT_EQ(s.contact[d], model.contactGaugePa()) << d;
+    EXPECT_EQ(s.status[d], static_cast<std::uint8_t>(pf::EvaluationStatus::kOk)) << d;
+  }
+  EXPECT_GT(s.tip[0], s.tip[2]);  // a wider gap bends less at the same pressure
+}
+
+TEST(DesignSweep, ARefusedDesignIsNanWithTheLoadersMessage) {
+  const Swept s = sweep({"chamber_gap_m"}, {5e-5, -1.0, 5e-5}, 1e5);
+  ASSERT_EQ(s.refused.size(), 1u);
+  EXPECT_EQ(s.refused[0].design, 1u);
+  EXPECT_NE(s.refused[0].message.find("parameter 'chamber_gap_m' = -1 is outside its allowed range"), std::string::npos)
+      << s.refused[0].message;
+  EXPECT_TRUE(std::isnan(s.tip[1]) && std::isnan(s.x[1]) && std::isnan(s.contact[1]));
+  EXPECT_EQ(s.tip[0], s.tip[2]);
+  EXPECT_FALSE(std::isnan(s.tip[2]));
+}
+
+TEST(DesignSweep, AnUnknownKeyIsRefusedBeforeAnyDesign) {
+  std::vector<double> tip(1, -7.0);
+  pf::DesignOutputs out;
+  out.tip_angle_rad = tip.data();
+  const double value = 1.0;
+  EXPECT_THROW(pf::sweepDesigns(pf::FingerParameters::defaults(), pf::ModelOptions(), {"chamber_gapp"}, &value, 1, 1e5,
+                                out),
+               pf::ParameterError);
+  EXPECT_EQ(tip[0], -7.0);
+}
