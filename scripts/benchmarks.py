@@ -45,6 +45,10 @@ for r in report["benchmarks"]:
     if r.get("run_type", "iteration") == "iteration":
         repetitions.setdefault(r.get("run_name", r["name"]), []).append(r)
 runs = {name: min(reps, key=lambda r: r.get("real_time", 0.0)) for name, reps in repetitions.items()}
+# The Python API's calls, right after finger_bench in the same run (scripts/bench_python.py, in the devel space).
+python_runs = json.loads(subprocess.run(["bash", "-c", f"source '{ROOT}/devel/setup.bash' && /usr/bin/python3 "
+                                         f"'{ROOT}/scripts/bench_python.py' {REPETITIONS}"],
+                                        check=True, capture_output=True, text=True).stdout)
 NODE_RUNS = 3  # the node's tail latency depends on scheduling: show the spread over several runs, not one
 node_outputs = [subprocess.run(["bash", str(ROOT / "scripts/bench_node.sh"), "1000", "10"], check=True,
                                capture_output=True, text=True).stdout.strip() for _ in range(NODE_RUNS)]
@@ -137,6 +141,14 @@ table_err = runs["table/validated"]["max_theta_error_rad"]
 TARGET_ROBUST_NS, TARGET_TABLE_NS, TARGET_ERROR_RAD, TARGET_P99_US = 100.0, 30.0, 1e-12, 1000.0
 TARGET_CONTACT_NS = 1000.0
 TARGET_BATCH_PER_S = 20e6
+TARGET_PYTHON_TIP_PER_S, TARGET_PYTHON_OUT_PER_S = 20e6, 10e6  # from Python, 2 M pressures: tip only; every output into out=
+sweep_tip, sweep_full = runs["batch_sweep/tip"], runs["batch_sweep/full"]
+python_rows = "\n".join([
+    md_row(sweep_tip["label"], f"{sweep_tip['real_time']:.1f}", f"{sweep_tip['items_per_second'] / 1e6:.1f}"),
+    md_row(sweep_full["label"], f"{sweep_full['real_time']:.1f}", f"{sweep_full['items_per_second'] / 1e6:.1f}")] +
+    [md_row(r["label"] + (f" ({r['count']:,} of them)" if r["count"] != 2_000_000 else ""), f"{r['seconds'] * 1e3:.1f}",
+            f"{r['per_second'] / 1e6:.2f}" if r["per_second"] < 1e6 else f"{r['per_second'] / 1e6:.1f}")
+     for r in python_runs.values()])
 BATCH_PATHS = [("scalar", "one at a time (the single evaluation in a loop)"),
                ("generic", "packs of 4, baseline instruction set (SSE2)"),
                ("avx2", "packs of 4, AVX2"), ("avx512", "packs of 8, AVX-512")]
@@ -296,6 +308,20 @@ the error column is the same for all. In the same run, one evaluation at a time 
 |---|---|---|---|---|---|
 {batch_rows}
 
+## From Python, beside the C++ batch
+
+The same batch from Python (`scripts/bench_python.py`, run by this script right after `finger_bench`), against the
+C++ call it wraps, timed in `finger_bench` (`batch_sweep/*`) on 2 million pressures uniform over the validated range:
+the robust solver, the shipped finger. A call computes and allocates only the outputs it is asked for
+(`evaluate(p, outputs=[...])`); `out=` fills arrays the caller allocated, as a sweep in chunks does. Fresh arrays are
+numpy's `empty()`: not zero-filled, but the first touch of fresh memory costs page faults, which the fastest
+repetition of a process that has run the call before mostly does not pay. The design sweep is one call for the whole
+grid (`sweep_designs`: a model per design, built and evaluated in C++), what `finger_design` runs.
+
+| call | ms | M per second |
+|---|---|---|
+{python_rows}
+
 ## The contact rule, beside the free finger
 
 `ContactSolver::solve` ([GRASP.md](GRASP.md)) over the same validated pressures, in the same run as the free
@@ -353,6 +379,13 @@ Each verdict is computed by `scripts/benchmarks.py` from the figures above; the 
   {"" if best_batch_key == "avx512" else "This CPU has no AVX-512; "}With AVX2 packs of 4:
   {runs["batch/avx2"]["items_per_second"] / 1e6:.1f} M/s. The packs keep each lane's iteration count (a pack iterates
   until its slowest lane is done), which is what keeps the bits of the single evaluation.
+- **From Python, ≥ {TARGET_PYTHON_TIP_PER_S / 1e6:.0f} M tip angles/s and ≥ {TARGET_PYTHON_OUT_PER_S / 1e6:.0f} M full
+  states/s into `out=` (2 M pressures, robust, the shipped finger):** tip angle only
+  {verdict(python_runs["tip_fresh"]["per_second"] >= TARGET_PYTHON_TIP_PER_S)}: {python_runs["tip_fresh"]["per_second"] / 1e6:.1f} M/s
+  (C++ alone: {sweep_tip["items_per_second"] / 1e6:.1f} M/s); every output into `out=`
+  {verdict(python_runs["full_out"]["per_second"] >= TARGET_PYTHON_OUT_PER_S)}: {python_runs["full_out"]["per_second"] / 1e6:.1f} M/s
+  (C++ alone: {sweep_full["items_per_second"] / 1e6:.1f} M/s). Python adds the call, the checks of the arrays and, for
+  fresh arrays, their allocation.
 - **Table variant ≤ {TARGET_TABLE_NS:.0f} ns at its measured bound:** bound {verdict(table_err <= TARGET_ERROR_RAD)}, at
   {fmt_err(table_err)} rad against the quad reference; speed on this CPU {verdict(table_ns <= TARGET_TABLE_NS)}: {table_ns:.0f} ns,
   {ratio(table_ns, TARGET_TABLE_NS)}, with the {table_widest} polynomials. For identical chambers the table holds
