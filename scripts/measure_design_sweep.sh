@@ -5,7 +5,9 @@
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 export PATH="/usr/bin:/bin:$PATH"
+set +u  # ROS's setup scripts read unset variables
 source "$ROOT/devel/setup.bash"
+set -u
 out=$(mktemp -d)
 trap 'rm -rf "$out"' EXIT
 command=(python3 "$ROOT/scripts/finger_design" --vary chamber_height_m=0.008:0.016:1000

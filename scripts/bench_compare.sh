@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# finger_bench side by side: the working tree's build against another commit's, in one run, rounds interleaved (this
+# VM's speed drifts, so a figure is only comparable to one measured beside it). Builds REV in a scratch clone.
+# usage: bash scripts/bench_compare.sh REV [ROUNDS] [FILTER]
+#   prints, per round and per benchmark, REV's and this tree's real time (ns), then the medians
+set -euo pipefail
+ROOT="$(cd "$(dirname "$0")/.." && pwd)"
+rev=${1:?usage: bench_compare.sh REV [ROUNDS] [FILTER]}
+rounds=${2:-3}
+filter=${3:-'^(robust/validated|table/validated|batch/avx512|contact/1)$'}
+export PATH="/usr/bin:/bin:$PATH"
+base="$ROOT/build/bench_compare/$(git -C "$ROOT" rev-parse --short "$rev")"
+if [ ! -x "$base/devel/lib/pneumatic_finger/finger_bench" ]; then
+  rm -rf "$base" && git clone -q "$ROOT" "$base" && git -C "$base" checkout -q "$rev"
+  bash "$base/scripts/build.sh" >/dev/null
+fi
+run() {
+  "$1" --benchmark_filter="$filter" --benchmark_min_time=0.3 --benchmark_format=csv 2>/dev/null | grep -v '^name' |
+    awk -F, -v who="$2" -v r="$3" '{gsub(/"/, "", $1); printf "%s %s %s %.1f\n", r, who, $1, $3}'
+}
+{
+  for round in $(seq "$rounds"); do
+    run "$base/devel/lib/pneumatic_finger/finger_bench" "$rev" "$round"
+    run "$ROOT/devel/lib/pneumatic_finger/finger_bench" "tree" "$round"
+  done
+} | tee /dev/stderr | python3 -c '
+import collections, statistics, sys
+times = collections.defaultdict(list)
+for line in sys.stdin:
+    _, who, name, ns = line.split()
+    times[(name, who)].append(float(ns))
+names = sorted({n for n, _ in times})
+whos = sorted({w for _, w in times}, key=lambda w: w == "tree")
+print("median ns:", " | ".join(whos))
+for n in names:
+    print(f"{n}: " + " | ".join(f"{statistics.median(times[(n, w)]):.1f}" for w in whos))
+'
