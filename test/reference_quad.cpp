@@ -1,5 +1,8 @@
 #include "reference_quad.hpp"
 
+#include <array>
+#include <map>
+
 extern "C" {
 #include <quadmath.h>
 }
@@ -97,6 +100,77 @@ Finger finger(double gauge_pa, double atmospheric_pa, const std::vector<ChamberG
   }
   out.tip_angle_rad = static_cast<double>(big_theta);
   return out;
+}
+
+namespace {
+
+// 1/lambda - 1/lambda^7 = (lambda^6 - 1)/lambda^7, with lambda^6 - 1 = expm1(6 log1p(delta)): exact in quad down to the
+// smallest delta (the literal difference would keep no digit below delta ~ 1e-34).
+quad membraneP(const Membrane& w, quad lambda, quad delta) {
+  const quad neo = 4 * quad(w.shear_modulus_pa) * w.wall_thickness_m / w.chamber_height_m *
+                   (expm1q(6 * log1pq(delta)) / powq(lambda, 7));
+  if (w.locking_jm == 0) return neo;
+  const quad room = quad(w.locking_jm) - (2 * lambda * lambda + 1 / powq(lambda, 4) - 3);
+  return room > 0 ? neo * w.locking_jm / room : quad(1e300) * quad(1e300);
+}
+
+// The sign of dP/dlambda: f'g - f g' for P ~ f/g, f = 1/lambda - 1/lambda^7, g = J_m - (I1 - 3) (g = 1 for J_m = 0).
+quad membraneSlopeSign(const Membrane& w, quad lambda) {
+  const quad f = 1 / lambda - 1 / powq(lambda, 7), fp = -1 / (lambda * lambda) + 7 / powq(lambda, 8);
+  if (w.locking_jm == 0) return fp;
+  const quad g = quad(w.locking_jm) - (2 * lambda * lambda + 1 / powq(lambda, 4) - 3);
+  const quad gp = -(4 * lambda - 4 / powq(lambda, 5));
+  return fp * g - f * gp;
+}
+
+quad membraneLimitLambdaUncached(const Membrane& w) {
+  quad lock = 1e30;
+  if (w.locking_jm > 0) {
+    lock = bisect([&w](quad l) { return (2 * l * l + 1 / powq(l, 4) - 3) - w.locking_jm; }, quad(1), quad(1e6));
+  }
+  // Scan in lambda from just above rest to the lock (or far out), then bisect the first sign change.
+  const quad top = w.locking_jm > 0 ? lock : quad(10);
+  const int steps = 20000;
+  quad previous = 1 + (top - 1) / steps;
+  for (int i = 2; i < steps; ++i) {
+    const quad l = 1 + (top - 1) * i / steps;
+    if (membraneSlopeSign(w, l) <= 0) {
+      return bisect([&w](quad x) { return -membraneSlopeSign(w, x); }, previous, l);
+    }
+    previous = l;
+  }
+  return quad(1e300) * quad(1e300);
+}
+
+// The scan is slow in quad; a test asks for the same wall many times.
+quad membraneLimitLambda(const Membrane& w) {
+  static std::map<std::array<double, 4>, quad> cache;
+  const std::array<double, 4> key{w.shear_modulus_pa, w.wall_thickness_m, w.chamber_height_m, w.locking_jm};
+  const auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  return cache[key] = membraneLimitLambdaUncached(w);
+}
+
+}  // namespace
+
+double membraneLimitStretchExcess(const Membrane& wall) { return static_cast<double>(membraneLimitLambda(wall) - 1); }
+
+double membraneLimitGaugePa(const Membrane& wall) {
+  const quad l = membraneLimitLambda(wall);
+  return l < quad(1e30) ? static_cast<double>(membraneP(wall, l, l - 1)) : static_cast<double>(l);
+}
+
+double membraneStretchExcess(const Membrane& wall, double gauge_pa) {
+  if (!(gauge_pa > 0)) return 0;
+  const quad top = membraneLimitLambda(wall);
+  const quad hi = top < quad(1e30) ? top : quad(1e6);
+  // P in delta = lambda - 1 (so that delta keeps its digits near rest): rising on [0, limit].
+  return static_cast<double>(
+      bisect([&](quad d) { return membraneP(wall, 1 + d, d) - quad(gauge_pa); }, quad(0), hi - 1));
+}
+
+double membraneGaugePa(const Membrane& wall, double stretch_excess) {
+  return static_cast<double>(membraneP(wall, 1 + quad(stretch_excess), quad(stretch_excess)));
 }
 
 }  // namespace reference

@@ -39,4 +39,21 @@ Finger finger(double gauge_pa, double atmospheric_pa, const std::vector<ChamberG
               const std::vector<double>& segment_length_m, double base_segment_length_m,
               double base_wall_share = 0.0);
 
+/// The membrane law (docs/MODEL.md "The membrane law") literally: P(lambda) = (4 mu t/L)(1/lambda - 1/lambda^7)
+/// J_m/(J_m - (2 lambda^2 + lambda^-4 - 3)) (the Gent factor 1 for J_m = 0), in quad.
+struct Membrane {
+  double shear_modulus_pa, wall_thickness_m, chamber_height_m, locking_jm;
+};
+
+/// The pressure maximum's stretch excess (the first zero of dP/dlambda, by a scan and bisection of its literal
+/// derivative), and the pressure there; +inf for a wall that locks first.
+double membraneLimitStretchExcess(const Membrane& wall);
+double membraneLimitGaugePa(const Membrane& wall);
+
+/// The stretch excess on the rising branch at @p gauge_pa (below the limit), by bisection on P.
+double membraneStretchExcess(const Membrane& wall, double gauge_pa);
+
+/// The pressure at @p stretch_excess, the law evaluated in quad and rounded once.
+double membraneGaugePa(const Membrane& wall, double stretch_excess);
+
 }  // namespace reference

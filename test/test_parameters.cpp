@@ -1,6 +1,8 @@
 // The parameter definition: defaults, ranges, lists, YAML, --set, and that the shipped file is the definition.
 #include <gtest/gtest.h>
 
+#include <fstream>
+
 #include <cmath>
 
 #include "pneumatic_finger/core/parameters.hpp"
@@ -28,10 +30,15 @@ pf::RawParameterMap one(const std::string& key, std::vector<double> v, bool list
 }  // namespace
 
 TEST(Parameters, EveryKeyOfModelMdIsDefinedOnce) {
-  const std::vector<std::string> model_md = {
-      "chamber_count", "chamber_height_m", "wall_critical_height_m", "chamber_gap_m", "chamber_thickness_m",
-      "chamber_width_m", "segment_length_m", "base_segment_length_m", "base_wall_share", "shear_modulus_pa",
-      "atmospheric_pressure_pa", "elastomer_density_kg_m3"};
+  // The keys of docs/MODEL.md's parameter table: its rows that start with a key in backticks.
+  std::vector<std::string> model_md;
+  std::ifstream doc(std::string(PACKAGE_SOURCE_DIR) + "/docs/MODEL.md");
+  bool in_table = false;
+  for (std::string line; std::getline(doc, line);) {
+    if (line.rfind("| key (YAML", 0) == 0) in_table = true;
+    else if (in_table && line.rfind("| `", 0) != 0 && line.rfind("|---", 0) != 0) break;
+    else if (in_table && line.rfind("| `", 0) == 0) model_md.push_back(line.substr(3, line.find('`', 3) - 3));
+  }
   ASSERT_EQ(pf::parameterSpecs().size(), model_md.size());
   for (const auto& key : model_md) EXPECT_NE(pf::findParameterSpec(key), nullptr) << key;
   for (const auto& spec : pf::parameterSpecs()) {

@@ -280,8 +280,9 @@ ContactState ContactTracker::solve(double gauge_pa) {
   out.joint_angle_rad.resize(n);  // the free angles first; the held ones are written over them below
   double free_half_angle_rad = 0.0;  // theta_1, the half angle of chamber 1's walls (all of them, identical chambers)
   std::array<double, kMaxChamberCount> half;
-  if (!model.jointAnglesAt(pressure, out.joint_angle_rad.data(), half.data())) {
-    out.status = ContactState::Status::kSolverFailure;
+  const bool beyond_limit = pressure >= model.limitGaugePa();
+  if (beyond_limit || !model.jointAnglesAt(pressure, out.joint_angle_rad.data(), half.data())) {
+    out.status = beyond_limit ? ContactState::Status::kBeyondLimitPoint : ContactState::Status::kSolverFailure;
     out.joint_angle_rad.setZero();
     solver_.backbone(out.joint_angle_rad, out.backbone_m);
     return out;

@@ -31,6 +31,17 @@ BatchOutputs BatchBuffers::outputs() {
   return o;
 }
 
+const char* evaluationStatusName(EvaluationStatus status) {
+  switch (status) {
+    case EvaluationStatus::kOk: return "ok";
+    case EvaluationStatus::kVacuum: return "vacuum";
+    case EvaluationStatus::kNotFinite: return "not finite";
+    case EvaluationStatus::kSolverFailure: return "solver failure";
+    case EvaluationStatus::kBeyondLimitPoint: return "beyond limit point";
+  }
+  return "unknown";
+}
+
 const char* batchPathName(BatchPath path) {
   switch (path) {
     case BatchPath::kBest: return "best";
@@ -70,7 +81,8 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
                                 "' is not available on this CPU or build");
   }
   const auto n = static_cast<std::size_t>(parameters_.chamber_count);
-  if (path != BatchPath::kScalar && options_.solver == SolverKind::kRobust && groups_.size() == 1) {
+  // The packs hold the paper law's chain; the membrane law goes one pressure at a time.
+  if (path != BatchPath::kScalar && options_.solver == SolverKind::kRobust && groups_.size() == 1 && !membrane_) {
     const ChamberGroup& g = groups_[0];
     const UniformRobustSpec spec{parameters_.chamber_count, parameters_.atmospheric_pressure_pa, g.shear_modulus_pa,
                                  g.chamber_height_m, g.chamber_gap_m, g.wall_critical_height_m,
@@ -90,10 +102,12 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
   };
   for (std::size_t i = 0; i < count; ++i) {
     const double p = gauge_pa[i];
-    EvaluationStatus status = !std::isfinite(p) ? EvaluationStatus::kNotFinite
-                              : p < 0.0         ? EvaluationStatus::kVacuum
-                                                : EvaluationStatus::kOk;
-    if (status != EvaluationStatus::kNotFinite && !writeStateAt(p < 0.0 ? 0.0 : p, workspace, state)) {
+    EvaluationStatus status = !std::isfinite(p)       ? EvaluationStatus::kNotFinite
+                              : p >= limit_gauge_pa_ ? EvaluationStatus::kBeyondLimitPoint
+                              : p < 0.0               ? EvaluationStatus::kVacuum
+                                                      : EvaluationStatus::kOk;
+    const bool solve = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum;
+    if (solve && !writeStateAt(p < 0.0 ? 0.0 : p, workspace, state)) {
       status = EvaluationStatus::kSolverFailure;
     }
     const bool answered = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum;

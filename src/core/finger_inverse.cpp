@@ -1,5 +1,6 @@
 // The inverse model: the gauge pressure for a bulge, a half angle or a tip direction. Every stage inverts in closed
 // form for identical chambers; unequal chambers bisect on the (non-decreasing) tip direction.
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <sstream>
@@ -50,16 +51,24 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
     gauge_pa = 0.0;
     return true;
   }
+  if (std::isfinite(limit_gauge_pa_) && tip_angle_rad >= tipAngleBelowLimit()) {
+    why << "tip angle " << formatExact(tip_angle_rad) << " rad lies beyond the wall's limit point: the largest the "
+        << "membrane law holds is " << formatExact(tipAngleBelowLimit()) << " rad, just below "
+        << formatExact(limit_gauge_pa_) << " Pa, and there the pressure no longer determines the shape";
+    message = why.str();
+    return false;
+  }
   double answer;
   if (groups_.size() == 1) {
     // Identical chambers: Theta_N = (2N - 1 + s0) theta, and every stage inverts in closed form.
     if (!gaugeForHalfAngle(tip_angle_rad / turns, answer)) answer = std::numeric_limits<double>::infinity();
   } else {
-    // Unequal chambers: Theta_N(P) is non-decreasing, so bisect on [0, max].
-    if (tipAngleAt(max_gauge_pa) < tip_angle_rad) {
+    // Unequal chambers: Theta_N(P) is non-decreasing, so bisect on [0, max] (below the limit point).
+    const double top = std::min(max_gauge_pa, belowLimitGaugePa());
+    if (tipAngleAt(top) < tip_angle_rad) {
       answer = std::numeric_limits<double>::infinity();
     } else {
-      double lo = 0.0, hi = max_gauge_pa;
+      double lo = 0.0, hi = top;
       for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
         const double mid = 0.5 * (lo + hi);
         (tipAngleAt(mid) < tip_angle_rad ? lo : hi) = mid;
@@ -78,11 +87,21 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
   return true;
 }
 
+double FingerModel::belowLimitGaugePa() const {
+  return std::isfinite(limit_gauge_pa_) ? std::nextafter(limit_gauge_pa_, 0.0) : limit_gauge_pa_;
+}
+
+double FingerModel::tipAngleBelowLimit() const {
+  return std::isfinite(limit_gauge_pa_) ? tipAngleAt(belowLimitGaugePa()) : std::numeric_limits<double>::infinity();
+}
+
 bool FingerModel::gaugeForHalfAngle(double half_angle_rad, double& gauge_pa) const {
   if (groups_.size() != 1 || !(half_angle_rad > 0) || !(half_angle_rad < kHalfPi)) return false;
   const ChamberGroup& g = groups_[0];
   const double h = bulgeForHalfAngle(half_angle_rad, g.chamber_gap_m, g.wall_critical_height_m);
-  const double p = gaugeForBulge(h, g.chamber_height_m, g.shear_modulus_pa, parameters_.atmospheric_pressure_pa);
+  // Under the membrane law a bulge beyond the limit point has no pressure: NaN, refused below.
+  const double p = membrane_ ? membraneGaugeForBulge(g.membrane, h)
+                             : gaugeForBulge(h, g.chamber_height_m, g.shear_modulus_pa, parameters_.atmospheric_pressure_pa);
   if (!std::isfinite(p)) return false;
   gauge_pa = p;
   return true;

@@ -37,27 +37,34 @@ SolverKind parseSolverName(const std::string& name) {
 FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions& options)
     : parameters_(parameters), options_(options), first_joint_series_(firstJointSeries(parameters.base_wall_share)) {
   const int n = parameters_.chamber_count;
+  membrane_ = parameters_.wall_law == WallLaw::kMembrane;
+  if (membrane_ && options_.solver == SolverKind::kPaper) {
+    throw ParameterError("the paper solver evaluates the paper's closed forms (eq 10-35), which the membrane wall law "
+                         "does not have; use the robust or the table solver with wall_law: membrane");
+  }
   group_of_chamber_.resize(static_cast<std::size_t>(n));
-  contact_gauge_pa_ = std::numeric_limits<double>::infinity();
+  contact_gauge_pa_ = limit_gauge_pa_ = std::numeric_limits<double>::infinity();
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     ChamberGroup g{parameters_.chamber_height_m[k], parameters_.wall_critical_height_m[k],
-                   parameters_.chamber_gap_m[k], parameters_.shear_modulus_pa[k], 0.0, {}, 0, 0, 0, 0, 0, {}};
+                   parameters_.chamber_gap_m[k], parameters_.shear_modulus_pa[k],
+                   membrane_ ? parameters_.wall_thickness_m[k] : 0.0, 0.0, MembraneWall{}, {}, 0, 0, 0, 0, 0, {}};
     auto same = [&g](const ChamberGroup& o) {
       return o.chamber_height_m == g.chamber_height_m && o.wall_critical_height_m == g.wall_critical_height_m &&
-             o.chamber_gap_m == g.chamber_gap_m && o.shear_modulus_pa == g.shear_modulus_pa;
+             o.chamber_gap_m == g.chamber_gap_m && o.shear_modulus_pa == g.shear_modulus_pa &&
+             o.wall_thickness_m == g.wall_thickness_m;
     };
     auto it = std::find_if(groups_.begin(), groups_.end(), same);
     if (it == groups_.end()) {
-      g.contact_gauge_pa = pneumatic_finger::contactGaugePa(g.chamber_height_m, g.chamber_gap_m, g.shear_modulus_pa,
-                                          parameters_.atmospheric_pressure_pa);
-      groups_.push_back(g);
+      addGroup(g);
       it = groups_.end() - 1;
     }
     group_of_chamber_[k] = static_cast<int>(it - groups_.begin());
     contact_gauge_pa_ = std::min(contact_gauge_pa_, it->contact_gauge_pa);
+    limit_gauge_pa_ = std::min(limit_gauge_pa_, membrane_ ? it->membrane.limit_gauge_pa : limit_gauge_pa_);
   }
-  if (options_.solver == SolverKind::kTable) {
+  // The table holds the paper law's shape; under the membrane law the table solver answers from the robust chain.
+  if (options_.solver == SolverKind::kTable && !membrane_) {
     if (groups_.size() == 1) {
       table_shape_writer_ = tableShapeWriterFor(n);
       table_polynomials_ = simdKernels(widestInstructionSet())->table_polynomials;
@@ -67,6 +74,19 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
   shape_ = static_cast<std::uint64_t>(n) << 32 | static_cast<std::uint64_t>(groups_.size());
   static std::atomic<std::uint64_t> next_id{1};
   id_ = next_id.fetch_add(1, std::memory_order_relaxed);
+}
+
+// A new distinct chamber geometry: its contact pressure, and under the membrane law its membrane and limit point.
+void FingerModel::addGroup(ChamberGroup g) {
+  const double p_o = parameters_.atmospheric_pressure_pa;
+  if (membrane_) {
+    g.membrane = membraneWall(g.shear_modulus_pa, g.wall_thickness_m, g.chamber_height_m, parameters_.wall_locking_jm);
+    const double p = membraneGaugeForBulge(g.membrane, g.chamber_gap_m);
+    g.contact_gauge_pa = std::isnan(p) ? std::numeric_limits<double>::infinity() : p;
+  } else {
+    g.contact_gauge_pa = pneumatic_finger::contactGaugePa(g.chamber_height_m, g.chamber_gap_m, g.shear_modulus_pa, p_o);
+  }
+  groups_.push_back(g);
 }
 
 FingerWorkspace::FingerWorkspace(const FingerModel& model)
@@ -81,6 +101,10 @@ FingerWorkspace::FingerWorkspace(const FingerModel& model)
                               std::to_string(workspace.chamber_half_.size()) + " chambers in " +
                               std::to_string(workspace.group_solutions_.size()) + " groups, not this one's " +
                               std::to_string(group_of_chamber_.size()) + " in " + std::to_string(groups_.size()));
+}
+
+WallSolution FingerModel::solveMembrane(const ChamberGroup& group, double gauge_pa) {
+  return solveMembraneWall(group.membrane, gauge_pa, group.chamber_gap_m, group.wall_critical_height_m);
 }
 
 WallSolution FingerModel::solveRobust(const ChamberGroup& group, double gauge_pa, double atmospheric_pa) {
@@ -119,6 +143,7 @@ __attribute__((always_inline)) inline bool FingerModel::robustWall(const Chamber
 // solveGroup's theta alone, in registers (tipAngleAt, jointAnglesAt); the paper solver by solveGroup.
 __attribute__((always_inline)) inline double FingerModel::halfAngleOf(const ChamberGroup& group,
                                                                       double gauge_pa) const {
+  if (membrane_) return solveMembrane(group, gauge_pa).half.rad;
   if (options_.solver == SolverKind::kTable) {
     int segment = 0;
     double x = 0.0;
@@ -139,6 +164,10 @@ __attribute__((always_inline)) inline double FingerModel::halfAngleOf(const Cham
 ChamberGroupSolution FingerModel::solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const {
   ChamberGroupSolution r{1.0, 0.0, HalfAngle{}};
   const double p_o = parameters_.atmospheric_pressure_pa;
+  if (membrane_) {
+    const WallSolution w = solveMembrane(group, gauge_pa);
+    return ChamberGroupSolution{1.0 + w.stretch_excess, w.bulge_m, w.half};
+  }
   switch (options_.solver) {
     case SolverKind::kRobust: {
       double delta = 0.0;
@@ -294,7 +323,7 @@ __attribute__((noinline)) bool FingerModel::writeSolvedState(double gauge_pa, Fi
     const ChamberGroup& group = groups_[0];
     const UniformWriter writer = uniformWriterFor(parameters_.chamber_count);
     ChamberGroupSolution r;
-    if (options_.solver == SolverKind::kRobust) {
+    if (options_.solver == SolverKind::kRobust && !membrane_) {
       double delta = 0.0;
       const bool usual = robustWall(group, gauge_pa, parameters_.atmospheric_pressure_pa, delta, r.bulge_m, r.half);
       r.stretch = 1.0 + delta;
@@ -342,6 +371,11 @@ const FingerState& FingerModel::evaluate(double gauge_pa, FingerWorkspace& ws) c
   // Unchanged pressure on the same model: nothing to do. (A workspace of the same shape may have been used with
   // another model last: its state is that model's, so it is recomputed.)
   if (ws.has_last_ && gauge_pa == ws.last_gauge_pa_ && ws.last_model_id_ == id_) return state;
+  if (__builtin_expect(gauge_pa >= limit_gauge_pa_, 0)) {  // +inf under the paper law: never
+    state.status = EvaluationStatus::kBeyondLimitPoint;
+    ws.has_last_ = false;  // the previous numbers stay; the next pressure below the limit recomputes
+    return state;
+  }
   const bool vacuum = gauge_pa < 0.0;
   ++ws.computations_;
   if (!writeState(vacuum ? 0.0 : gauge_pa, ws, state)) {

@@ -46,7 +46,26 @@ const std::vector<ParameterSpec> kSpecs = {
     // (Smooth-On Ecoflex 00-30 and Dragon Skin 30: 1.07 and 1.08).
     {"elastomer_density_kg_m3", "rho", "kg/m^3", 1070, 100, false, 3000, ParameterShape::kScalar,
      "density of the elastomer, for the URDF's link masses and inertias (not used by the model)"},
+    // The membrane law (docs/MODEL.md, "The membrane law"). Its shear modulus is a real silicone's, 10 kPa to 10 MPa
+    // (the key's range stays wide because the paper law's effective mu is 2.2e8 Pa).
+    {"wall_law", "-", "-", 0, 0, true, 1, ParameterShape::kChoice,
+     "stages 1-3: 'paper' (the paper's air-spring energy and Neo-Hookean strip) or 'membrane' (an inflated "
+     "Neo-Hookean or Gent membrane, with a limit point)", "paper|membrane"},
+    {"wall_thickness_m", "t", "m", 0.002, 0, false, 0.5, ParameterShape::kPerChamber,
+     "membrane law: thickness of a chamber's wall at rest (the paper law does not use it)"},
+    {"wall_locking_jm", "J_m", "-", 0, 0, true, 1e4, ParameterShape::kScalar,
+     "membrane law: Gent's locking invariant, the I1 - 3 at which the elastomer locks; 0: no locking "
+     "(Neo-Hookean)"},
 };
+
+// The names of a choice key, in index order.
+std::vector<std::string> choiceNames(const ParameterSpec& spec) {
+  std::vector<std::string> names;
+  std::stringstream all(spec.choices ? spec.choices : "");
+  std::string name;
+  while (std::getline(all, name, '|')) names.push_back(name);
+  return names;
+}
 
 // " m" after a range; nothing for a dimensionless key.
 std::string unitSuffix(const ParameterSpec& spec) {
@@ -63,6 +82,13 @@ std::string keyAndValue(const ParameterSpec& spec, double value) {
 }  // namespace
 
 void checkParameterValue(const ParameterSpec& spec, double value) {
+  if (spec.shape == ParameterShape::kChoice) {
+    if (!(value >= 0 && value < static_cast<double>(choiceNames(spec).size()) && value == std::floor(value))) {
+      throw ParameterError(std::string("parameter '") + spec.key + "' = " + formatExact(value) + " is not " +
+                           describeRange(spec));
+    }
+    return;
+  }
   if (!std::isfinite(value)) {
     throw ParameterError(std::string("parameter '") + spec.key + "' = " + formatExact(value) +
                          " is not a finite number; allowed: " + describeRange(spec) + unitSuffix(spec));
@@ -134,6 +160,12 @@ std::string formatShortest(double value) {
 
 std::string describeRange(const ParameterSpec& spec) {
   std::ostringstream s;
+  if (spec.shape == ParameterShape::kChoice) {
+    const std::vector<std::string> names = choiceNames(spec);
+    s << "one of ";
+    for (std::size_t i = 0; i < names.size(); ++i) s << (i ? ", " : "") << names[i];
+    return s.str();
+  }
   if (spec.shape == ParameterShape::kScalarInteger) s << "integer in ";
   s << (spec.min_inclusive ? "[" : "(") << spec.min_value << ", " << spec.max_value << "]";
   return s.str();
@@ -164,8 +196,13 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& raw) {
   p.shear_modulus_pa = perChamber(spec("shear_modulus_pa"), raw, n);
   p.atmospheric_pressure_pa = scalar(spec("atmospheric_pressure_pa"), raw);
   p.elastomer_density_kg_m3 = scalar(spec("elastomer_density_kg_m3"), raw);
-  // docs/MODEL.md stage 3-4: b is a height on the wall, so it cannot exceed the wall (chamber) height L.
-  for (int i = 0; i < n; ++i) {
+  p.wall_law = static_cast<WallLaw>(static_cast<int>(scalar(spec("wall_law"), raw)));
+  p.wall_thickness_m = perChamber(spec("wall_thickness_m"), raw, n);
+  p.wall_locking_jm = scalar(spec("wall_locking_jm"), raw);
+  // docs/MODEL.md stage 3-4: under the paper law b is a height on the wall, so it cannot exceed the wall (chamber)
+  // height L. Under the membrane law b is where the walls push, measured from the bending axis: the chamber need not
+  // sit on the base layer, so b may exceed L ("The membrane law").
+  for (int i = 0; i < n && p.wall_law == WallLaw::kPaper; ++i) {
     const auto k = static_cast<std::size_t>(i);
     if (p.wall_critical_height_m[k] > p.chamber_height_m[k]) {
       std::ostringstream s;
@@ -196,6 +233,9 @@ RawParameterMap FingerParameters::toRaw() const {
   put_list("shear_modulus_pa", shear_modulus_pa);
   raw["atmospheric_pressure_pa"] = {{atmospheric_pressure_pa}, false};
   raw["elastomer_density_kg_m3"] = {{elastomer_density_kg_m3}, false};
+  raw["wall_law"] = {{static_cast<double>(wall_law)}, false};
+  put_list("wall_thickness_m", wall_thickness_m);
+  raw["wall_locking_jm"] = {{wall_locking_jm}, false};
   return raw;
 }
 
@@ -238,11 +278,30 @@ void parseParameterAssignment(const std::string& assignment, RawParameterMap& ra
     std::string item;
     while (std::getline(items, item, ',')) parsed.values.push_back(parseNumber(trim(item), key));
   } else {
-    parsed.values.push_back(parseNumber(value, key));
+    parsed.values.push_back(parseParameterText(*findParameterSpec(key), value));
   }
   if (parsed.values.empty()) throw ParameterError("parameter '" + key + "' has no value");
   raw[key] = parsed;
 }
+
+double parseParameterText(const ParameterSpec& spec, const std::string& text) {
+  if (spec.shape != ParameterShape::kChoice) return parseNumber(trim(text), spec.key);
+  const std::vector<std::string> names = choiceNames(spec);
+  const auto it = std::find(names.begin(), names.end(), trim(text));
+  if (it == names.end()) {
+    throw ParameterError(std::string("parameter '") + spec.key + "' = '" + text + "' is not " + describeRange(spec));
+  }
+  return static_cast<double>(it - names.begin());
+}
+
+std::string formatParameterValue(const ParameterSpec& spec, double value) {
+  if (spec.shape != ParameterShape::kChoice) return formatShortest(value);
+  const std::vector<std::string> names = choiceNames(spec);
+  const auto k = static_cast<std::size_t>(value);
+  return value >= 0 && k < names.size() ? names[k] : formatExact(value);
+}
+
+const char* wallLawName(WallLaw law) { return law == WallLaw::kMembrane ? "membrane" : "paper"; }
 
 double FingerParameters::lengthM() const {
   double length_m = base_segment_length_m;

@@ -12,6 +12,15 @@ namespace pneumatic_finger {
 namespace {
 
 double toNumber(const YAML::Node& node, const std::string& key, const std::string& origin) {
+  const ParameterSpec* spec = findParameterSpec(key);
+  if (spec != nullptr && spec->shape == ParameterShape::kChoice) {
+    if (!node.IsScalar()) throw ParameterError(origin + ": parameter '" + key + "' must be " + describeRange(*spec));
+    try {
+      return parseParameterText(*spec, node.Scalar());
+    } catch (const ParameterError& e) {
+      throw ParameterError(origin + ": " + e.what());
+    }
+  }
   if (!node.IsScalar()) throw ParameterError(origin + ": parameter '" + key + "' must be a number");
   try {
     return node.as<double>();
@@ -76,7 +85,7 @@ std::string parametersToYaml(const FingerParameters& parameters) {
       for (std::size_t i = 0; i < v.values.size(); ++i) out << (i ? ", " : "") << formatShortest(v.values[i]);
       out << "]";
     } else {
-      out << formatShortest(v.values[0]);
+      out << formatParameterValue(spec, v.values[0]);
     }
     out << "\n";
   }

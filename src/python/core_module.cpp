@@ -29,19 +29,31 @@ using namespace pneumatic_finger_python;  // NOLINT(build/namespaces): the modul
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 
 // The status codes' names, indexed by code: pf.STATUS and pf.CONTACT_STATUS in Python.
-const std::vector<const char*> kEvaluationStatus = {"ok", "vacuum", "not finite", "solver failure"};
-const std::vector<const char*> kContactStatus = {"free", "in contact", "overlaps at rest", "solver failure"};
+const std::vector<const char*> kEvaluationStatus = {
+    pf::evaluationStatusName(pf::EvaluationStatus::kOk), pf::evaluationStatusName(pf::EvaluationStatus::kVacuum),
+    pf::evaluationStatusName(pf::EvaluationStatus::kNotFinite),
+    pf::evaluationStatusName(pf::EvaluationStatus::kSolverFailure),
+    pf::evaluationStatusName(pf::EvaluationStatus::kBeyondLimitPoint)};
+const std::vector<const char*> kContactStatus = {"free", "in contact", "overlaps at rest", "solver failure",
+                                                 "beyond limit point"};
 
 std::uint8_t contactStatusCode(pf::ContactState::Status status) {
   using S = pf::ContactState::Status;
-  return status == S::kFree ? 0 : status == S::kInContact ? 1 : status == S::kOverlapsAtRest ? 2 : 3;
+  return status == S::kFree             ? 0
+         : status == S::kInContact      ? 1
+         : status == S::kOverlapsAtRest ? 2
+         : status == S::kSolverFailure  ? 3
+                                        : 4;
 }
 
 // Python's value of an override: a number, or a list of numbers (one per chamber).
 pf::RawParameterValue rawValue(const std::string& key, const py::handle& value) {
   pf::RawParameterValue raw;
   try {
-    if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
+    const pf::ParameterSpec* spec = pf::findParameterSpec(key);
+    if (spec != nullptr && spec->shape == pf::ParameterShape::kChoice && py::isinstance<py::str>(value)) {
+      raw.values.push_back(pf::parseParameterText(*spec, value.cast<std::string>()));
+    } else if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
       raw.values.push_back(value.cast<double>());
     } else {
       raw.is_list = true;
@@ -177,7 +189,14 @@ class PyFingerModel {
   py::dict parameters() const {
     py::dict d;
     for (const auto& kv : model_->parameters().toRaw()) {
-      d[py::str(kv.first)] = kv.second.is_list ? py::object(py::cast(kv.second.values)) : py::object(py::float_(kv.second.values[0]));
+      const pf::ParameterSpec& spec = *pf::findParameterSpec(kv.first);
+      if (kv.second.is_list) {
+        d[py::str(kv.first)] = py::cast(kv.second.values);
+      } else if (spec.shape == pf::ParameterShape::kChoice) {
+        d[py::str(kv.first)] = py::str(pf::formatParameterValue(spec, kv.second.values[0]));
+      } else {
+        d[py::str(kv.first)] = py::float_(kv.second.values[0]);
+      }
     }
     return d;
   }

@@ -85,6 +85,8 @@ RawParameterMap readActuatorKeys(const ros::NodeHandle& nh) {
     value.is_list = v.getType() == XmlRpc::XmlRpcValue::TypeArray;
     if (value.is_list) {
       value.values = parameterNumbers(v, spec.key);
+    } else if (spec.shape == ParameterShape::kChoice && v.getType() == XmlRpc::XmlRpcValue::TypeString) {
+      value.values.push_back(parseParameterText(spec, static_cast<std::string>(v)));
     } else {
       value.values.push_back(0);
       if (!asParameterNumber(v, value.values[0])) {

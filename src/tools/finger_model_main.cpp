@@ -41,7 +41,9 @@ void printParameterTable() {
   std::cout << "| key | symbol | unit | default | allowed | per chamber | meaning |\n"
             << "|---|---|---|---|---|---|---|\n";
   for (const auto& s : pf::parameterSpecs()) {
-    std::cout << "| `" << s.key << "` | " << s.symbol << " | " << s.unit << " | " << pf::formatExact(s.default_value)
+    std::cout << "| `" << s.key << "` | " << s.symbol << " | " << s.unit << " | "
+              << (s.shape == pf::ParameterShape::kChoice ? pf::formatParameterValue(s, s.default_value)
+                                                          : pf::formatExact(s.default_value))
               << " | " << pf::describeRange(s) << " | "
               << (s.shape == pf::ParameterShape::kPerChamber ? "scalar or list of N" : "scalar") << " | "
               << s.description << " |\n";

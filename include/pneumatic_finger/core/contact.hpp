@@ -31,6 +31,7 @@ struct ContactState {
     kInContact,       ///< at least one joint is held by the obstacle
     kOverlapsAtRest,  ///< the obstacle overlaps the straight finger: reported, not solved (the free finger is given)
     kSolverFailure,   ///< the model found no finite answer
+    kBeyondLimitPoint,  ///< at or beyond the membrane law's limit point: no shape (the free finger at rest is given)
   };
   Status status = Status::kFree;
   JointAngles joint_angle_rad;         ///< q_1..q_N as the contact rule gives them (rad)

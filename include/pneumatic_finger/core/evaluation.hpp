@@ -13,7 +13,12 @@ enum class EvaluationStatus : std::uint8_t {
   kVacuum,        ///< gauge < 0: outside the model; the straight (rest) finger is returned
   kNotFinite,     ///< NaN or infinite pressure: refused (evaluate() keeps the previous state; a batch writes NaN)
   kSolverFailure, ///< the solver produced no finite answer (the paper's closed forms can): nothing is computed
+  kBeyondLimitPoint,  ///< the membrane law's pressure maximum reached or passed: the pressure does not determine the
+                      ///< shape, so none is given (evaluate() keeps the previous state; a batch writes NaN)
 };
+
+/// "ok", "vacuum", "not finite", "solver failure" or "beyond limit point": the names tools and Python print.
+const char* evaluationStatusName(EvaluationStatus status);
 
 /// Where FingerModel::evaluateMany writes: row-major arrays the caller owns, for `count` pressures. A null pointer
 /// is neither written nor, where the batch kernel can leave it out, computed: a tip-angle sweep skips the backbone.

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "pneumatic_finger/core/evaluation.hpp"
+#include "pneumatic_finger/core/membrane_wall.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/stages.hpp"
 #include "pneumatic_finger/core/units.hpp"
@@ -123,7 +124,9 @@ class FingerWorkspace {
 /// (test: Concurrency.*, run under ThreadSanitizer by scripts/test.sh).
 class FingerModel {
  public:
-  /// Builds the model; the table solver also builds, and measures, its table here.
+  /// Builds the model; the table solver also builds, and measures, its table here. Under the membrane wall law the
+  /// table solver answers from the robust chain (its table holds the paper law only).
+  /// @throws ParameterError for the paper solver with the membrane law, whose stages have no printed closed forms
   explicit FingerModel(const FingerParameters& parameters, const ModelOptions& options = ModelOptions());
 
   /// Evaluates the finger at @p gauge_pa into @p workspace, and returns its state (valid until the workspace's next
@@ -151,6 +154,11 @@ class FingerModel {
   /// Gauge pressure (Pa) at which the first wall pair touches (theta leaves 0).
   double contactGaugePa() const { return contact_gauge_pa_; }
 
+  /// The membrane law's limit point (Pa gauge): the lowest pressure maximum of the chambers' walls. At or above it the
+  /// pressure does not determine the shape, and evaluations report EvaluationStatus::kBeyondLimitPoint. +inf under
+  /// the paper law, or for a Gent wall that locks before any maximum.
+  double limitGaugePa() const { return limit_gauge_pa_; }
+
   /// The table's measured error on its check grid (rad): the largest |theta_table - theta_robust|, and for identical
   /// chambers, whose table holds the backbone, also the largest point error divided by the finger's length (the
   /// turn at the base that moves the tip as far). 0 for other solvers.
@@ -169,8 +177,15 @@ class FingerModel {
   /// in closed form. False for unequal chambers, or an angle no pressure gives.
   bool gaugeForHalfAngle(double half_angle_rad, double& gauge_pa) const;
 
-  /// Tip direction Theta_N at @p gauge_pa without touching the cached state (for inversion and calibration).
+  /// Tip direction Theta_N at @p gauge_pa without touching the cached state (for inversion and calibration). NaN at or
+  /// beyond the limit point.
   double tipAngleAt(double gauge_pa) const;
+
+  /// The largest pressure below the limit point (the double just under limitGaugePa(); +inf without one).
+  double belowLimitGaugePa() const;
+
+  /// The tip direction there: the most the model holds (+inf without a limit point).
+  double tipAngleBelowLimit() const;
 
   /// The free joint angles q_1..q_N at @p gauge_pa (>= 0) into @p joint_angle_rad (N entries), and, when not null,
   /// the half angles theta_1..theta_N into @p half_angle_rad, without touching the cached state (thread-safe like
@@ -179,8 +194,9 @@ class FingerModel {
 
  private:
   struct ChamberGroup {
-    double chamber_height_m, wall_critical_height_m, chamber_gap_m, shear_modulus_pa;
+    double chamber_height_m, wall_critical_height_m, chamber_gap_m, shear_modulus_pa, wall_thickness_m;
     double contact_gauge_pa;
+    MembraneWall membrane;  // the membrane law's wall (unused under the paper law)
     // Table solver: piecewise degree-7 polynomials in u = sqrt(P) (chamber_table.cpp, buildTable). Per segment, the
     // 8 monomial coefficients (in the local variable x in [-1, 1]) of every function, interleaved (coefficient i of
     // function f at i * table_functions + f) so that one coefficient of all functions is one run of memory. The
@@ -196,6 +212,10 @@ class FingerModel {
     std::vector<double> table_theta_only;
   };
 
+  /// The membrane law's chain (stages 1-4) for one group: NaN at or beyond its limit point.
+  static WallSolution solveMembrane(const ChamberGroup& group, double gauge_pa);
+  /// The constructor's step for a new distinct chamber geometry (contact pressure, membrane).
+  void addGroup(ChamberGroup group);
   /// The robust chain (stages 1-4) for one group of identical chambers.
   static WallSolution solveRobust(const ChamberGroup& group, double gauge_pa, double atmospheric_pa);
   /// The usual path, else solveRobust: the robust chain for one group (finger_model.cpp). true: the usual path
@@ -247,6 +267,8 @@ class FingerModel {
                               const double*, double, bool, double, double, FingerState&) = nullptr;
   std::vector<int> group_of_chamber_;
   double contact_gauge_pa_ = 0.0;
+  double limit_gauge_pa_ = 0.0;
+  bool membrane_ = false;  // the membrane wall law (parameters_.wall_law)
   double table_error_rad_ = 0.0;
   std::uint64_t shape_ = 0;  // chamber count << 32 | group count: what a workspace must have been sized for
   std::uint64_t id_;         // unique per construction (a copy shares it: the same model); keys a workspace's cache

@@ -29,7 +29,17 @@ enum class ParameterShape {
   kScalar,         ///< one number
   kScalarInteger,  ///< one whole number
   kPerChamber,     ///< one number for all chambers, or a list of exactly chamber_count numbers
+  kChoice,         ///< one name among ParameterSpec::choices, held as its index (0, 1, ...) in a raw value
 };
+
+/// The wall law of stages 1-3 (docs/MODEL.md): how a chamber's pressure becomes its wall's bulge.
+enum class WallLaw : int {
+  kPaper = 0,     ///< the paper's chain: air-spring energy, uniaxial Neo-Hookean strip, elliptical bulge
+  kMembrane = 1,  ///< an inflated thin Neo-Hookean (or Gent) membrane: a balloon with a limit point
+};
+
+/// "paper" or "membrane".
+const char* wallLawName(WallLaw law);
 
 /// The definition of one key: everything the library, the tools, the node and the docs know about it.
 struct ParameterSpec {
@@ -42,6 +52,7 @@ struct ParameterSpec {
   double max_value;         ///< upper bound of the allowed range (always inclusive)
   ParameterShape shape;     ///< scalar, integer or per-chamber
   const char* description;  ///< one line for docs and --help
+  const char* choices = nullptr;  ///< kChoice only: the names, separated by '|', in index order
 };
 
 /// All keys, in the order of docs/MODEL.md's table.
@@ -74,6 +85,9 @@ struct FingerParameters {
   std::vector<double> shear_modulus_pa;          ///< mu_n
   double atmospheric_pressure_pa = 0.0;          ///< P_o
   double elastomer_density_kg_m3 = 0.0;          ///< rho (URDF masses only; not in the model)
+  WallLaw wall_law = WallLaw::kPaper;            ///< stages 1-3: the paper's chain or the membrane
+  std::vector<double> wall_thickness_m;          ///< t_n: the membrane law's wall thickness at rest
+  double wall_locking_jm = 0.0;                  ///< J_m: the membrane's Gent locking invariant (0: Neo-Hookean)
 
   /// The defaults of parameterSpecs() (the calibrated paper actuator).
   static FingerParameters defaults();
@@ -106,7 +120,15 @@ std::string formatShortest(double value);
 /// @throws ParameterError naming the key, the value and the allowed range with its unit
 void checkParameterValue(const ParameterSpec& spec, double value);
 
-/// Describes the allowed range of @p spec, e.g. "(0, 1]" or "integer in [1, 64]".
+/// Describes the allowed range of @p spec, e.g. "(0, 1]", "integer in [1, 64]" or "one of paper, membrane".
 std::string describeRange(const ParameterSpec& spec);
+
+/// A value written as text (YAML, --set, rosparam, Python): a choice key's name becomes its index; any other key's
+/// text must be a number.
+/// @throws ParameterError naming the key, the text and what is allowed
+double parseParameterText(const ParameterSpec& spec, const std::string& text);
+
+/// A value as it is written back: a choice key's name, else the shortest exact number (formatShortest).
+std::string formatParameterValue(const ParameterSpec& spec, double value);
 
 }  // namespace pneumatic_finger

@@ -1,0 +1,55 @@
+// The membrane wall law (docs/MODEL.md, "The membrane law"): stages 1-3 for an inflated elastomer wall that balloons.
+//
+// A chamber's wall is taken as a thin spherical membrane of rest radius R = L/2 and rest thickness t, of an
+// incompressible Neo-Hookean (or Gent) elastomer of shear modulus mu, stretched equally in every direction by
+// lambda = 1 + delta. Laplace's law with the membrane's tension gives the gauge pressure explicitly:
+//
+//   P(lambda) = (4 mu t / L) (1/lambda - 1/lambda^7) J_m / (J_m - (I1 - 3)),   I1 - 3 = 2 lambda^2 + lambda^-4 - 3,
+//
+// (the Gent factor is 1 for J_m = 0, Neo-Hookean), and the wall's bulge is its radial growth, h = (L/2) delta.
+// P rises from 0, and for a Neo-Hookean wall (and a Gent wall with J_m above about 18) reaches a maximum, the limit
+// point, beyond which it falls: there a pressure does not determine the stretch. Below it the stretch is the root on
+// the rising branch. Stage 4 (Wang's flexion) and the rest of the chain are the paper's.
+#pragma once
+
+#include "pneumatic_finger/core/stages.hpp"
+
+namespace pneumatic_finger {
+
+/// One chamber group's membrane: its constants and its limit point, computed once (a model builds it).
+struct MembraneWall {
+  double chamber_height_m = 0.0;   ///< L (m): the rest radius is L/2
+  double pressure_scale_pa = 0.0;  ///< 4 mu t / L (Pa)
+  double locking_jm = 0.0;         ///< J_m (-); 0: Neo-Hookean
+  double locking_stretch_excess;   ///< delta where I1 - 3 = J_m (the wall locks; +inf for J_m = 0)
+  double limit_stretch_excess;     ///< delta at the first pressure maximum (+inf: P rises to the lock)
+  double limit_gauge_pa;           ///< P there (Pa; +inf without a maximum)
+};
+
+/// The membrane of a wall of height @p chamber_height_m (L), thickness @p wall_thickness_m (t), shear modulus
+/// @p shear_modulus_pa (mu) and Gent locking invariant @p locking_jm (J_m, 0 for none), with its limit point.
+MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, double chamber_height_m,
+                          double locking_jm);
+
+/// The law itself: the gauge pressure (Pa) at stretch excess @p delta >= 0, without cancellation near rest
+/// (1/lambda - 1/lambda^7 = (lambda^6 - 1)/lambda^7 with lambda^6 - 1 a polynomial in delta). +inf at or beyond the
+/// locking stretch.
+double membraneGaugeForStretchExcess(const MembraneWall& wall, double delta);
+
+/// d ln P / d delta at @p delta > 0 (the Newton step's slope; the limit point is its zero).
+double membraneLogSlope(const MembraneWall& wall, double delta);
+
+/// The stretch excess on the rising branch for @p gauge_pa in [0, limit_gauge_pa): safeguarded Newton steps on P,
+/// bracketed by [0, limit_stretch_excess]. NaN for a pressure at or beyond the limit point, negative or NaN.
+double membraneStretchExcess(const MembraneWall& wall, double gauge_pa);
+
+/// Stages 1-4 under the membrane law: delta, h = (L/2) delta, then Wang's half angle (halfAngle). At or beyond the
+/// limit point every field is NaN.
+WallSolution solveMembraneWall(const MembraneWall& wall, double gauge_pa, double gap_m,
+                               double wall_critical_height_m);
+
+/// The inverse: the gauge pressure (Pa) that gives bulge @p bulge_m, or NaN when that bulge lies beyond the limit
+/// point (no pressure holds it).
+double membraneGaugeForBulge(const MembraneWall& wall, double bulge_m);
+
+}  // namespace pneumatic_finger

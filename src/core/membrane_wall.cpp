@@ -1,0 +1,144 @@
+#include "pneumatic_finger/core/membrane_wall.hpp"
+
+#include <cmath>
+#include <limits>
+
+namespace pneumatic_finger {
+
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+
+// lambda^6 - 1 as a polynomial in delta (no cancellation near rest).
+double sixthPowerMinusOne(double d) { return d * (6.0 + d * (15.0 + d * (20.0 + d * (15.0 + d * (6.0 + d))))); }
+
+// I1 - 3 = (lambda^2 - 1)^2 (2 lambda^2 + 1) / lambda^4 for the equibiaxial membrane, from delta.
+double firstInvariantExcess(double d) {
+  const double lam = 1.0 + d, lam_sq = lam * lam, sq_m1 = d * (2.0 + d);
+  return sq_m1 * sq_m1 * (2.0 * lam_sq + 1.0) / (lam_sq * lam_sq);
+}
+
+// The sign of d P / d lambda, times positive factors: (J_m - e)(7 - lambda^6) lambda^4 + 4 (lambda^6 - 1)^2 for a
+// Gent wall (the log slope times lambda (lambda^6 - 1) lambda^4 (J_m - e)); 7 - lambda^6 for a Neo-Hookean one.
+double slopeSign(const MembraneWall& w, double d) {
+  const double lam = 1.0 + d, u = sixthPowerMinusOne(d);
+  if (w.locking_jm == 0.0) return 6.0 - u;
+  const double lam4 = lam * lam * lam * lam;
+  return (w.locking_jm - firstInvariantExcess(d)) * (6.0 - u) * lam4 + 4.0 * u * u;
+}
+
+// Bisection to the last bit of a sign change of f on [lo, hi] (f(lo) and f(hi) of opposite signs).
+template <class F>
+double bisectSignChange(F&& f, double lo, double hi) {
+  const bool lo_positive = f(lo) > 0.0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    ((f(mid) > 0.0) == lo_positive ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+// The Gent wall's limit point: the first zero of slopeSign beyond the Neo-Hookean one (7^(1/6) - 1), where the first
+// term turns negative; the locking term grows without bound towards the lock, so a zero exists only where the first
+// term wins somewhere. A scan finds the first sign change, bisection refines it.
+double gentLimitStretchExcess(const MembraneWall& w) {
+  const double start = std::pow(7.0, 1.0 / 6.0) - 1.0;
+  if (!(w.locking_stretch_excess > start)) return kInf;
+  constexpr int kScan = 4096;
+  double previous = start;
+  for (int i = 1; i < kScan; ++i) {
+    const double d = start + (w.locking_stretch_excess - start) * (static_cast<double>(i) / kScan);
+    if (slopeSign(w, d) <= 0.0) return bisectSignChange([&w](double x) { return slopeSign(w, x); }, previous, d);
+    previous = d;
+  }
+  return kInf;
+}
+
+}  // namespace
+
+MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, double chamber_height_m,
+                          double locking_jm) {
+  MembraneWall w;
+  w.chamber_height_m = chamber_height_m;
+  w.pressure_scale_pa = 4.0 * shear_modulus_pa * wall_thickness_m / chamber_height_m;
+  w.locking_jm = locking_jm;
+  w.locking_stretch_excess = kInf;
+  if (locking_jm > 0.0) {
+    // I1 - 3 rises monotonically from 0 (delta = 0) without bound: bracket its crossing of J_m, then bisect.
+    double hi = 1.0;
+    while (firstInvariantExcess(hi) < locking_jm) hi *= 2.0;
+    w.locking_stretch_excess =
+        bisectSignChange([locking_jm](double d) { return firstInvariantExcess(d) - locking_jm; }, 0.0, hi);
+  }
+  w.limit_stretch_excess = locking_jm == 0.0 ? std::pow(7.0, 1.0 / 6.0) - 1.0 : gentLimitStretchExcess(w);
+  w.limit_gauge_pa = std::isfinite(w.limit_stretch_excess)
+                         ? membraneGaugeForStretchExcess(w, w.limit_stretch_excess)
+                         : kInf;
+  return w;
+}
+
+double membraneGaugeForStretchExcess(const MembraneWall& w, double d) {
+  const double lam = 1.0 + d, lam2 = lam * lam, lam7 = lam2 * lam2 * lam2 * lam;
+  const double neo_hookean = w.pressure_scale_pa * (sixthPowerMinusOne(d) / lam7);
+  if (w.locking_jm == 0.0) return neo_hookean;
+  const double room = w.locking_jm - firstInvariantExcess(d);
+  return room > 0.0 ? neo_hookean * (w.locking_jm / room) : kInf;
+}
+
+double membraneLogSlope(const MembraneWall& w, double d) {
+  // d ln P / d lambda = (7 - lambda^6) / (lambda (lambda^6 - 1)) + e'(lambda) / (J_m - e), e' = 4 (lambda^6 - 1)/lambda^5.
+  const double lam = 1.0 + d, u = sixthPowerMinusOne(d);
+  double slope = (6.0 - u) / (lam * u);
+  if (w.locking_jm != 0.0) {
+    const double lam5 = lam * lam * lam * lam * lam;
+    slope += 4.0 * u / (lam5 * (w.locking_jm - firstInvariantExcess(d)));
+  }
+  return slope;
+}
+
+double membraneStretchExcess(const MembraneWall& w, double gauge_pa) {
+  if (!(gauge_pa >= 0.0) || !(gauge_pa < w.limit_gauge_pa)) return std::numeric_limits<double>::quiet_NaN();
+  if (gauge_pa == 0.0) return 0.0;
+  // P rises on [0, limit] (on [0, lock) without a limit): Newton steps in delta, kept inside the bracket, halving it
+  // where a step would leave it. Near rest P = 6 (4 mu t/L) delta (1 + O(delta)), the first guess.
+  double lo = 0.0, hi = std::isfinite(w.limit_stretch_excess) ? w.limit_stretch_excess : w.locking_stretch_excess;
+  double d = gauge_pa / (6.0 * w.pressure_scale_pa);
+  if (!(d < hi)) d = std::isfinite(hi) ? 0.5 * hi : 1.0;
+  for (int i = 0; i < 200; ++i) {
+    const double p = membraneGaugeForStretchExcess(w, d);
+    if (p == gauge_pa) return d;
+    (p < gauge_pa ? lo : hi) = d;
+    // Newton in ln P: ln P is concave enough near the limit that the step stays on the bracket's inside.
+    double next = d - (std::log(p) - std::log(gauge_pa)) / membraneLogSlope(w, d);
+    if (!(next > lo && next < hi)) next = std::isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * d;
+    if (std::fabs(next - d) <= 2e-16 * d) return next;
+    d = next;
+  }
+  return d;
+}
+
+WallSolution solveMembraneWall(const MembraneWall& w, double gauge_pa, double gap_m, double wall_critical_height_m) {
+  WallSolution s;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double delta = membraneStretchExcess(w, gauge_pa < 0.0 ? 0.0 : gauge_pa);
+  if (std::isnan(delta)) {
+    s.stretch_excess = s.bulge_m = nan;
+    s.half.rad = s.half.cos = s.half.sin = s.half.tan = nan;
+    return s;
+  }
+  s.stretch_excess = delta;
+  s.bulge_m = 0.5 * w.chamber_height_m * delta;
+  s.half = halfAngle(s.bulge_m, gap_m, wall_critical_height_m);
+  return s;
+}
+
+double membraneGaugeForBulge(const MembraneWall& w, double bulge_m) {
+  if (!(bulge_m > 0.0)) return 0.0;
+  const double delta = 2.0 * bulge_m / w.chamber_height_m;
+  const double top = std::isfinite(w.limit_stretch_excess) ? w.limit_stretch_excess : w.locking_stretch_excess;
+  if (!(delta < top)) return std::numeric_limits<double>::quiet_NaN();
+  return membraneGaugeForStretchExcess(w, delta);
+}
+
+}  // namespace pneumatic_finger
