@@ -49,9 +49,10 @@ CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data) {
   return CalibrationQuantity::kTipAngle;
 }
 
-std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity) {
+std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity, WallLaw law) {
   if (quantity == CalibrationQuantity::kEveryJoint) return {"shear_modulus_pa", "chamber_gap_m", "base_wall_share"};
   if (quantity == CalibrationQuantity::kFirstJoint) return {"base_wall_share"};
+  if (law == WallLaw::kMembrane) return {"shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"};
   return {"shear_modulus_pa", "chamber_gap_m"};
 }
 
@@ -80,19 +81,24 @@ struct SearchAxis {
 };
 
 const char* const kFittable[] = {"shear_modulus_pa", "chamber_gap_m", "wall_critical_height_m", "chamber_height_m",
-                                 "base_wall_share"};
+                                 "base_wall_share", "wall_locking_jm"};
 
 SearchAxis axisFor(const std::string& key, const FingerParameters& base) {
-  if (key == "shear_modulus_pa") return {key, true, 5.0, 12.0};
+  // mu: the paper law's effective modulus over [1e5, 1e12] Pa; the membrane law's is a silicone's, 10 kPa to 10 MPa.
+  if (key == "shear_modulus_pa") {
+    return base.wall_law == WallLaw::kMembrane ? SearchAxis{key, true, 4.0, 7.0} : SearchAxis{key, true, 5.0, 12.0};
+  }
   if (key == "base_wall_share") return {key, false, 0.0, 1.0};
+  // J_m logarithmically over [1, 1e4]: from a wall that locks at lambda = 1.5 to one that behaves as Neo-Hookean.
+  if (key == "wall_locking_jm") return {key, true, 0.0, 4.0};
   const double l = *std::max_element(base.chamber_height_m.begin(), base.chamber_height_m.end());
   if (key == "chamber_gap_m") return {key, false, 0.0, l};
   return {key, false, 1e-3 * l, (key == "chamber_height_m" ? 4.0 : 1.0) * l};
 }
 
 void setKey(FingerParameters& p, const std::string& key, double value) {
-  if (key == "base_wall_share") {
-    p.base_wall_share = value;
+  if (key == "base_wall_share" || key == "wall_locking_jm") {
+    (key == "base_wall_share" ? p.base_wall_share : p.wall_locking_jm) = value;
     return;
   }
   std::vector<double>* target = key == "shear_modulus_pa"       ? &p.shear_modulus_pa
@@ -142,8 +148,14 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
   std::vector<Residual> out;
   const int n = parameters.chamber_count;
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  FingerState none = restState(parameters);  // what a row beyond the limit point gets: NaN, no shape
+  none.joint_angle_rad.setConstant(nan);
+  none.backbone_m.setConstant(nan);
+  none.tip_angle_rad = nan;
   for (const Measurement& m : data) {
-    const FingerState& s = model.evaluate(m.gauge_pa, ws);
+    const FingerState& evaluated = model.evaluate(m.gauge_pa, ws);
+    const bool shaped = evaluated.status == EvaluationStatus::kOk || evaluated.status == EvaluationStatus::kVacuum;
+    const FingerState& s = shaped ? evaluated : none;
     Residual r;
     r.gauge_pa = m.gauge_pa;
     r.model_joint_rad.assign(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n);
@@ -187,6 +199,7 @@ double objectiveOver(const std::vector<Residual>& rows, CalibrationQuantity quan
   double value = 0.0;
   for (const Residual& r : rows) {
     for (double e : r.terms(quantity)) {
+      if (std::isnan(e)) return std::numeric_limits<double>::infinity();  // a row the model gives no shape for
       value = objective == CalibrationObjective::kMinimax ? std::max(value, std::fabs(e)) : value + e * e;
     }
   }
@@ -297,7 +310,7 @@ CalibrationResult searchKeys(const FingerParameters& base, const std::vector<std
   FingerParameters trial = base;
   auto objectiveAt = [&](const std::vector<double>& x) {
     for (std::size_t i = 0; i < axes.size(); ++i) setKey(trial, axes[i].key, axes[i].toValue(x[i]));
-    for (int i = 0; i < trial.chamber_count; ++i) {
+    for (int i = 0; i < trial.chamber_count && trial.wall_law == WallLaw::kPaper; ++i) {
       const auto k = static_cast<std::size_t>(i);
       if (trial.wall_critical_height_m[k] > trial.chamber_height_m[k]) return std::numeric_limits<double>::infinity();
     }
@@ -345,6 +358,11 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
     return calibrateEveryJointInTwoSteps(base, keys, data, objective);
   }
   return searchKeys(base, keys, data, objective, quantity);
+}
+
+double leaveOneOutObjective(const std::vector<Residual>& leave_one_out, CalibrationQuantity quantity,
+                            CalibrationObjective objective) {
+  return objectiveOver(leave_one_out, quantity, objective);
 }
 
 TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out) {

@@ -52,7 +52,12 @@ CsvColumns readHeader(const std::vector<std::string>& header, const std::string&
   for (std::size_t i = 0; i < header.size(); ++i) {
     const int k = static_cast<int>(i);
     if (header[i] == "gauge_pa") c.gauge = k;
-    if (header[i] == "tip_angle_rad") c.tip_angle = k;
+    // A segment's bend angle (the angle between its base and its tip, as bending tests report it) is the tip's
+    // direction Theta_N: the same number under another name.
+    if (header[i] == "tip_angle_rad" || header[i] == "bend_angle_rad") {
+      if (c.tip_angle >= 0) throw ParameterError(at + "header has both tip_angle_rad and bend_angle_rad; give one");
+      c.tip_angle = k;
+    }
     if (header[i] == "tip_x_m") c.tip_x = k;
     if (header[i] == "tip_y_m") c.tip_y = k;
     if (!average_column.empty() && header[i] == average_column) c.average = k;

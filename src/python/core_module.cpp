@@ -292,7 +292,7 @@ py::dict calibrate(const std::string& data, const std::vector<std::string>& keys
   const pf::CalibrationQuantity quantity = !compare.empty()          ? pf::parseQuantity(compare)
                                            : !average_column.empty() ? pf::CalibrationQuantity::kOuterAverage
                                                                      : pf::defaultQuantity(rows);
-  const std::vector<std::string> fit_keys = keys.empty() ? pf::defaultFitKeys(quantity) : keys;
+  const std::vector<std::string> fit_keys = keys.empty() ? pf::defaultFitKeys(quantity, base.wall_law) : keys;
   pf::CalibrationResult fit;
   {
     py::gil_scoped_release release;

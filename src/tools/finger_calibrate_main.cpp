@@ -120,13 +120,50 @@ std::string report(const std::string& data_name, std::size_t rows, pf::Calibrati
   return table.str();
 }
 
+// The largest and the root-mean-square |term| of @p rows, in deg (mm for the tip position); "no shape" where a row
+// has none (beyond the limit point).
+std::string errorSummary(const std::vector<pf::Residual>& rows, pf::CalibrationQuantity quantity) {
+  const bool mm = quantity == pf::CalibrationQuantity::kTipPosition;
+  double worst = 0.0, sum_sq = 0.0;
+  int count = 0;
+  for (const pf::Residual& r : rows) {
+    for (double e : r.terms(quantity)) {
+      if (std::isnan(e)) return "no shape at some row (beyond the limit point)";
+      worst = std::max(worst, std::fabs(e));
+      sum_sq += e * e;
+      ++count;
+    }
+  }
+  const double scale = mm ? 1e3 : kDeg;
+  const char* unit = mm ? " mm" : " deg";
+  return "largest " + fmt("%.3f", worst * scale) + unit + ", rms " +
+         fmt("%.3f", std::sqrt(sum_sq / std::max(count, 1)) * scale) + unit;
+}
+
+// --wall-law with more than one law: each law's keys, fit and leave-one-out side by side, and the choice.
+std::string lawComparison(const std::vector<pf::WallLawFit>& fits, std::size_t chosen,
+                          pf::CalibrationQuantity quantity) {
+  std::ostringstream t;
+  t << "# wall laws compared (" << pf::quantityName(quantity) << "; the law with the smaller leave-one-out error is "
+    << "kept):\n";
+  for (std::size_t i = 0; i < fits.size(); ++i) {
+    const pf::WallLawFit& f = fits[i];
+    t << "#   " << pf::wallLawName(f.law) << ": " << f.fit.keys.size() << " fitted (";
+    for (std::size_t k = 0; k < f.fit.keys.size(); ++k) t << (k ? ", " : "") << f.fit.keys[k];
+    t << "); fit " << errorSummary(f.fit.residuals, quantity) << "; leave-one-out "
+      << errorSummary(f.leave_one_out, quantity) << (i == chosen ? "  <- chosen" : "") << "\n";
+    if (!f.note.empty()) t << "#     (" << pf::wallLawName(f.law) << ": " << f.note << ")\n";
+  }
+  return t.str() + "#\n";
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
   CLI::App app(kDescription, "finger_calibrate");
   pf::ParameterOptions parameters;
   parameters.addTo(app);
-  std::string data_path, output, objective_name = "minimax", average_column, fit_keys, compare;
+  std::string data_path, output, objective_name = "minimax", average_column, fit_keys, compare, wall_law;
   app.add_option("--data", data_path,
                  "measured CSV: gauge_pa and any of joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m (the "
                  "tip in the finger's frame); default: the package's data/sierra2022_table1.csv");
@@ -142,6 +179,10 @@ int main(int argc, char** argv) {
   app.add_option("--average-column", average_column,
                  "take the joints 2..N average from this column (e.g. paper_avg_rad) instead of the joints; implies "
                  "--compare average");
+  app.add_option("--wall-law", wall_law,
+                 "auto (fit the paper and the membrane law, keep the one with the smaller leave-one-out error and "
+                 "write it), paper or membrane; default: the parameter file's wall_law. Without --fit each law takes "
+                 "its own keys (membrane: shear_modulus_pa,chamber_gap_m,wall_locking_jm)");
   return pf::runTool("finger_calibrate", app, argc, argv, [&] {
     const bool default_data = data_path.empty();
     if (default_data) data_path = pf::packageShareDirectory() + "/data/sierra2022_table1.csv";
@@ -151,16 +192,21 @@ int main(int argc, char** argv) {
     const pf::CalibrationQuantity quantity = !compare.empty()          ? pf::parseQuantity(compare)
                                              : !average_column.empty() ? pf::CalibrationQuantity::kOuterAverage
                                                                        : pf::defaultQuantity(data);
-    const std::vector<std::string> keys = fit_keys.empty() ? pf::defaultFitKeys(quantity) : pf::splitFields(fit_keys);
-    const pf::CalibrationResult fit = pf::calibrate(base, keys, data, objective, quantity);
-    std::vector<pf::Residual> loo;
+    const std::vector<pf::WallLaw> laws =
+        wall_law.empty() ? std::vector<pf::WallLaw>{base.wall_law} : pf::parseWallLawChoice(wall_law);
+    std::vector<pf::WallLawFit> fits;
     try {
-      loo = pf::leaveOneOut(base, keys, data, objective, quantity);
+      fits = pf::calibrateWallLaws(base, laws, fit_keys.empty() ? std::vector<std::string>{} : pf::splitFields(fit_keys),
+                                   data, objective, quantity);
     } catch (const pf::ParameterError& e) {
       throw pf::ParameterError(data_path + ": " + e.what());
     }
+    const std::size_t chosen = pf::chosenWallLaw(fits);
+    const pf::CalibrationResult& fit = fits[chosen].fit;
+    const std::vector<pf::Residual>& loo = fits[chosen].leave_one_out;
     const pf::TipUncertainty bar = pf::tipUncertainty(fit.residuals, loo);
     const std::string table =
+        (fits.size() > 1 ? lawComparison(fits, chosen, quantity) : std::string()) +
         report(default_data ? "the package's data/sierra2022_table1.csv" : data_path, data.size(), quantity,
                average_column, objective_name, fit, loo, bar, base.chamber_count);
     std::cout << table;

@@ -73,8 +73,9 @@ const char* quantityName(CalibrationQuantity quantity);
 CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data);
 
 /// The keys a fit over @p quantity takes when none are named: shear_modulus_pa and chamber_gap_m, and base_wall_share
-/// too when every joint is compared.
-std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity);
+/// too when every joint is compared. Under the membrane law, wall_locking_jm as the third key where base_wall_share is
+/// not one (the Gent lock shapes the bend's rise after the limit point's bend).
+std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity, WallLaw law = WallLaw::kPaper);
 
 /// "minimax" or "least_squares". @throws ParameterError for anything else.
 CalibrationObjective parseObjective(const std::string& name);
@@ -137,6 +138,36 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
 std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vector<std::string>& keys,
                                   const std::vector<Measurement>& data, CalibrationObjective objective,
                                   CalibrationQuantity quantity);
+
+/// The objective over leave-one-out residuals, as a fit's objective_value over its own: the largest |error| (minimax)
+/// or the sum of squared errors (least squares) of what @p quantity compares; +inf where a row has no shape.
+double leaveOneOutObjective(const std::vector<Residual>& leave_one_out, CalibrationQuantity quantity,
+                            CalibrationObjective objective);
+
+/// One wall law's calibration: its keys, its fit, and each row predicted by a fit to the others.
+struct WallLawFit {
+  WallLaw law = WallLaw::kPaper;
+  CalibrationResult fit;
+  std::vector<Residual> leave_one_out;
+  double leave_one_out_objective = 0.0;  ///< leaveOneOutObjective of leave_one_out
+  std::string note;  ///< what the law's start changed in the base parameters (empty: nothing), for the report
+};
+
+/// `finger_calibrate --wall-law`: each law of @p laws fitted to @p data (with @p keys, or each law's defaultFitKeys
+/// when empty) and predicted row by row (leaveOneOut). A law with more keys fits at least as well; which law the data
+/// support is the one that predicts better: chosenWallLaw picks the smallest leave-one-out objective. The membrane
+/// law's lever b may exceed the chamber height; the paper law's may not (docs/MODEL.md), so where @p base's does, the
+/// paper law starts from its uniform wall, b = L/2, and says so in its note.
+/// @throws ParameterError as calibrate() and leaveOneOut() do, naming the law
+std::vector<WallLawFit> calibrateWallLaws(const FingerParameters& base, const std::vector<WallLaw>& laws,
+                                          const std::vector<std::string>& keys, const std::vector<Measurement>& data,
+                                          CalibrationObjective objective, CalibrationQuantity quantity);
+
+/// The index in @p fits of the smallest leave-one-out objective (the first on a tie).
+std::size_t chosenWallLaw(const std::vector<WallLawFit>& fits);
+
+/// "auto" (both laws), "paper" or "membrane". @throws ParameterError for anything else.
+std::vector<WallLaw> parseWallLawChoice(const std::string& name);
 
 /// The tip's error bar from a calibration: at each row's pressure, the larger of @p fit's and @p leave_one_out's
 /// |error| of the tip angle and of the tip position (NaN where the data measured no tip position). The rows of both

@@ -1,0 +1,57 @@
+// Calibration that picks the wall law (calibration.hpp, calibrateWallLaws): each law fitted and predicted row by row,
+// the one that predicts better kept.
+#include <algorithm>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/core/calibration.hpp"
+
+namespace pneumatic_finger {
+
+std::vector<WallLaw> parseWallLawChoice(const std::string& name) {
+  if (name == "auto") return {WallLaw::kPaper, WallLaw::kMembrane};
+  if (name == wallLawName(WallLaw::kPaper)) return {WallLaw::kPaper};
+  if (name == wallLawName(WallLaw::kMembrane)) return {WallLaw::kMembrane};
+  throw ParameterError("unknown wall law '" + name + "'; known: auto (fit both, keep the better prediction), paper, "
+                       "membrane");
+}
+
+std::vector<WallLawFit> calibrateWallLaws(const FingerParameters& base, const std::vector<WallLaw>& laws,
+                                          const std::vector<std::string>& keys, const std::vector<Measurement>& data,
+                                          CalibrationObjective objective, CalibrationQuantity quantity) {
+  std::vector<WallLawFit> fits;
+  for (WallLaw law : laws) {
+    FingerParameters start = base;
+    start.wall_law = law;
+    std::string note;
+    for (std::size_t k = 0; law == WallLaw::kPaper && k < start.wall_critical_height_m.size(); ++k) {
+      if (start.wall_critical_height_m[k] > start.chamber_height_m[k]) {
+        note = "wall_critical_height_m exceeds chamber_height_m, which the paper law does not allow: it starts from "
+               "its uniform wall, b = L/2";
+        start.wall_critical_height_m[k] = 0.5 * start.chamber_height_m[k];
+      }
+    }
+    const std::vector<std::string> law_keys = keys.empty() ? defaultFitKeys(quantity, law) : keys;
+    WallLawFit f;
+    f.law = law;
+    f.note = note;
+    try {
+      f.fit = calibrate(start, law_keys, data, objective, quantity);
+      f.leave_one_out = leaveOneOut(start, law_keys, data, objective, quantity);
+    } catch (const ParameterError& e) {
+      throw ParameterError(std::string("wall law '") + wallLawName(law) + "': " + e.what());
+    }
+    f.leave_one_out_objective = leaveOneOutObjective(f.leave_one_out, quantity, objective);
+    fits.push_back(std::move(f));
+  }
+  return fits;
+}
+
+std::size_t chosenWallLaw(const std::vector<WallLawFit>& fits) {
+  const auto best = std::min_element(fits.begin(), fits.end(), [](const WallLawFit& a, const WallLawFit& b) {
+    return a.leave_one_out_objective < b.leave_one_out_objective;
+  });
+  return static_cast<std::size_t>(best - fits.begin());
+}
+
+}  // namespace pneumatic_finger
