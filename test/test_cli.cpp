@@ -223,6 +223,41 @@ TEST(CalibrateCli, PrintsTableTwoAndWritesTheParameterFile) {
   EXPECT_EQ(readFile(out_file), readFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml"));
 }
 
+TEST(Cli, PressuresBeyondTheLimitPointAreNanRowsWithAWarning) {
+  const std::string ribbed = std::string(PACKAGE_SOURCE_DIR) + "/config/marchese2015_ribbed.yaml";
+  const CliRun r = run("--config " + ribbed + " --gauge-pa 10000 --gauge-pa 40000 --gauge-pa 1e6");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("limit point"), std::string::npos) << r.err;
+  std::istringstream lines(r.out);
+  std::string header, below, beyond;
+  std::getline(lines, header);
+  std::getline(lines, below);
+  std::getline(lines, beyond);
+  EXPECT_EQ(below.find("nan"), std::string::npos) << below;
+  EXPECT_EQ(beyond.find("40000,nan,nan"), 0u) << beyond;
+}
+
+TEST(CalibrateCli, WallLawAutoKeepsTheBetterPredictionAndWritesIt) {
+  // The ribbed segment of Marchese 2015, two keys per law (the default three of the membrane law take minutes).
+  const std::string out_file = testing::TempDir() + "/ribbed.yaml";
+  const std::string root = PACKAGE_SOURCE_DIR;
+  const CliRun r = runShell(std::string(FINGER_CALIBRATE_EXE) + " --config " + root +
+                            "/config/marchese2015_ribbed.yaml --data " + root +
+                            "/data/marchese2015_ribbed_bending.csv --fit shear_modulus_pa,chamber_gap_m "
+                            "--wall-law auto --output " + out_file);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("#   paper: 2 fitted"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("it starts from its uniform wall, b = L/2"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("<- chosen"), std::string::npos) << r.out;
+  EXPECT_LT(r.out.find("#   paper"), r.out.find("#   membrane"));
+  EXPECT_NE(r.out.find("deg  <- chosen"), std::string::npos);
+  EXPECT_GT(r.out.find("<- chosen"), r.out.find("#   membrane")) << "the membrane law predicts the ribbed segment better";
+  EXPECT_NE(readFile(out_file).find("\nwall_law: membrane\n"), std::string::npos);
+  const CliRun bad = runShell(std::string(FINGER_CALIBRATE_EXE) + " --wall-law balloon");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("unknown wall law 'balloon'"), std::string::npos) << bad.err;
+}
+
 TEST(CalibrateCli, MalformedDataExitsTwoNamingTheLine) {
   const std::string bad = testing::TempDir() + "/bad.csv";
   std::ofstream(bad) << "gauge_pa,joint_1_rad,joint_2_rad\n1e5,0.1,oops\n";

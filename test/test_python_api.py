@@ -7,6 +7,7 @@ import csv
 import io
 import math
 import os
+import pathlib
 import subprocess
 
 import numpy
@@ -174,3 +175,24 @@ def test_leave_one_out_is_the_tools_own():
     for want_row, got_row in zip(printed, got):
         for want, value in zip(want_row, got_row):
             assert abs(want - value) <= 0.0005 + 1e-12, (printed, got)
+
+
+def test_the_membrane_law_reports_its_limit_point():
+    ribbed = str(pathlib.Path(pf.default_config()).parent / "marchese2015_ribbed.yaml")
+    model = pf.FingerModel(ribbed)
+    assert model.parameters["wall_law"] == "membrane"
+    assert math.isinf(pf.FingerModel().limit_gauge_pa)
+    limit = model.limit_gauge_pa
+    out = model.evaluate([0.5 * limit, limit, 2 * limit])
+    assert [pf.STATUS[c] for c in out["status"]] == ["ok", "beyond limit point", "beyond limit point"]
+    assert out["tip_angle_rad"][0] > 0 and numpy.isnan(out["tip_angle_rad"][1:]).all()
+    assert numpy.isnan(out["backbone_m"][1:]).all()
+    assert model.evaluate(limit)["status"] == "beyond limit point"
+    touched = model.contact([0.5 * limit, limit], (0.03, 0.01, 0.004))
+    assert pf.CONTACT_STATUS[touched["status"][1]] == "beyond limit point"
+    most = float(model.evaluate(limit * (1 - 1e-9))["tip_angle_rad"])
+    assert model.gauge_for_tip_angle(0.9 * most) < limit
+    with pytest.raises(ValueError, match="limit point"):
+        model.gauge_for_tip_angle(1.01 * most)
+    with pytest.raises(ValueError, match="one of paper, membrane"):
+        pf.FingerModel(overrides={"wall_law": "balloon"})

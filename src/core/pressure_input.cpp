@@ -163,6 +163,13 @@ void PressureInputPolicy::noteSolverFailure(const std::string& what, double now_
   problem(what, now_s);
 }
 
+void PressureInputPolicy::noteBeyondLimitPoint(double gauge_pa, double limit_gauge_pa, double now_s) {
+  ++counters_.beyond_limit_point;
+  problem("gauge pressure " + formatExact(gauge_pa) + " Pa is at or beyond the membrane wall's limit point " +
+              formatExact(limit_gauge_pa) + " Pa, where the pressure does not determine the shape; last state kept",
+          now_s);
+}
+
 InputReport PressureInputPolicy::report(double now_s) {
   InputReport r;
   while (!recent_.empty() && now_s - recent_.front() > 1.0) recent_.pop_front();

@@ -143,7 +143,8 @@ urdf::ModelInterface fingerUrdfModel(const FingerParameters& p, const FingerUrdf
   // there); lower limits 0: vacuum is outside the model, which then shows the straight finger.
   FingerModel model(p);
   FingerWorkspace ws(model);
-  const FingerState& at_max = model.evaluate(o.max_gauge_pa, ws);
+  // Under the membrane law the limit point may come first: the joints reach the most the model holds just below it.
+  const FingerState& at_max = model.evaluate(std::min(o.max_gauge_pa, model.belowLimitGaugePa()), ws);
 
   urdf::ModelInterface m;
   m.name_ = o.prefix + "pneumatic_finger";

@@ -227,6 +227,7 @@ class PyFingerModel {
     return d;
   }
   double contactGaugePa() const { return model_->contactGaugePa(); }
+  double limitGaugePa() const { return model_->limitGaugePa(); }
   std::string solver() const { return pf::solverName(model_->options().solver); }
 
 
@@ -363,5 +364,8 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("parameters", &PyFingerModel::parameters)
       .def_property_readonly("chamber_count", &PyFingerModel::chamberCount)
       .def_property_readonly("contact_gauge_pa", &PyFingerModel::contactGaugePa)
+      .def_property_readonly("limit_gauge_pa", &PyFingerModel::limitGaugePa,
+                             "the membrane wall's limit point (Pa gauge): at or above it the status is 'beyond limit "
+                             "point' and no shape is given; inf under the paper law")
       .def_property_readonly("solver", &PyFingerModel::solver);
 }

@@ -28,6 +28,7 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
       {"clamped to max_gauge_pa", c.clamped},
       {"above the validated range", c.out_of_range},
       {"solver failures (last state kept)", c.solver_failures},
+      {"beyond the limit point (last state kept)", c.beyond_limit_point},
       {"skipped by max_rate_hz or same instant", c.throttled},
   };
   for (const auto& [name, count] : counted) status.add(name, count);

@@ -159,6 +159,17 @@ void FingerNode::onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg) {
 bool FingerNode::publishAt(double gauge_pa, const ros::Time& stamp, bool clamped) {
   const ros::Time now = ros::Time::now();
   const FingerState& state = model_->evaluate(gauge_pa, *workspace_);
+  if (state.status == EvaluationStatus::kBeyondLimitPoint) {
+    // No invented shape: finger_state repeats the last one and says why; joint_states and tf stay as they were.
+    input_.noteBeyondLimitPoint(gauge_pa, model_->limitGaugePa(), now.toSec());
+    ROS_WARN_THROTTLE(5.0, "finger_node: %s", input_.lastProblem().c_str());
+    if (have_pressure_) {  // before any shape there is none to repeat: diagnostics alone say why
+      finger_state_.header.stamp = stamp;
+      finger_state_.status = FingerModelState::STATUS_BEYOND_LIMIT_POINT;
+      finger_state_pub_.publish(finger_state_);
+    }
+    return false;
+  }
   ContactState contact;
   bool failed = state.status == EvaluationStatus::kSolverFailure;
   // The contact rule only with a section within reach: otherwise the free finger is the answer, at no extra cost.

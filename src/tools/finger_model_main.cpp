@@ -62,7 +62,7 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
   out << "gauge_pa,stretch,bulge_m,half_angle_rad";
   for (int j = 1; j <= n; ++j) out << ",joint_" << j << "_rad";
   out << ",tip_x_m,tip_y_m\n";
-  bool warned = false, warned_failure = false;
+  bool warned = false, warned_failure = false, warned_limit = false;
   for (std::size_t row = 0; row < pressures.size(); ++row) {
     const double p = pressures[row];
     if (!times.empty()) out << pf::formatExact(times[row]) << ',';
@@ -72,13 +72,19 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
                 << " Pa is negative (vacuum), outside the model; printing the straight finger\n";
       warned = true;
     }
-    if (s.status == pf::EvaluationStatus::kSolverFailure) {
+    const bool beyond_limit = s.status == pf::EvaluationStatus::kBeyondLimitPoint;
+    if (s.status == pf::EvaluationStatus::kSolverFailure || beyond_limit) {
       // The model kept its previous state; printing it would put a wrong shape on this row.
-      if (!warned_failure) {
+      bool& warned_now = beyond_limit ? warned_limit : warned_failure;
+      if (!warned_now && beyond_limit) {
+        std::cerr << "finger_model: warning: gauge pressure " << pf::formatExact(p) << " Pa is at or beyond the "
+                  << "membrane wall's limit point, " << pf::formatExact(model.limitGaugePa())
+                  << " Pa, where the pressure does not determine the shape; such rows are nan\n";
+      } else if (!warned_now) {
         std::cerr << "finger_model: warning: solver '" << pf::solverName(model.options().solver)
                   << "' found no finite answer at " << pf::formatExact(p) << " Pa gauge; such rows are nan\n";
-        warned_failure = true;
       }
+      warned_now = true;
       out << pf::formatExact(p);
       for (int j = 0; j < n + 5; ++j) out << ",nan";
       out << '\n';

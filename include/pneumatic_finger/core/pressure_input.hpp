@@ -52,6 +52,7 @@ struct InputCounters {
   long time_jumps = 0;        ///< new timelines (a looping bag, a simulation reset)
   long vacuum = 0, clamped = 0, out_of_range = 0;
   long solver_failures = 0;   ///< accepted messages whose evaluation the solver could not finish (nothing published)
+  long beyond_limit_point = 0;  ///< accepted messages at or beyond the membrane wall's limit point (no shape published)
 };
 
 /// Diagnostics levels, as diagnostic_msgs defines them.
@@ -79,6 +80,8 @@ class PressureInputPolicy {
 
   /// A solver failure on an accepted message (non-finite result): counted as a problem, nothing published.
   void noteSolverFailure(const std::string& what, double now_s);
+  /// A pressure at or beyond the membrane wall's limit point @p limit_gauge_pa: no shape, the last one kept.
+  void noteBeyondLimitPoint(double gauge_pa, double limit_gauge_pa, double now_s);
 
   /// The diagnostics report at @p now_s: ERROR when stale, WARN while a refusal or correction is recent (5 s) or
   /// before the first message, OK otherwise. A zero stamp is not a problem.
