@@ -249,3 +249,52 @@ TEST(Calibration, RefusesKeysTheDataCannotDetermine) {
   EXPECT_NE(refusal("gauge_pa,pressure_kgcm2\n1e5,1\n", 1).find("header has nothing measured"), std::string::npos);
   EXPECT_NE(refusal("gauge_pa,joint_1_rad\n1e5,0.1\n", 1).find("joint_1_rad alone"), std::string::npos);
 }
+
+// What a user meets: five tip angles made at mu = 1.8e8 Pa with 0.01 rad of noise. Tip angles barely separate mu from
+// c: the fit must say so (a trade-off warning), and its one-sigma bars must cover the truth (within three).
+TEST(CalibrationUncertainty, TipAnglesWithNoiseWarnThatMuAndGapTradeOffAndTheBarsCoverTheTruth) {
+  const pf::FingerParameters truth = truthWith(1.8e8, 4.9640761700248786e-05, 0.31406024809341682);
+  const std::vector<double> pressures = {39226.6, 78453.2, 117679.8, 156906.4, 196133.0};
+  std::vector<pf::Measurement> data = syntheticTipCsv(truth, pressures, false);
+  const double noise[] = {0.01, -0.01, 0.01, -0.01, 0.01};
+  for (std::size_t i = 0; i < data.size(); ++i) data[i].tip_angle_rad += noise[i];
+  const pf::CalibrationResult fit = pf::calibrate(pf::FingerParameters::defaults(),
+                                                  {"shear_modulus_pa", "chamber_gap_m"}, data,
+                                                  pf::CalibrationObjective::kLeastSquares,
+                                                  pf::CalibrationQuantity::kTipAngle);
+  ASSERT_EQ(fit.uncertainty.size(), 2u);
+  EXPECT_LE(std::fabs(fit.values[0] - 1.8e8), 3 * fit.uncertainty[0]) << fit.values[0] << " +- " << fit.uncertainty[0];
+  EXPECT_LE(std::fabs(fit.values[1] - truth.chamber_gap_m[0]), 3 * fit.uncertainty[1]);
+  EXPECT_GT(fit.uncertainty[0] / fit.values[0], 0.02) << "five noisy tip angles cannot pin mu to 2 %";
+  EXPECT_LT(fit.correlation[1], -0.95);
+  ASSERT_FALSE(fit.warnings.empty());
+  EXPECT_NE(fit.warnings[0].find("shear_modulus_pa and chamber_gap_m trade off"), std::string::npos) << fit.warnings[0];
+}
+
+// A key the data push past its search range stops on the range's end: a fit there is no minimum, and it says so.
+TEST(CalibrationUncertainty, AKeyOnItsBoundIsNamed) {
+  std::vector<pf::Measurement> data;
+  for (double p : kPressures) {
+    pf::Measurement m = synthetic(pf::FingerParameters::defaults(), {p})[0];
+    m.joint_rad[0] = 3.0 * m.joint_rad[1];  // a joint 1 larger than any base share up to 1 makes
+    data.push_back(m);
+  }
+  const pf::CalibrationResult fit = pf::calibrate(pf::FingerParameters::defaults(), {"base_wall_share"}, data,
+                                                  pf::CalibrationObjective::kMinimax,
+                                                  pf::CalibrationQuantity::kFirstJoint);
+  EXPECT_EQ(fit.values[0], 1.0);
+  ASSERT_FALSE(fit.warnings.empty());
+  EXPECT_NE(fit.warnings[0].find("base_wall_share = 1 sits on the upper end of its search range [0, 1]"),
+            std::string::npos)
+      << fit.warnings[0];
+}
+
+// Keys the data determine well give small bars and no warning: mu alone from exact joints.
+TEST(CalibrationUncertainty, AWellDeterminedKeyHasASmallBarAndNoWarning) {
+  const pf::FingerParameters truth = truthWith(2e8, 4.9640761700248786e-05, 0.31406024809341682);
+  const pf::CalibrationResult fit =
+      pf::calibrate(truth, {"shear_modulus_pa"}, synthetic(truth, kPressures), pf::CalibrationObjective::kLeastSquares,
+                    pf::CalibrationQuantity::kOuterAverage);
+  EXPECT_TRUE(fit.warnings.empty()) << fit.warnings[0];
+  EXPECT_LT(fit.uncertainty[0], 1e-6 * fit.values[0]);
+}

@@ -196,3 +196,12 @@ def test_the_membrane_law_reports_its_limit_point():
         model.gauge_for_tip_angle(1.01 * most)
     with pytest.raises(ValueError, match="one of paper, membrane"):
         pf.FingerModel(overrides={"wall_law": "balloon"})
+
+
+def test_calibration_says_what_the_data_cannot_tell():
+    fit = pf.calibrate(compare="tip_angle")
+    assert set(fit["uncertainty"]) == {"shear_modulus_pa", "chamber_gap_m"}
+    assert 0 < fit["uncertainty"]["shear_modulus_pa"] < fit["fitted"]["shear_modulus_pa"]
+    assert fit["correlation"][0][1] == pytest.approx(fit["correlation"][1][0])
+    assert fit["correlation"][0][1] < -0.95
+    assert any("trade off" in w for w in fit["warnings"])

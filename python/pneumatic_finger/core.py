@@ -43,7 +43,8 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
     "average", "joint_1", "tip_angle" or "tip_position" (None: what the file has, as the tool decides); keys None: the
     tool's default for it. Returns a dict: fitted (key -> value), compared, objective_value, residuals (per row:
     gauge_pa, measured/model joints, joints 2..N average, joint 1, tip angle and tip position), model_evaluations,
-    and with leave_one_out=True the same rows as each is predicted by a fit to the others (finger_calibrate's
+    uncertainty (key -> one standard deviation, from the fit's curvature), correlation (keys x keys), warnings (keys
+    that trade off, or sit on their search range's end), and with leave_one_out=True the same rows as each is predicted by a fit to the others (finger_calibrate's
     leave-one-out table; None otherwise)."""
     return _calibrate(data if data is not None else default_data(), list(keys or []), objective,
                       config if config is not None else default_config(), dict(overrides or {}), average_column,

@@ -7,6 +7,7 @@
 #include <limits>
 #include <sstream>
 
+#include "calibration_axes.hpp"
 #include "golden_section.hpp"
 #include "joint_chain.hpp"
 
@@ -72,41 +73,6 @@ std::vector<double> Residual::terms(CalibrationQuantity quantity) const {
 }
 
 namespace {
-
-struct SearchAxis {
-  std::string key;
-  bool logarithmic;
-  double lo, hi;  // in search coordinates (log10 for logarithmic)
-  double toValue(double x) const { return logarithmic ? std::pow(10.0, x) : x; }
-};
-
-const char* const kFittable[] = {"shear_modulus_pa", "chamber_gap_m", "wall_critical_height_m", "chamber_height_m",
-                                 "base_wall_share", "wall_locking_jm"};
-
-SearchAxis axisFor(const std::string& key, const FingerParameters& base) {
-  // mu: the paper law's effective modulus over [1e5, 1e12] Pa; the membrane law's is a silicone's, 10 kPa to 10 MPa.
-  if (key == "shear_modulus_pa") {
-    return base.wall_law == WallLaw::kMembrane ? SearchAxis{key, true, 4.0, 7.0} : SearchAxis{key, true, 5.0, 12.0};
-  }
-  if (key == "base_wall_share") return {key, false, 0.0, 1.0};
-  // J_m logarithmically over [1, 1e4]: from a wall that locks at lambda = 1.5 to one that behaves as Neo-Hookean.
-  if (key == "wall_locking_jm") return {key, true, 0.0, 4.0};
-  const double l = *std::max_element(base.chamber_height_m.begin(), base.chamber_height_m.end());
-  if (key == "chamber_gap_m") return {key, false, 0.0, l};
-  return {key, false, 1e-3 * l, (key == "chamber_height_m" ? 4.0 : 1.0) * l};
-}
-
-void setKey(FingerParameters& p, const std::string& key, double value) {
-  if (key == "base_wall_share" || key == "wall_locking_jm") {
-    (key == "base_wall_share" ? p.base_wall_share : p.wall_locking_jm) = value;
-    return;
-  }
-  std::vector<double>* target = key == "shear_modulus_pa"       ? &p.shear_modulus_pa
-                                : key == "chamber_gap_m"          ? &p.chamber_gap_m
-                                : key == "wall_critical_height_m" ? &p.wall_critical_height_m
-                                                                  : &p.chamber_height_m;
-  std::fill(target->begin(), target->end(), value);
-}
 
 // Scan, then golden-section on the bracket around the best scan point.
 template <typename F>
@@ -354,10 +320,11 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
   checkKeysAndData(base, keys, data, quantity);
   refuseWhatTheDataCannotTell(keys, data.size(), quantity);
   const bool share = std::count(keys.begin(), keys.end(), "base_wall_share") > 0;
-  if (share && keys.size() > 1 && quantity == CalibrationQuantity::kEveryJoint) {
-    return calibrateEveryJointInTwoSteps(base, keys, data, objective);
-  }
-  return searchKeys(base, keys, data, objective, quantity);
+  CalibrationResult result = share && keys.size() > 1 && quantity == CalibrationQuantity::kEveryJoint
+                                 ? calibrateEveryJointInTwoSteps(base, keys, data, objective)
+                                 : searchKeys(base, keys, data, objective, quantity);
+  calibrationUncertainty(base, data, quantity, result);
+  return result;
 }
 
 double leaveOneOutObjective(const std::vector<Residual>& leave_one_out, CalibrationQuantity quantity,

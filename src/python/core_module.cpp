@@ -318,6 +318,19 @@ py::dict calibrate(const std::string& data, const std::vector<std::string>& keys
   d["residuals"] = residuals;
   d["leave_one_out"] = leave_one_out;
   d["model_evaluations"] = fit.model_evaluations;
+  // What the data can tell, as finger_calibrate prints it: one standard deviation per key, the correlations
+  // (keys x keys) and the warnings.
+  py::dict uncertainty;
+  for (std::size_t i = 0; i < fit.keys.size(); ++i) uncertainty[py::str(fit.keys[i])] = fit.uncertainty[i];
+  d["uncertainty"] = uncertainty;
+  py::list correlation;
+  for (std::size_t a = 0; a < fit.keys.size(); ++a) {
+    py::list row;
+    for (std::size_t b = 0; b < fit.keys.size(); ++b) row.append(fit.correlation[a * fit.keys.size() + b]);
+    correlation.append(row);
+  }
+  d["correlation"] = correlation;
+  d["warnings"] = py::cast(fit.warnings);
   return d;
 }
 

@@ -89,6 +89,27 @@ std::string largest(const std::array<double, 4>& w, int n, bool paper) {
   return s;
 }
 
+// Each key's standard deviation and the keys' correlations (calibrationUncertainty), and the warnings.
+std::string uncertaintyLines(const pf::CalibrationResult& fit) {
+  std::ostringstream t;
+  t << "\n# uncertainty (one standard deviation, from the fit's curvature):";
+  const std::size_t k = fit.keys.size();
+  for (std::size_t i = 0; i < k; ++i) {
+    t << " " << fit.keys[i] << " +- " << fmt("%.3g", fit.uncertainty[i]) << " ("
+      << fmt("%.3g", 100.0 * fit.uncertainty[i] / std::fabs(fit.values[i])) << " %)" << (i + 1 < k ? "," : "");
+  }
+  if (k > 1) {
+    t << "\n# correlation:";
+    for (std::size_t a = 0; a < k; ++a) {
+      for (std::size_t b = a + 1; b < k; ++b) {
+        t << " " << fit.keys[a] << "/" << fit.keys[b] << " " << fmt("%.3f", fit.correlation[a * k + b]);
+      }
+    }
+  }
+  for (const std::string& w : fit.warnings) t << "\n# warning: " << w;
+  return t.str();
+}
+
 // The report: what was fitted to what, the error of the fit and of leave-one-out per row, and the error bar.
 std::string report(const std::string& data_name, std::size_t rows, pf::CalibrationQuantity quantity,
                    const std::string& average_column, const std::string& objective_name,
@@ -103,6 +124,7 @@ std::string report(const std::string& data_name, std::size_t rows, pf::Calibrati
                 : "")
         << "; objective: " << objective_name << "; error = model - measured\n# fitted:";
   for (std::size_t i = 0; i < fit.keys.size(); ++i) table << " " << fit.keys[i] << " = " << pf::formatExact(fit.values[i]);
+  table << uncertaintyLines(fit);
   std::array<double, 4> worst{}, worst_loo{};
   const std::string fit_table = errorTable(fit.residuals, n, worst);
   const std::string loo_table = errorTable(loo, n, worst_loo);

@@ -110,7 +110,22 @@ struct CalibrationResult {
   double objective_value = 0.0;    ///< max |error| (rad) or sum of squares (rad^2)
   std::vector<Residual> residuals;
   long model_evaluations = 0;
+  /// What the data can tell of each key (calibrationUncertainty): one standard deviation, in the key's unit, from the
+  /// fit's curvature (NaN where the data do not determine it), and the keys' correlations (row-major, keys x keys).
+  std::vector<double> uncertainty;
+  std::vector<double> correlation;
+  /// Plain words for what the fit cannot tell: keys that trade off (|correlation| > 0.95), a key on the end of its
+  /// search bracket, a key the data do not determine.
+  std::vector<std::string> warnings;
 };
+
+/// The uncertainty of a fit, from its curvature: J, the derivatives of every compared term with respect to each key
+/// (central differences in the search coordinate: log10 for shear_modulus_pa and wall_locking_jm), and the terms' own
+/// scatter s^2 = sum of squares / (terms - keys), give the covariance s^2 (J^T J)^-1, as for a least-squares fit
+/// (for a minimax fit it is the same linearisation about its optimum: an estimate of the same size). Fills
+/// @p result's uncertainty, correlation and warnings.
+void calibrationUncertainty(const FingerParameters& base, const std::vector<Measurement>& data,
+                            CalibrationQuantity quantity, CalibrationResult& result);
 
 /// Residuals of @p parameters against @p data.
 std::vector<Residual> residuals(const FingerParameters& parameters, const std::vector<Measurement>& data);

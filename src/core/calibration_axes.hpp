@@ -1,0 +1,49 @@
+// The calibration's search axes (calibration.cpp) and its uncertainty (calibration_uncertainty.cpp) share: which keys
+// may be fitted, over which bracket each is searched, and how a value is set. Internal header of src/core.
+#pragma once
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/core/parameters.hpp"
+
+namespace pneumatic_finger {
+
+struct SearchAxis {
+  std::string key;
+  bool logarithmic;
+  double lo, hi;  // in search coordinates (log10 for logarithmic)
+  double toValue(double x) const { return logarithmic ? std::pow(10.0, x) : x; }
+};
+
+inline constexpr const char* kFittable[] = {"shear_modulus_pa", "chamber_gap_m",   "wall_critical_height_m",
+                                            "chamber_height_m", "base_wall_share", "wall_locking_jm"};
+
+inline SearchAxis axisFor(const std::string& key, const FingerParameters& base) {
+  // mu: the paper law's effective modulus over [1e5, 1e12] Pa; the membrane law's is a silicone's, 10 kPa to 10 MPa.
+  if (key == "shear_modulus_pa") {
+    return base.wall_law == WallLaw::kMembrane ? SearchAxis{key, true, 4.0, 7.0} : SearchAxis{key, true, 5.0, 12.0};
+  }
+  if (key == "base_wall_share") return {key, false, 0.0, 1.0};
+  // J_m logarithmically over [1, 1e4]: from a wall that locks at lambda = 1.5 to one that behaves as Neo-Hookean.
+  if (key == "wall_locking_jm") return {key, true, 0.0, 4.0};
+  const double l = *std::max_element(base.chamber_height_m.begin(), base.chamber_height_m.end());
+  if (key == "chamber_gap_m") return {key, false, 0.0, l};
+  return {key, false, 1e-3 * l, (key == "chamber_height_m" ? 4.0 : 1.0) * l};
+}
+
+inline void setKey(FingerParameters& p, const std::string& key, double value) {
+  if (key == "base_wall_share" || key == "wall_locking_jm") {
+    (key == "base_wall_share" ? p.base_wall_share : p.wall_locking_jm) = value;
+    return;
+  }
+  std::vector<double>* target = key == "shear_modulus_pa"       ? &p.shear_modulus_pa
+                                : key == "chamber_gap_m"          ? &p.chamber_gap_m
+                                : key == "wall_critical_height_m" ? &p.wall_critical_height_m
+                                                                  : &p.chamber_height_m;
+  std::fill(target->begin(), target->end(), value);
+}
+
+}  // namespace pneumatic_finger
