@@ -9,6 +9,7 @@
 #include <cstring>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
 #include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/ros/conversions.hpp"
@@ -395,6 +396,7 @@ FingerNodeConfig FingerNode::currentConfig() const {
   c.shear_modulus_pa = settings_.finger.shear_modulus_pa[0];
   c.chamber_gap_m = settings_.finger.chamber_gap_m[0];
   c.base_wall_share = settings_.finger.base_wall_share;
+  c.wall_locking_jm = settings_.finger.wall_locking_jm;
   c.max_rate_hz = settings_.input.max_rate_hz;
   c.stale_timeout_s = settings_.input.stale_timeout_s;
   return c;
@@ -411,16 +413,21 @@ void FingerNode::onReconfigure(FingerNodeConfig& config, uint32_t /*level*/) {
   }
   try {
     NodeSettings next = settings_;
-    const bool actuator = config.shear_modulus_pa != now.shear_modulus_pa ||
-                          config.chamber_gap_m != now.chamber_gap_m || config.base_wall_share != now.base_wall_share;
-    if (actuator) {
-      // The same validation as a parameter file or a rosparam: fromRaw refuses, naming the key and the range.
-      RawParameterMap raw = settings_.finger.toRaw();
-      if (config.shear_modulus_pa != now.shear_modulus_pa) raw["shear_modulus_pa"] = {{config.shear_modulus_pa}, false};
-      if (config.chamber_gap_m != now.chamber_gap_m) raw["chamber_gap_m"] = {{config.chamber_gap_m}, false};
-      if (config.base_wall_share != now.base_wall_share) raw["base_wall_share"] = {{config.base_wall_share}, false};
-      next.finger = FingerParameters::fromRaw(raw);
+    // The actuator's live keys: the same validation as a parameter file or a rosparam (fromRaw refuses, naming the
+    // key and the range).
+    const std::pair<const char*, double FingerNodeConfig::*> live[] = {
+        {"shear_modulus_pa", &FingerNodeConfig::shear_modulus_pa},
+        {"chamber_gap_m", &FingerNodeConfig::chamber_gap_m},
+        {"base_wall_share", &FingerNodeConfig::base_wall_share},
+        {"wall_locking_jm", &FingerNodeConfig::wall_locking_jm}};
+    RawParameterMap raw = settings_.finger.toRaw();
+    bool actuator = false;
+    for (const auto& [key, member] : live) {
+      if (config.*member == now.*member) continue;
+      raw[key] = {{config.*member}, false};
+      actuator = true;
     }
+    if (actuator) next.finger = FingerParameters::fromRaw(raw);
     next.input.max_rate_hz = checkNodeNumber("max_rate_hz", config.max_rate_hz);
     next.input.stale_timeout_s = checkNodeNumber("stale_timeout_s", config.stale_timeout_s);
     settings_ = next;
@@ -435,9 +442,10 @@ void FingerNode::onReconfigure(FingerNodeConfig& config, uint32_t /*level*/) {
         marker_bar_m_ = -1.0;
       }
       buildModel(nh_);
-      ROS_INFO("finger_node: reconfigured: shear_modulus_pa %s Pa, chamber_gap_m %s m, base_wall_share %s; URDF "
-               "republished", formatExact(config.shear_modulus_pa).c_str(), formatExact(config.chamber_gap_m).c_str(),
-               formatExact(config.base_wall_share).c_str());
+      ROS_INFO("finger_node: reconfigured: shear_modulus_pa %s Pa, chamber_gap_m %s m, base_wall_share %s, "
+               "wall_locking_jm %s; URDF republished", formatExact(config.shear_modulus_pa).c_str(),
+               formatExact(config.chamber_gap_m).c_str(), formatExact(config.base_wall_share).c_str(),
+               formatExact(config.wall_locking_jm).c_str());
     }
   } catch (const ParameterError& e) {
     ROS_ERROR("finger_node: reconfigure refused: %s; keeping the previous values", e.what());
