@@ -9,6 +9,8 @@
 #include <sstream>
 #include <string>
 
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
 
 namespace pf = pneumatic_finger;
@@ -131,4 +133,22 @@ TEST(Description, CompositionRefusesWhatWouldBreakTheTreeNamingIt) {
   EXPECT_NE(refusal("fingers:\n  - {prefix: a_, parent: tool0, config: /nonexistent.yaml}\n").find("/nonexistent.yaml"),
             std::string::npos);
   EXPECT_THROW(pf::composeRobotUrdf("<robot name='x'><link name='a'/><bad", {}), pf::ParameterError);
+}
+
+// Under the membrane law the limit point comes before the range's top: the joints' upper limits are the angles just
+// below it (the most the model holds), not the rest shape a pressure beyond it would leave.
+TEST(Description, UnderTheMembraneLawTheUpperLimitsAreTheAnglesBelowTheLimitPoint) {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/marchese2015_ribbed.yaml", raw);
+  const pf::FingerParameters p = pf::FingerParameters::fromRaw(raw);
+  const pf::FingerModel model(p);
+  ASSERT_LT(model.limitGaugePa(), pf::FingerUrdfOptions().max_gauge_pa);
+  std::vector<double> q(static_cast<std::size_t>(p.chamber_count));
+  ASSERT_TRUE(model.jointAnglesAt(model.belowLimitGaugePa(), q.data()));
+  const urdf::ModelInterface m = pf::fingerUrdfModel(p, pf::FingerUrdfOptions());
+  for (int i = 1; i <= p.chamber_count; ++i) {
+    const auto joint = m.joints_.at(pf::jointName(pf::FingerUrdfOptions().prefix, i));
+    EXPECT_EQ(joint->limits->upper, q[static_cast<std::size_t>(i - 1)]) << i;
+    EXPECT_GT(joint->limits->upper, 0.01) << i;
+  }
 }
