@@ -213,6 +213,37 @@ void benchVariant(benchmark::State& state, const std::string& name, bool hard) {
   state.SetLabel(hard ? "hard cases" : "validated range");
 }
 
+// The membrane wall law (docs/MODEL.md): the paper's finger with a silicone wall (mu = 20 kPa, t = 2 mm, Gent
+// J_m = 50, so a limit point), 64 pressures from rest to 0.99 of the limit point, one at a time as the node runs
+// them; its error against the quad reference (the law by bisection, Wang's half angle by bisection) as counters.
+void benchMembrane(benchmark::State& state) {
+  pf::FingerParameters params = kParams;
+  params.wall_law = pf::WallLaw::kMembrane;
+  params.shear_modulus_pa.assign(params.shear_modulus_pa.size(), 2e4);
+  params.wall_thickness_m.assign(params.wall_thickness_m.size(), 0.002);
+  params.wall_locking_jm = 50.0;
+  const pf::FingerModel model(params);
+  pf::FingerWorkspace ws(model);
+  std::vector<double> pressures;
+  for (int i = 1; i <= 64; ++i) pressures.push_back(0.99 * model.limitGaugePa() * i / 64.0);
+  double worst = 0.0;
+  const reference::Membrane wall{2e4, 0.002, params.chamber_height_m[0], 50.0};
+  for (double p : pressures) {
+    const double h = 0.5 * params.chamber_height_m[0] * reference::membraneStretchExcess(wall, p);
+    const double theta = reference::halfAngleForBulge(h, params.chamber_gap_m[0], params.wall_critical_height_m[0]);
+    worst = std::max(worst, std::fabs(model.evaluate(p, ws).half_angle_rad[0] - theta));
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const pf::FingerState& s = model.evaluate(pressures[i], ws);
+    benchmark::DoNotOptimize(s.backbone_m.data());
+    benchmark::ClobberMemory();
+    if (++i == pressures.size()) i = 0;
+  }
+  state.counters["max_theta_error_rad"] = worst;
+  state.SetLabel("membrane wall law, Gent, up to 0.99 of the limit point");
+}
+
 // Two independent models (robust solver) evaluated alternately, each on its own pressure: if the CPU overlapped one
 // evaluation with the next, a pair would take less than twice one evaluation (robust/validated, the same loop).
 void benchPair(benchmark::State& state) {
@@ -422,6 +453,7 @@ int main(int argc, char** argv) {
     }
   }
   benchmark::RegisterBenchmark("robust_pair/validated", benchPair);
+  benchmark::RegisterBenchmark("membrane/validated", benchMembrane);
   for (int stage = 1; stage <= 5; ++stage) {
     benchmark::RegisterBenchmark(("robust_stage/" + std::to_string(stage)).c_str(),
                                  [stage](benchmark::State& s) { benchStages(s, stage); });
