@@ -38,3 +38,10 @@ def test_a_stale_block_is_found(tmp_path):
     subprocess.run([sys.executable, str(pages / "scripts" / "update_docs.py"), "--bin", "/nonexistent"], check=True,
                    capture_output=True)
     assert "```\n7\n```" in (pages / "README.md").read_text()
+
+
+def test_the_arms_inertials_are_computed_from_its_shapes():
+    # urdf/industrial_arm.urdf's masses and inertias are scripts/arm_inertials.py's, not typed.
+    done = subprocess.run([sys.executable, str(ROOT / "scripts" / "arm_inertials.py"), "--check"],
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stderr + done.stdout
