@@ -9,7 +9,9 @@ rev=${1:?usage: bench_compare.sh REV [ROUNDS] [FILTER]}
 rounds=${2:-3}
 filter=${3:-'^(robust/validated|table/validated|batch/avx512|contact/1)$'}
 export PATH="/usr/bin:/bin:$PATH"
-base="$ROOT/build/bench_compare/$(git -C "$ROOT" rev-parse --short "$rev")"
+# Outside the package: roslaunch and rostest search the package directory for launch and test files, and would find
+# the clone's copies too.
+base="${TMPDIR:-/tmp}/pneumatic_finger_bench_compare/$(git -C "$ROOT" rev-parse --short "$rev")"
 if [ ! -x "$base/devel/lib/pneumatic_finger/finger_bench" ]; then
   rm -rf "$base" && git clone -q "$ROOT" "$base" && git -C "$base" checkout -q "$rev"
   bash "$base/scripts/build.sh" >/dev/null
