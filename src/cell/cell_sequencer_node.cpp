@@ -57,7 +57,8 @@ const std::vector<pf::NodeParameterSpec>& parameterSpecs() {
       pf::listParameter("above_place", "double[]", "rad", "one per arm joint", "waypoint: above the place table"),
       pf::listParameter("place", "double[]", "rad", "one per arm joint", "waypoint: the release pose"),
       pf::numberParameter("cycle_time_s", 12.0, pf::kMinCycleTimeS, false, pf::kMaxCycleTimeS, "s",
-                          "one pick-and-place cycle"),
+                          "one pick-and-place cycle, as scheduled; where the gripper's fill or release outlasts its "
+                          "phase, the cell waits for it (cell/events says how long)"),
       pf::integerParameter("loop_count", 0, 0, 1000000, "cycles to run, then stop the launch (0: forever)"),
       pf::numberParameter("grasp_position_rad", 3.0, 0, true, 20, "rad",
                           "the grasp goal's closing angle: beyond the object, so that the object stops the fingers"),
@@ -309,9 +310,39 @@ class CellSequencer {
     return Eigen::Isometry3d(Eigen::Translation3d(0, 0, s.object_offset_m));
   }
 
+  // The schedule's clock: the time since the start, less what the cell has waited for the gripper. Leaving the grasp
+  // (inflate) or the place (deflate) while the gripper action still works would lift an object the fingers have not
+  // closed on, or pull the fingers out of one they still hold: the clock stops at the phase's end instead, until the
+  // action is done (it ends itself when its fill does not settle), and cell/events says how long the cell waited.
+  double scheduleTime(const ros::Time& now) {
+    const double wanted = (now - start_).toSec() - waited_s_;
+    const pf::CellStep next = schedule_.at(wanted);
+    const bool gripper_phase = last_phase_ == pf::CellPhase::kGrasp || last_phase_ == pf::CellPhase::kPlace;
+    const bool waiting = wait_started_s_ >= 0;
+    if (!first_ && gripper_phase && (waiting || next.phase != last_phase_) && gripperBusy()) {
+      if (wait_started_s_ < 0) wait_started_s_ = (now - start_).toSec();
+      waited_s_ = (now - start_).toSec() - schedule_time_s_;
+      return schedule_time_s_;
+    }
+    if (wait_started_s_ >= 0) {
+      say("cycle " + std::to_string(next.cycle + (next.phase == pf::CellPhase::kApproach ? 0 : 1)) + ": " +
+          pf::cellPhaseName(last_phase_) + ": the cell waited " +
+          std::to_string((now - start_).toSec() - wait_started_s_) + " s beyond the schedule for the gripper (" +
+          gripper_.getState().toString() + ")");
+      wait_started_s_ = -1.0;
+    }
+    schedule_time_s_ = wanted;
+    return wanted;
+  }
+
+  bool gripperBusy() const {
+    const auto state = gripper_.getState();
+    return state == actionlib::SimpleClientGoalState::PENDING || state == actionlib::SimpleClientGoalState::ACTIVE;
+  }
+
   // One tick of the schedule; false when the last cycle is done.
   bool tick() {
-    const pf::CellStep step = schedule_.at((ros::Time::now() - start_).toSec());
+    const pf::CellStep step = schedule_.at(scheduleTime(ros::Time::now()));
     if (step.cycle != last_cycle_ && !countCycle(step.cycle)) return false;
     js_.header.stamp = ros::Time::now();
     js_.position = step.arm;
@@ -425,6 +456,9 @@ class CellSequencer {
   ros::Time start_;
   bool first_ = true;
   pf::CellPhase last_phase_ = pf::CellPhase::kApproach;
+  double waited_s_ = 0.0;         // the schedule's clock is this far behind the wall clock: waits for the gripper
+  double schedule_time_s_ = 0.0;  // the schedule time of the last tick
+  double wait_started_s_ = -1.0;  // when the current wait began (since the start); -1: not waiting
   long last_cycle_ = 0;
   int ticks_ = 0;
 };
