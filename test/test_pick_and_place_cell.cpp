@@ -175,6 +175,16 @@ TEST(PickAndPlaceCell, DuringTheLiftEveryFingerTouchesTheObjectAndNoneEntersIt) 
       for (const auto& q : points) near = near || body->containsPoint(q);
       EXPECT_TRUE(near) << fs.first << " does not touch the object (no backbone point within 1 mm of it)";
       EXPECT_EQ(fs.second->object_status, pneumatic_finger::FingerModelState::OBJECT_TOUCHING) << fs.first;
+      // A grasp, not a pinch: every contact lies on the cylinder's side, at least 5 mm from either rim.
+      const auto& dims = obj->shape.dimensions;  // CYLINDER_HEIGHT, CYLINDER_RADIUS
+      const Eigen::Isometry3d finger_from_object = finger_from_tool * (Eigen::Translation3d(p.position.x, p.position.y,
+                                                   p.position.z) * Eigen::Quaterniond(p.orientation.w, p.orientation.x,
+                                                   p.orientation.y, p.orientation.z));
+      for (const auto& c : fs.second->contact_points) {
+        const Eigen::Vector3d in_object = finger_from_object.inverse() * Eigen::Vector3d(c.x, c.y, c.z);
+        EXPECT_LT(std::fabs(in_object.z()), 0.5 * dims[0] - 0.005) << fs.first << ": a contact near a rim";
+        EXPECT_NEAR(std::hypot(in_object.x(), in_object.y()), dims[1], 0.001) << fs.first << ": not on the side";
+      }
       body->setPadding(0.0);
     }
     ++checked;

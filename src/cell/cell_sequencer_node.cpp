@@ -32,6 +32,7 @@
 #include "pneumatic_finger/GraspObject.h"
 #include "pneumatic_finger/GripperCommandAction.h"
 #include "pneumatic_finger/cell/cell_schedule.hpp"
+#include "pneumatic_finger/cell/side_grasp.hpp"
 #include "pneumatic_finger/ros/parameter_reader.hpp"
 
 namespace pf = pneumatic_finger;
@@ -65,7 +66,9 @@ const std::vector<pf::NodeParameterSpec>& parameterSpecs() {
       pf::numberParameter("grasp_max_effort_pa", 0.0, 0, false, 1e7, "Pa",
                           "the grasp goal's pressure limit (gauge); 0: the fingers' range"),
       pf::textParameter("object_id", "cylinder", "not empty", "the object's name (grasp_object, markers)"),
-      pf::numberParameter("object_offset_m", 0.075, 0, true, 1, "m", "the object's centre along tool0's z while held"),
+      pf::textParameter("gripper_file", "", "a gripper file (YAML)",
+                        "the gripper's fingers (mounts and actuators): where the object is held is computed from them "
+                        "and the object's size, so that the fingers close on its side"),
       pf::numberParameter("object_radius_m", 0.016, 0, true, 1, "m", "the cylinder's radius"),
       pf::numberParameter("object_height_m", 0.035, 0, true, 1, "m", "the cylinder's height"),
       pf::numberParameter("publish_rate_hz", 50.0, 0, true, 1000, "Hz", "the arm's joint_states and the object's rate"),
@@ -86,9 +89,15 @@ Settings readSettings(const ros::NodeHandle& pnh) {
   s.grasp_max_effort_pa = in.number("grasp_max_effort_pa");
   s.object_id = in.text("object_id");
   if (s.object_id.empty()) throw pf::ParameterError("parameter 'object_id' must not be empty");
-  s.object_offset_m = in.number("object_offset_m");
   s.object_radius_m = in.number("object_radius_m");
   s.object_height_m = in.number("object_height_m");
+  // Where the object is held: computed, so that every finger closes on its side, away from both rims.
+  const std::string gripper_file = in.text("gripper_file");
+  if (gripper_file.empty()) throw pf::ParameterError("parameter 'gripper_file' must name the gripper's file");
+  const pf::SideGrasp side = pf::sideGraspDepth(pf::loadGripperFile(gripper_file), s.object_radius_m, s.object_height_m);
+  s.object_offset_m = side.centre_depth_m;
+  ROS_INFO("cell_sequencer: the object is held with its centre %.1f mm along tool z, where every finger meets its side "
+           "(%.1f mm or more from a rim)", 1e3 * side.centre_depth_m, 1e3 * side.rim_margin_m);
   s.publish_rate_hz = in.number("publish_rate_hz");
   in.refuseUnknownKeys();
   return s;
