@@ -97,6 +97,33 @@ class GripperActionServer {
     }
   }
 
+  // The fingers' states to plan with: received after the goal came, and, while any finger has an object, seen by
+  // every finger within reach (up to kObjectWaitS). A goal sent as the arm arrives would otherwise be planned on
+  // states from while the arm still moved, with the object out of reach: every grasp of a short cycle then failed.
+  // Empty when some finger sends nothing for 2 s.
+  std::vector<Latest> statesForThePlan() {
+    constexpr double kObjectWaitS = 1.0;
+    const ros::Time start = ros::Time::now();
+    std::vector<Latest> states;
+    for (ros::Rate wait(100); ros::ok(); wait.sleep()) {
+      const double waited = (ros::Time::now() - start).toSec();
+      const std::vector<Latest> now = latest(start);
+      if (now.empty()) {
+        if (waited > 2.0) return {};
+        continue;
+      }
+      states = now;
+      bool object = false, in_reach = true;
+      for (const Latest& l : states) {
+        object = object || !l.state->object_id.empty();
+        in_reach = in_reach && (l.state->object_status == pf::FingerModelState::OBJECT_CLEAR ||
+                                l.state->object_status == pf::FingerModelState::OBJECT_TOUCHING);
+      }
+      if (!object || in_reach || waited > kObjectWaitS) break;
+    }
+    return states;
+  }
+
   void abort(const std::string& why, const pf::GripperCommandResult& result = {}) {
     ROS_WARN("gripper_action_server: goal aborted: %s", why.c_str());
     server_.setAborted(result, why);
@@ -104,12 +131,9 @@ class GripperActionServer {
 
   void execute(const pf::GripperCommandGoalConstPtr& goal) {
     // The fingers' answers: the pressure that brings each free tip to the goal, the predicted touch of the object.
-    const ros::Time start = ros::Time::now();
-    std::vector<Latest> states;
-    for (ros::Rate wait(50); (states = latest(ros::Time(0))).empty(); wait.sleep()) {
-      if (!ros::ok() || (ros::Time::now() - start).toSec() > 2.0) {
-        return abort("no finger_state from every finger in " + std::to_string(fingers_.size()) + " namespaces");
-      }
+    std::vector<Latest> states = statesForThePlan();
+    if (states.empty()) {
+      return abort("no finger_state from every finger in " + std::to_string(fingers_.size()) + " namespaces");
     }
     std::vector<pf::FingerGoalAnswer> answers;
     bool object = false;
