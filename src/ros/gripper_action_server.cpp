@@ -38,6 +38,9 @@ const std::vector<pf::NodeParameterSpec>& parameterSpecs() {
       pf::numberParameter("settle_timeout_s", 10.0, 0.1, false, 600, "s", "no settling within this aborts the goal"),
       pf::numberParameter("max_gauge_pa", pf::kModelMaxGaugePa, 1e-3, false, 1e7, "Pa",
                           "the fingers' range (their max_gauge_pa): the highest pressure the action commands"),
+      pf::numberParameter("object_settle_s", 0.1, 0, true, 10, "s",
+                          "a goal is planned on finger states received this long after it came: time for the fingers "
+                          "to see the object where the arm has stopped (3 of their object updates at 30 Hz)"),
   };
   return table;
 }
@@ -53,6 +56,7 @@ class GripperActionServer {
     settle_tolerance_pa_ = in.number("settle_tolerance_pa");
     settle_timeout_s_ = in.number("settle_timeout_s");
     max_gauge_pa_ = in.number("max_gauge_pa");
+    object_settle_s_ = in.number("object_settle_s");
     in.refuseUnknownKeys();
     for (const std::string& ns : fingers_) {
       subs_.push_back(nh.subscribe<pf::FingerModelState>(
@@ -97,13 +101,14 @@ class GripperActionServer {
     }
   }
 
-  // The fingers' states to plan with: received after the goal came, and, while any finger has an object, seen by
-  // every finger within reach (up to kObjectWaitS). A goal sent as the arm arrives would otherwise be planned on
-  // states from while the arm still moved, with the object out of reach: every grasp of a short cycle then failed.
-  // Empty when some finger sends nothing for 2 s.
+  // The fingers' states to plan with: received object_settle_s after the goal came, and, while any finger has an
+  // object, seen by every finger within reach (up to kObjectWaitS). A goal sent as the arm arrives would otherwise be
+  // planned on states from while the arm still moved: the object out of reach, or within reach but where the closing
+  // fingers pass it ("does not touch the object up to it"; the 1000-cycle soak of docs/SOAK.md missed 17 grasps so). Empty when some
+  // finger sends nothing for 2 s.
   std::vector<Latest> statesForThePlan() {
     constexpr double kObjectWaitS = 1.0;
-    const ros::Time start = ros::Time::now();
+    const ros::Time start = ros::Time::now() + ros::Duration(object_settle_s_);
     std::vector<Latest> states;
     for (ros::Rate wait(100); ros::ok(); wait.sleep()) {
       const double waited = (ros::Time::now() - start).toSec();
@@ -204,7 +209,7 @@ class GripperActionServer {
   std::mutex mutex_;
   std::map<std::string, Latest> states_;
   double squeeze_margin_pa_ = 0, goal_tolerance_rad_ = 0, settle_tolerance_pa_ = 0, settle_timeout_s_ = 0;
-  double max_gauge_pa_ = 0;
+  double max_gauge_pa_ = 0, object_settle_s_ = 0;
 };
 
 }  // namespace
