@@ -2,13 +2,10 @@
 // the phase), grasps and releases through the gripper action, and keeps the object: it is carried only when the
 // grasp's result says that every finger touches it; a grasp that misses leaves it on its table and says so. The
 // object is the grasp_object every finger closes on, a marker, and an interactive marker a person can drag.
-// Forward kinematics: KDL on the URDF.
+// Forward kinematics: KDL on the URDF (arm_kinematics.hpp).
 #include <Eigen/Geometry>
 #include <actionlib/client/simple_action_client.h>
 #include <interactive_markers/interactive_marker_server.h>
-#include <kdl/chainfksolverpos_recursive.hpp>
-#include <kdl/tree.hpp>
-#include <kdl_parser/kdl_parser.hpp>
 #include <ros/ros.h>
 #include <sensor_msgs/JointState.h>
 #include <std_msgs/Float64.h>
@@ -34,6 +31,7 @@
 #include "pneumatic_finger/cell/cell_schedule.hpp"
 #include "pneumatic_finger/cell/side_grasp.hpp"
 #include "pneumatic_finger/ros/parameter_reader.hpp"
+#include "arm_kinematics.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -102,44 +100,6 @@ Settings readSettings(const ros::NodeHandle& pnh) {
   in.refuseUnknownKeys();
   return s;
 }
-
-// The arm's forward kinematics base -> tool, from the URDF, with KDL.
-class ArmKinematics {
- public:
-  ArmKinematics(const std::string& urdf_xml, const std::string& base, const std::string& tool,
-                const std::vector<std::string>& joint_names) {
-    KDL::Tree tree;
-    if (!kdl_parser::treeFromString(urdf_xml, tree)) throw std::runtime_error("'robot_description' does not parse");
-    if (!tree.getChain(base, tool, chain_)) {
-      throw std::runtime_error("'robot_description' has no chain from '" + base + "' to '" + tool + "'");
-    }
-    for (const auto& segment : chain_.segments) {
-      if (segment.getJoint().getType() == KDL::Joint::None) continue;
-      const auto it = std::find(joint_names.begin(), joint_names.end(), segment.getJoint().getName());
-      if (it == joint_names.end()) {
-        throw std::runtime_error("joint '" + segment.getJoint().getName() + "' of the arm is not in 'arm_joint_names'");
-      }
-      index_.push_back(static_cast<std::size_t>(it - joint_names.begin()));
-    }
-  }
-
-  Eigen::Isometry3d toolPose(const pf::ArmJoints& q) const {
-    KDL::JntArray joints(static_cast<unsigned>(index_.size()));
-    for (std::size_t i = 0; i < index_.size(); ++i) joints(static_cast<unsigned>(i)) = q[index_[i]];
-    KDL::Frame frame;
-    KDL::ChainFkSolverPos_recursive(chain_).JntToCart(joints, frame);
-    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
-    double x, y, z, w;
-    frame.M.GetQuaternion(x, y, z, w);
-    pose.linear() = Eigen::Quaterniond(w, x, y, z).toRotationMatrix();
-    pose.translation() = Eigen::Vector3d(frame.p.x(), frame.p.y(), frame.p.z());
-    return pose;
-  }
-
- private:
-  KDL::Chain chain_;
-  std::vector<std::size_t> index_;  // chain joint -> position in arm_joint_names
-};
 
 void setPose(geometry_msgs::Pose& m, const Eigen::Isometry3d& p) {
   m.position.x = p.translation().x();
@@ -277,7 +237,7 @@ class ObjectHandle {
 // (a new object, a grasp, the verdict on the grasp, a release).
 class CellSequencer {
  public:
-  CellSequencer(ros::NodeHandle& nh, const Settings& settings, const ArmKinematics& arm)
+  CellSequencer(ros::NodeHandle& nh, const Settings& settings, const pf::ArmKinematics& arm)
       : settings_(settings),
         arm_(arm),
         schedule_(settings.waypoints, settings.cycle_time_s),
@@ -453,7 +413,7 @@ class CellSequencer {
   }
 
   const Settings& settings_;
-  const ArmKinematics& arm_;
+  const pf::ArmKinematics& arm_;
   pf::CellSchedule schedule_;
   Scene scene_;
   ObjectHandle handle_;
@@ -493,13 +453,13 @@ int main(int argc, char** argv) {
   ros::init(argc, argv, "cell_sequencer");
   ros::NodeHandle nh, pnh("~");
   Settings settings;
-  std::unique_ptr<ArmKinematics> arm;
+  std::unique_ptr<pf::ArmKinematics> arm;
   try {
     settings = readSettings(pnh);
     pf::CellSchedule check(settings.waypoints, settings.cycle_time_s);  // refuses a schedule it cannot run
     std::string xml;
     if (!nh.getParam("robot_description", xml)) throw std::runtime_error("no arm URDF in 'robot_description'");
-    arm = std::make_unique<ArmKinematics>(xml, settings.base_link, settings.tool_link, settings.joint_names);
+    arm = std::make_unique<pf::ArmKinematics>(xml, settings.base_link, settings.tool_link, settings.joint_names);
   } catch (const std::exception& e) {
     ROS_FATAL("cell_sequencer: %s", e.what());
     return 2;

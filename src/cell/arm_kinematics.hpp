@@ -1,0 +1,56 @@
+// The cell arm's forward kinematics, base -> tool, from the URDF, with KDL (cell_sequencer_node.cpp's).
+#pragma once
+
+#include <Eigen/Geometry>
+#include <kdl/chainfksolverpos_recursive.hpp>
+#include <kdl/tree.hpp>
+#include <kdl_parser/kdl_parser.hpp>
+
+#include <algorithm>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/cell/cell_schedule.hpp"
+
+namespace pneumatic_finger {
+
+// The arm's forward kinematics base -> tool, from the URDF, with KDL.
+class ArmKinematics {
+ public:
+  ArmKinematics(const std::string& urdf_xml, const std::string& base, const std::string& tool,
+                const std::vector<std::string>& joint_names) {
+    KDL::Tree tree;
+    if (!kdl_parser::treeFromString(urdf_xml, tree)) throw std::runtime_error("'robot_description' does not parse");
+    if (!tree.getChain(base, tool, chain_)) {
+      throw std::runtime_error("'robot_description' has no chain from '" + base + "' to '" + tool + "'");
+    }
+    for (const auto& segment : chain_.segments) {
+      if (segment.getJoint().getType() == KDL::Joint::None) continue;
+      const auto it = std::find(joint_names.begin(), joint_names.end(), segment.getJoint().getName());
+      if (it == joint_names.end()) {
+        throw std::runtime_error("joint '" + segment.getJoint().getName() + "' of the arm is not in 'arm_joint_names'");
+      }
+      index_.push_back(static_cast<std::size_t>(it - joint_names.begin()));
+    }
+  }
+
+  Eigen::Isometry3d toolPose(const ArmJoints& q) const {
+    KDL::JntArray joints(static_cast<unsigned>(index_.size()));
+    for (std::size_t i = 0; i < index_.size(); ++i) joints(static_cast<unsigned>(i)) = q[index_[i]];
+    KDL::Frame frame;
+    KDL::ChainFkSolverPos_recursive(chain_).JntToCart(joints, frame);
+    Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+    double x, y, z, w;
+    frame.M.GetQuaternion(x, y, z, w);
+    pose.linear() = Eigen::Quaterniond(w, x, y, z).toRotationMatrix();
+    pose.translation() = Eigen::Vector3d(frame.p.x(), frame.p.y(), frame.p.z());
+    return pose;
+  }
+
+ private:
+  KDL::Chain chain_;
+  std::vector<std::size_t> index_;  // chain joint -> position in arm_joint_names
+};
+
+}  // namespace pneumatic_finger
