@@ -7,7 +7,7 @@
 //   P(lambda) = (4 mu t / L) (1/lambda - 1/lambda^7) J_m / (J_m - (I1 - 3)),   I1 - 3 = 2 lambda^2 + lambda^-4 - 3,
 //
 // (the Gent factor is 1 for J_m = 0, Neo-Hookean), and the wall's bulge is its radial growth, h = (L/2) delta.
-// P rises from 0, and for a Neo-Hookean wall (and a Gent wall with J_m above about 18) reaches a maximum, the limit
+// P rises from 0, and for a Neo-Hookean wall (and a Gent wall with a large J_m: test/test_membrane_wall.cpp has one at 50 and none at 6) reaches a maximum, the limit
 // point, beyond which it falls: there a pressure does not determine the stretch. Below it the stretch is the root on
 // the rising branch. Stage 4 (Wang's flexion) and the rest of the chain are the paper's.
 #pragma once
