@@ -18,7 +18,8 @@ namespace pf_test {
 class CellWatch {
  public:
   struct Snapshot {
-    std::string phase, event;
+    std::string phase, event;  // the latest of each
+    std::vector<std::string> events;  // every event since the watch started
     pneumatic_finger::GraspObject::ConstPtr object;
     std::map<std::string, pneumatic_finger::FingerModelState::ConstPtr> states;  // by finger namespace
   };
@@ -31,6 +32,7 @@ class CellWatch {
     subs_.push_back(nh.subscribe<std_msgs::String>("/cell/events", 10, [this](const std_msgs::String::ConstPtr& m) {
       std::lock_guard<std::mutex> lock(mutex_);
       now_.event = m->data;
+      now_.events.push_back(m->data);
     }));
     subs_.push_back(nh.subscribe<pneumatic_finger::GraspObject>(
         "/grasp_object", 10, [this](const pneumatic_finger::GraspObject::ConstPtr& m) {

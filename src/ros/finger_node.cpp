@@ -346,13 +346,22 @@ bool FingerNode::objectPose(Eigen::Isometry3d& finger_from_frame, std::string& w
       Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX());
   Eigen::Isometry3d parent_from_frame = Eigen::Isometry3d::Identity();
   if (object_->header.frame_id != parent_frame) {
+    geometry_msgs::TransformStamped t;
     try {
-      parent_from_frame = isometryFromMessage(
-          tf_buffer_->lookupTransform(parent_frame, object_->header.frame_id, ros::Time(0)).transform);
+      t = tf_buffer_->lookupTransform(parent_frame, object_->header.frame_id, ros::Time(0));
     } catch (const tf2::TransformException& e) {
       why = "no transform from '" + object_->header.frame_id + "' to '" + parent_frame + "': " + e.what();
       return false;
     }
+    // tf keeps a dead publisher's last transform for ever: a chain through moving joints (stamp not 0) that has not
+    // been renewed for transform_timeout_s is as good as none, or the finger would close on where the object was.
+    const double age_s = (ros::Time::now() - t.header.stamp).toSec();
+    if (settings_.transform_timeout_s > 0 && !t.header.stamp.isZero() && age_s > settings_.transform_timeout_s) {
+      why = "the transform from '" + object_->header.frame_id + "' to '" + parent_frame + "' is " +
+            formatExact(std::round(age_s * 100) / 100) + " s old (over transform_timeout_s): has its publisher stopped?";
+      return false;
+    }
+    parent_from_frame = isometryFromMessage(t.transform);
   }
   finger_from_frame = parent_from_finger.inverse() * parent_from_frame;
   return true;

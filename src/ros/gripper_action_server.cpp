@@ -4,6 +4,7 @@
 // (planGripperCommand), commands the regulator and follows the fingers until the pressure settles.
 #include <actionlib/server/simple_action_server.h>
 #include <ros/ros.h>
+#include <sensor_msgs/FluidPressure.h>
 #include <std_msgs/Float64.h>
 
 #include <cstdio>
@@ -41,6 +42,12 @@ const std::vector<pf::NodeParameterSpec>& parameterSpecs() {
       pf::numberParameter("object_settle_s", 0.1, 0, true, 10, "s",
                           "a goal is planned on finger states received this long after it came: time for the fingers "
                           "to see the object where the arm has stopped (3 of their object updates at 30 Hz)"),
+      pf::numberParameter("input_timeout_s", 0.5, 0.01, false, 60, "s",
+                          "during a goal, a finger whose finger_state, or a regulator whose pressure, is older than "
+                          "this is lost: the goal aborts and names it (both come at the regulator's 100 Hz)"),
+      pf::textParameter("pressure_topic", "pressure", "-",
+                        "the regulator's pressure (sensor_msgs/FluidPressure): watched so that a stale regulator is "
+                        "told from a lost finger"),
   };
   return table;
 }
@@ -57,7 +64,14 @@ class GripperActionServer {
     settle_timeout_s_ = in.number("settle_timeout_s");
     max_gauge_pa_ = in.number("max_gauge_pa");
     object_settle_s_ = in.number("object_settle_s");
+    input_timeout_s_ = in.number("input_timeout_s");
+    const std::string pressure_topic = in.text("pressure_topic");
     in.refuseUnknownKeys();
+    pressure_sub_ = nh.subscribe<sensor_msgs::FluidPressure>(pressure_topic, 1, [this](const sensor_msgs::FluidPressure::ConstPtr&) {
+      std::lock_guard<std::mutex> lock(mutex_);
+      pressure_received_ = ros::Time::now();
+    });
+    pressure_topic_ = nh.resolveName(pressure_topic);
     for (const std::string& ns : fingers_) {
       subs_.push_back(nh.subscribe<pf::FingerModelState>(
           ros::names::append(ns, "finger_state"), 1,
@@ -101,20 +115,52 @@ class GripperActionServer {
     }
   }
 
+  // What the goal has lost, or empty: the regulator's pressure, or a finger's finger_state, older than
+  // input_timeout_s (counted from @p since for one never received since). A dead regulator silences every finger,
+  // so it is named first; a dead finger_node is named by its namespace. Planning or settling on the others' states
+  // would grasp on a guess.
+  std::string lostInput(const ros::Time& since) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    const ros::Time now = ros::Time::now();
+    auto age = [&](const ros::Time& received) { return (now - std::max(received, since)).toSec(); };
+    std::ostringstream why;
+    why.precision(2);
+    why << std::fixed;
+    if (!pressure_received_.isZero() && age(pressure_received_) > input_timeout_s_) {
+      why << "the regulator's pressure '" << pressure_topic_ << "' is stale: none for " << age(pressure_received_)
+          << " s, and the fingers keep their last shape";
+      return why.str();
+    }
+    std::string lost;
+    double oldest = 0;
+    for (const std::string& ns : fingers_) {
+      const auto it = states_.find(ns);
+      const double a = age(it == states_.end() ? ros::Time() : it->second.received);
+      if (a <= input_timeout_s_) continue;
+      lost += (lost.empty() ? "" : ", ") + ns;
+      oldest = std::max(oldest, a);
+    }
+    if (lost.empty()) return {};
+    why << "lost " << lost << ": no finger_state for " << oldest << " s (did the finger's node stop?)";
+    return why.str();
+  }
+
   // The fingers' states to plan with: received object_settle_s after the goal came, and, while any finger has an
   // object, seen by every finger within reach (up to kObjectWaitS). A goal sent as the arm arrives would otherwise be
   // planned on states from while the arm still moved: the object out of reach, or within reach but where the closing
-  // fingers pass it ("does not touch the object up to it"; the 1000-cycle soak of docs/SOAK.md missed 17 grasps so). Empty when some
-  // finger sends nothing for 2 s.
-  std::vector<Latest> statesForThePlan() {
+  // fingers pass it ("does not touch the object up to it"; the 1000-cycle soak of docs/SOAK.md missed 17 grasps so).
+  // Empty, with @p lost saying why, when an input is lost (lostInput).
+  std::vector<Latest> statesForThePlan(std::string& lost) {
     constexpr double kObjectWaitS = 1.0;
     const ros::Time start = ros::Time::now() + ros::Duration(object_settle_s_);
     std::vector<Latest> states;
     for (ros::Rate wait(100); ros::ok(); wait.sleep()) {
       const double waited = (ros::Time::now() - start).toSec();
+      if (waited < 0) continue;
       const std::vector<Latest> now = latest(start);
       if (now.empty()) {
-        if (waited > 2.0) return {};
+        lost = lostInput(start);
+        if (!lost.empty()) return {};
         continue;
       }
       states = now;
@@ -129,16 +175,33 @@ class GripperActionServer {
     return states;
   }
 
+  void publishSetpoint(double gauge_pa) {
+    std_msgs::Float64 setpoint;
+    setpoint.data = gauge_pa;
+    setpoint_pub_.publish(setpoint);
+  }
+
   void abort(const std::string& why, const pf::GripperCommandResult& result = {}) {
     ROS_WARN("gripper_action_server: goal aborted: %s", why.c_str());
     server_.setAborted(result, why);
   }
 
   void execute(const pf::GripperCommandGoalConstPtr& goal) {
+    // Opening needs no plan (every finger is open at 0 Pa): vent first, so that the gripper lets go even when a finger
+    // or the regulator is lost and the goal below aborts.
+    if (goal->position <= 0) publishSetpoint(0.0);
     // The fingers' answers: the pressure that brings each free tip to the goal, the predicted touch of the object.
-    std::vector<Latest> states = statesForThePlan();
-    if (states.empty()) {
-      return abort("no finger_state from every finger in " + std::to_string(fingers_.size()) + " namespaces");
+    std::string lost;
+    std::vector<Latest> states = statesForThePlan(lost);
+    if (states.empty()) return abort(lost.empty() ? "shut down while planning" : lost);
+    std::string unlocated;
+    for (std::size_t i = 0; i < fingers_.size(); ++i) {
+      if (states[i].state->object_status != pf::FingerModelState::OBJECT_NO_TRANSFORM) continue;
+      unlocated += (unlocated.empty() ? "" : ", ") + fingers_[i];
+    }
+    if (!unlocated.empty()) {  // a plan on the free finger would be a guess
+      return abort(unlocated + " cannot locate the object '" + states[0].state->object_id +
+                   "': no fresh transform to its frame (is robot_state_publisher running?)");
     }
     std::vector<pf::FingerGoalAnswer> answers;
     bool object = false;
@@ -162,9 +225,7 @@ class GripperActionServer {
     if (plan.kind == pf::GripperPlan::Kind::kUnreachable) return abort(plan.message);
     ROS_INFO("gripper_action_server: %s", plan.message.c_str());
 
-    std_msgs::Float64 setpoint;
-    setpoint.data = plan.gauge_pa;
-    setpoint_pub_.publish(setpoint);
+    publishSetpoint(plan.gauge_pa);
     const ros::Time commanded = ros::Time::now();
     pf::GripperCommandResult result;
     pf::GripperCommandFeedback feedback;
@@ -173,6 +234,8 @@ class GripperActionServer {
         server_.setPreempted(result, "preempted; the regulator keeps the last setpoint");
         return;
       }
+      lost = lostInput(commanded);
+      if (!lost.empty()) return abort(lost, result);
       states = latest(commanded);
       if (states.empty()) continue;
       describe(states, goal->position, result);
@@ -205,11 +268,14 @@ class GripperActionServer {
   actionlib::SimpleActionServer<pf::GripperCommandAction> server_;
   std::vector<std::string> fingers_;
   std::vector<ros::Subscriber> subs_;
+  ros::Subscriber pressure_sub_;
   ros::Publisher setpoint_pub_;
+  std::string pressure_topic_;
+  ros::Time pressure_received_;
   std::mutex mutex_;
   std::map<std::string, Latest> states_;
   double squeeze_margin_pa_ = 0, goal_tolerance_rad_ = 0, settle_tolerance_pa_ = 0, settle_timeout_s_ = 0;
-  double max_gauge_pa_ = 0, object_settle_s_ = 0;
+  double max_gauge_pa_ = 0, object_settle_s_ = 0, input_timeout_s_ = 0;
 };
 
 }  // namespace

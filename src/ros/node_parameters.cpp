@@ -2,6 +2,8 @@
 // private handle (readNodeSettings), shared by the node's start-up and by dynamic_reconfigure (checkNodeNumber).
 #include "pneumatic_finger/ros/node_parameters.hpp"
 
+#include <ros/console.h>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
@@ -57,6 +59,10 @@ const std::vector<NodeParameterSpec>& specs() {
       numberParameter("object_rate_hz", node.object_rate_hz, 0, true, 1000, "Hz",
              "while there is a grasp object: how often its pose in the finger's frame is looked up (tf) and, when it "
              "changed (the arm or the object moved), the finger re-solved and re-published"),
+      numberParameter("transform_timeout_s", node.transform_timeout_s, 0, false, 3600, "s",
+             "the object's transform from tf older than this (its publisher stopped, e.g. robot_state_publisher "
+             "died) is no transform: object_status OBJECT_NO_TRANSFORM, the free finger, until it is fresh again; "
+             "0: never too old. Frames that only /tf_static relates are never too old"),
   };
   return table;
 }
@@ -114,20 +120,49 @@ void readMount(const NodeParameterReader& in, NodeSettings& s) {
   s.urdf.mount_rpy_rad = in.triple("mount_rpy_rad");
 }
 
+// dynamic_reconfigure keeps the actuator's live keys on the parameter server: it writes them when the node starts and
+// at each change. A twin that roslaunch restarts (respawn) finds them there: they are its previous run's live values,
+// and it resumes with them over the gripper file's. The server writes a per-chamber list's first value, so a list
+// whose first value it holds is unchanged. A changed actuator leaves the calibration's tip error bar behind, as a
+// live change does.
+void resumeLiveActuatorKeys(const RawParameterMap& live, NodeSettings& s) {
+  RawParameterMap raw = s.finger.toRaw();
+  std::string changed;
+  for (const auto& [key, value] : live) {
+    const auto file = raw.find(key);
+    if (file != raw.end() && value.values.size() == 1 && !file->second.values.empty() &&
+        file->second.values[0] == value.values[0]) {
+      continue;
+    }
+    raw[key] = value;
+    changed += (changed.empty() ? "" : ", ") + key + " = " + formatExact(value.values[0]);
+  }
+  if (changed.empty()) return;
+  s.finger = FingerParameters::fromRaw(raw);
+  s.tip_uncertainty = TipUncertainty{};
+  ROS_INFO("finger_node: resuming the live values on the parameter server (a previous run's dynamic_reconfigure): "
+           "%s, over the gripper file's; the tip error bar no longer applies", changed.c_str());
+}
+
 // The finger as the gripper file defines it (one definition for the composed URDF and the node): its mount and its
 // actuator. Giving either as a parameter as well would be a second definition, so it is refused.
 void readGripperFile(const ros::NodeHandle& nh, const RawParameterMap& actuator_keys, NodeSettings& s) {
   for (const char* key : {"parent_frame", "mount_xyz_m", "mount_rpy_rad"}) {
     if (nh.hasParam(key)) throw ParameterError(std::string("parameter '") + key + "' is set, but gripper_file defines it");
   }
-  if (!actuator_keys.empty()) {
-    throw ParameterError("parameter '" + actuator_keys.begin()->first + "' is set, but gripper_file defines the actuator");
+  RawParameterMap live;
+  for (const auto& [key, value] : actuator_keys) {
+    if (!isLiveActuatorKey(key)) {
+      throw ParameterError("parameter '" + key + "' is set, but gripper_file defines the actuator");
+    }
+    live[key] = value;
   }
   for (const GripperFinger& f : loadGripperFile(s.gripper_file)) {
     if (f.mount.prefix != s.urdf.prefix) continue;
     s.urdf = f.mount;  // max_gauge_pa is read later, as for any finger
     s.finger = f.parameters;
     s.tip_uncertainty = f.tip_uncertainty;
+    resumeLiveActuatorKeys(live, s);
     return;
   }
   throw ParameterError("gripper file '" + s.gripper_file + "' has no finger with prefix '" + s.urdf.prefix + "'");
@@ -175,6 +210,7 @@ void readModelAndInput(const NodeParameterReader& in, NodeSettings& s) {
   s.input.atmospheric_pa = s.finger.atmospheric_pressure_pa;
   s.input.validated_max_gauge_pa = in.number("validated_max_gauge_pa", s.urdf.max_gauge_pa);
   s.object_rate_hz = in.number("object_rate_hz");
+  s.transform_timeout_s = in.number("transform_timeout_s");
 }
 
 // The topics and the description parameter, each a valid ROS name.

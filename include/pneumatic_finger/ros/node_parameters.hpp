@@ -30,9 +30,16 @@ struct NodeSettings {
   bool publish_tf = true;
   std::string gripper_file;
   double object_rate_hz = 30.0;
+  double transform_timeout_s = 1.0;  ///< as the pressure's stale_timeout_s: a second without news is a lost publisher
   std::string description_param = "robot_description", pressure_topic = "pressure", joint_states_topic = "joint_states",
               finger_state_topic = "finger_state", grasp_object_topic = "grasp_object";
 };
+
+/// The actuator keys dynamic_reconfigure sets live (cfg/FingerNode.cfg's actuator group): besides a gripper file
+/// they are a restarted node's previous live values, not a second definition.
+inline bool isLiveActuatorKey(const std::string& key) {
+  return key == "shear_modulus_pa" || key == "chamber_gap_m" || key == "base_wall_share" || key == "wall_locking_jm";
+}
 
 /// Reads and validates every parameter from the private handle.
 /// @throws ParameterError naming the key, the value and what is allowed
