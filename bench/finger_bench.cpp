@@ -244,6 +244,39 @@ void benchMembrane(benchmark::State& state) {
   state.SetLabel("membrane wall law, Gent, up to 0.99 of the limit point");
 }
 
+// The blocked tip force (docs/MODEL.md, "Force") at the pressures robust/validated runs, beside the shape it adds to:
+// its cost is one wall solve (stages 1-3) and a strip's square root. Its largest relative error, over the pressures
+// past twice the contact pressure, against the quad reference's bulge through the page's formula, as a counter.
+void benchBlockedForce(benchmark::State& state) {
+  const std::vector<double>& pressures = validatedPressures();
+  const pf::FingerModel model(kParams);
+  const reference::ChamberGeometry chamber{kParams.chamber_height_m[0], kParams.wall_critical_height_m[0],
+                                           kParams.chamber_gap_m[0], kParams.shear_modulus_pa[0]};
+  long double l = 0, lw = 0, l2w = 0;
+  for (int j = kParams.chamber_count - 1; j >= 0; --j) {
+    l += kParams.segment_length_m[static_cast<std::size_t>(j)];
+    const long double w = j == 0 ? 1 + kParams.base_wall_share : 2;
+    lw += l * w;
+    l2w += l * l * w;
+  }
+  double worst = 0.0;
+  for (double p : pressures) {
+    if (p < 2 * model.contactGaugePa()) continue;
+    const long double r = 0.5L * kParams.chamber_height_m[0], c = kParams.chamber_gap_m[0];
+    const long double h = reference::chamberChain(p, kParams.atmospheric_pressure_pa, chamber).bulge_m;
+    const long double strip = 2 * r / (r + h) * std::sqrt((r + h) * (r + h) - (r + c) * (r + c));
+    const long double f = p * strip * kParams.chamber_width_m[0] * kParams.wall_critical_height_m[0] * lw / l2w;
+    worst = std::max(worst, static_cast<double>(std::fabs(model.blockedTipForceN(p) - f) / f));
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(model.blockedTipForceN(pressures[i]));
+    if (++i == pressures.size()) i = 0;
+  }
+  state.counters["max_relative_error"] = worst;
+  state.SetLabel("blocked tip force, validated range");
+}
+
 // Two independent models (robust solver) evaluated alternately, each on its own pressure: if the CPU overlapped one
 // evaluation with the next, a pair would take less than twice one evaluation (robust/validated, the same loop).
 void benchPair(benchmark::State& state) {
@@ -453,6 +486,7 @@ int main(int argc, char** argv) {
     }
   }
   benchmark::RegisterBenchmark("robust_pair/validated", benchPair);
+  benchmark::RegisterBenchmark("force/blocked_tip", benchBlockedForce);
   benchmark::RegisterBenchmark("membrane/validated", benchMembrane);
   for (int stage = 1; stage <= 5; ++stage) {
     benchmark::RegisterBenchmark(("robust_stage/" + std::to_string(stage)).c_str(),

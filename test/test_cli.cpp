@@ -11,6 +11,7 @@
 #include <sstream>
 #include <string>
 
+#include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 
 namespace pf = pneumatic_finger;
@@ -348,4 +349,19 @@ TEST(Docs, NoPlaceholderIsLeftInTheReadmeOrDocs) {
     EXPECT_EQ(placeholders(readFile(std::string(PACKAGE_SOURCE_DIR) + "/" + page)), std::vector<std::string>{})
         << page << " has a placeholder where a measured figure belongs";
   }
+}
+
+// --blocked-tip-force: one more column, last, with the library's number bit for bit (the model's own test checks the
+// number against the reference), 0 before contact; the shape columns are unchanged.
+TEST(Cli, BlockedTipForceIsTheLastColumnAndTheLibrarysNumber) {
+  const CliRun plain = run("--gauge-pa 0 --gauge-pa 196133");
+  const CliRun r = run("--gauge-pa 0 --gauge-pa 196133 --blocked-tip-force");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto l = lines(r.out), lp = lines(plain.out);
+  ASSERT_EQ(l.size(), 3u);
+  EXPECT_EQ(l[0], lp[0] + ",blocked_tip_force_n");
+  const pneumatic_finger::FingerModel model(pneumatic_finger::FingerParameters::defaults());
+  EXPECT_EQ(l[1], lp[1] + ",0");
+  EXPECT_EQ(l[2], lp[2] + "," + pneumatic_finger::formatExact(model.blockedTipForceN(196133)));
+  EXPECT_GT(model.blockedTipForceN(196133), 0.1);
 }

@@ -84,6 +84,22 @@ def test_contact_equals_the_cli_bit_for_bit():
     assert math.isnan(got["first_touch_gauge_pa"][0])
 
 
+def test_blocked_tip_force_equals_the_cli_bit_for_bit():
+    model = pf.FingerModel()
+    force = model.blocked_tip_force(numpy.array(PRESSURES))
+    rows = cli("--blocked-tip-force", *gauge_args(PRESSURES))
+    assert force.shape == (len(PRESSURES),)
+    for i, row in enumerate(rows):
+        assert float(row["blocked_tip_force_n"]) == force[i], PRESSURES[i]
+    assert model.blocked_tip_force(196133.0) == force[PRESSURES.index(196133.0)]
+    assert force[0] == 0.0 and force[-1] > force[-2] > 0.0
+    assert model.blocked_tip_force(-100.0) == 0.0
+    with pytest.raises(ValueError, match=r"gauge_pa\[1\] = nan is not a finite pressure"):
+        model.blocked_tip_force([1.0, float("nan")])
+    with pytest.raises(ValueError, match="1-D array"):
+        model.blocked_tip_force(numpy.zeros((2, 2)))
+
+
 def test_bad_input_raises_value_error_naming_it():
     with pytest.raises(ValueError, match="no_such_key"):
         pf.FingerModel(overrides={"no_such_key": 1.0})

@@ -145,6 +145,23 @@ class PyFingerModel {
     return arrays.result(scalar, kEvaluationStatus);
   }
 
+  // The blocked tip force (N) at a pressure or an array of them (docs/MODEL.md "Force"). A pressure that is not a
+  // finite number is refused by its index: a force is an answer to a real pressure.
+  py::object blockedTipForce(const py::object& gauge_pa) const {
+    bool scalar = false;
+    const Array p = pressures(gauge_pa, scalar);
+    Array force(p.size());
+    for (py::ssize_t i = 0; i < p.size(); ++i) {
+      if (!std::isfinite(p.data()[i])) {
+        throw py::value_error("gauge_pa" + (scalar ? std::string() : "[" + std::to_string(i) + "]") + " = " +
+                              pf::formatExact(p.data()[i]) + " is not a finite pressure (Pa)");
+      }
+      force.mutable_data()[i] = model_->blockedTipForceN(p.data()[i]);
+    }
+    if (scalar) return py::float_(force.data()[0]);
+    return std::move(force);
+  }
+
   double gaugeForTipAngle(double tip_angle_rad, const py::object& max_gauge_pa) const {
     const double limit = max_gauge_pa.is_none() ? pf::kModelMaxGaugePa : max_gauge_pa.cast<double>();
     double gauge = 0.0;
@@ -362,6 +379,10 @@ PYBIND11_MODULE(_core, m) {
            "half_angle_rad, joint_angle_rad (P, N), backbone_m (P, N+2, 2), tip_angle_rad (P,) and status (P,) uint8 "
            "codes (STATUS names them; a scalar call gives the name). outputs: the names to compute (None: all); "
            "out: a dict of arrays to fill (float64, uint8 for status, C-contiguous, of the shapes above)")
+      .def("blocked_tip_force", &PyFingerModel::blockedTipForce, py::arg("gauge_pa"),
+           "The blocked tip force (N) at a gauge pressure (Pa) or a 1-D array of them: the finger held straight by a "
+           "plate at its tip (docs/MODEL.md, Force); 0 before the walls touch and for a vacuum; ValueError for a "
+           "pressure that is not finite")
       .def("gauge_for_tip_angle", &PyFingerModel::gaugeForTipAngle, py::arg("tip_angle_rad"),
            py::arg("max_gauge_pa") = py::none(), "The gauge pressure (Pa) for a tip angle; ValueError when none up to max")
       .def("contact", &PyFingerModel::contact, py::arg("gauge_pa"), py::arg("disk"), py::arg("outputs") = py::none(),

@@ -20,7 +20,9 @@ constexpr const char* kDescription =
     "gauge_pa,stretch,bulge_m,half_angle_rad,joint_1_rad..joint_N_rad,tip_x_m,tip_y_m\n"
     "(stretch, bulge and half angle of chamber 1; 17 significant digits). Exit 2 on bad input.\n"
     "Time mode (--flow-lpm Q --duration-s T --step-s DT): a constant flow fills one finger; each row starts with\n"
-    "time_s, at 0, DT, .., T, the gauge pressure P_o Q t / V_o (eq 4, ideal spring; V_o = sum L d e).";
+    "time_s, at 0, DT, .., T, the gauge pressure P_o Q t / V_o (eq 4, ideal spring; V_o = sum L d e).\n"
+    "--blocked-tip-force adds blocked_tip_force_n: the tip force (N) of the finger held straight by a plate at its\n"
+    "tip (docs/MODEL.md, Force).";
 
 std::vector<double> parseSweep(const std::string& text) {
   const std::vector<std::string> f = pf::splitFields(text, ':');
@@ -50,18 +52,31 @@ void printParameterTable() {
   }
 }
 
-// With @p times, each row starts with its time (s): the time mode.
+// What the rows hold besides the shape: a time first (the time mode), the finger closing on an obstacle, the blocked
+// tip force last.
+struct CsvColumns {
+  const pf::Obstacle* obstacle = nullptr;
+  std::vector<double> times;
+  bool blocked_tip_force = false;
+};
+
 void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::vector<double>& pressures,
-              const pf::Obstacle* obstacle,
-              const std::vector<double>& times = {}) {
+              const CsvColumns& columns) {
   const pf::ContactSolver contact(model);
+  const pf::Obstacle* obstacle = columns.obstacle;
+  const std::vector<double>& times = columns.times;
   bool warned_overlap = false;
   const int n = model.chamberCount();
   std::ostringstream out;
   if (!times.empty()) out << "time_s,";
   out << "gauge_pa,stretch,bulge_m,half_angle_rad";
   for (int j = 1; j <= n; ++j) out << ",joint_" << j << "_rad";
-  out << ",tip_x_m,tip_y_m\n";
+  out << ",tip_x_m,tip_y_m" << (columns.blocked_tip_force ? ",blocked_tip_force_n\n" : "\n");
+  // Computed only when asked for (it costs a wall solve): the held finger's force, whatever the free shape's status.
+  auto end_row = [&](double p) {
+    if (columns.blocked_tip_force) out << ',' << pf::formatExact(model.blockedTipForceN(p));
+    out << '\n';
+  };
   bool warned = false, warned_failure = false, warned_limit = false;
   for (std::size_t row = 0; row < pressures.size(); ++row) {
     const double p = pressures[row];
@@ -87,7 +102,7 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
       warned_now = true;
       out << pf::formatExact(p);
       for (int j = 0; j < n + 5; ++j) out << ",nan";
-      out << '\n';
+      end_row(p);
       continue;
     }
     out << pf::formatExact(p) << ',' << pf::formatExact(s.stretch[0]) << ',' << pf::formatExact(s.bulge_m[0]) << ','
@@ -107,7 +122,8 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
       }
     }
     for (int j = 0; j < n; ++j) out << ',' << pf::formatExact(q[j]);
-    out << ',' << pf::formatExact(tip.x()) << ',' << pf::formatExact(tip.y()) << '\n';
+    out << ',' << pf::formatExact(tip.x()) << ',' << pf::formatExact(tip.y());
+    end_row(p);
   }
   std::cout << out.str();
 }
@@ -126,6 +142,9 @@ int main(int argc, char** argv) {
   app.add_option("--gauge-pa", gauges, "gauge pressure P (Pa); repeat for several rows")->allow_extra_args(false);
   app.add_option("--sweep-pa", sweep, "FROM:TO:COUNT, evenly spaced gauge pressures (Pa)");
   app.add_flag("--parameters", parameter_table, "print the parameter table (Markdown) and exit");
+  CsvColumns columns;
+  app.add_flag("--blocked-tip-force", columns.blocked_tip_force,
+               "add blocked_tip_force_n: the tip force (N) of the finger held straight by a plate at its tip");
   std::string flow_lpm, duration_s, step_s;
   app.add_option("--flow-lpm", flow_lpm, "time mode: constant air flow Q into the finger (L/min)");
   app.add_option("--duration-s", duration_s, "time mode: fill duration T (s)");
@@ -185,7 +204,9 @@ int main(int argc, char** argv) {
                                     pf::parseFiniteOption("--obstacle-disk R", f[2]));
       if (!obstacle.problem().empty()) throw pf::ParameterError("--obstacle-disk: " + obstacle.problem());
     }
-    printCsv(model, ws, pressures, disk.empty() ? nullptr : &obstacle, times);
+    columns.obstacle = disk.empty() ? nullptr : &obstacle;
+    columns.times = times;
+    printCsv(model, ws, pressures, columns);
     return 0;
   });
 }

@@ -187,6 +187,18 @@ class FingerModel {
   /// The tip direction there: the most the model holds (+inf without a limit point).
   double tipAngleBelowLimit() const;
 
+  /// The force model (docs/MODEL.md, "Force"; src/core/finger_force.cpp). The moment (N m) that the walls at each
+  /// joint of the straight finger exert at @p gauge_pa, into @p moment_nm (N entries, joint 1 first): the chamber's
+  /// pressure on the strip of its wall flattened against the neighbour's, at the lever b. 0 up to the contact pressure
+  /// and for a vacuum; NaN for a NaN pressure and beyond the membrane law's limit point.
+  void straightJointMomentsNm(double gauge_pa, double* moment_nm) const;
+
+  /// The blocked tip force (N) at @p gauge_pa: the finger held straight by a plate at its tip, orthogonal to the
+  /// bending plane. The joints' moments are shared by their compliance, linear about the straight finger (the planar
+  /// static balance with the tip held): F = sum_j M_j l_j w_j / sum_j l_j^2 w_j, l_j the joint's distance to the tip,
+  /// w_j its compliance (2 walls, or 1 + s0 at joint 1). Same NaN and 0 cases as straightJointMomentsNm.
+  double blockedTipForceN(double gauge_pa) const;
+
   /// The free joint angles q_1..q_N at @p gauge_pa (>= 0) into @p joint_angle_rad (N entries), and, when not null,
   /// the half angles theta_1..theta_N into @p half_angle_rad, without touching the cached state (thread-safe like
   /// tipAngleAt). @return false when the solver found no finite answer.
@@ -250,6 +262,13 @@ class FingerModel {
   bool writeTableShape(double gauge_pa, FingerState& out) const;
   /// writeState's other paths: the solver per group, then the joints and backbone.
   bool writeSolvedState(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const;
+  /// The force model's constants, computed once (finger_force.cpp): per joint its pushing walls, distance to the
+  /// tip and compliance weight.
+  void buildForceModel();
+  /// The height 2a (m) of the strip of @p group's wall pressed flat against its neighbour's at @p gauge_pa.
+  double contactStripHeightM(const ChamberGroup& group, double gauge_pa) const;
+  /// The moment (N m) at joint @p joint (0-based) of the straight finger at @p gauge_pa (not NaN).
+  double jointMomentNm(std::size_t joint, double gauge_pa) const;
   /// Throws: @p workspace was sized for a model of another shape (evaluate(), evaluateMany()).
   [[noreturn]] void refuseWorkspace(const FingerWorkspace& workspace) const;
   /// The rest shape, with NaN for stretch and bulge when the options leave them out (chamber_detail false).
@@ -268,6 +287,18 @@ class FingerModel {
   std::vector<int> group_of_chamber_;
   double contact_gauge_pa_ = 0.0;
   double limit_gauge_pa_ = 0.0;
+  // The force model (buildForceModel): per joint, the chambers whose walls push at it (joint 1: chamber 1 and the
+  // base face, so both are chamber 0), its distance to the tip (m) and its compliance weight; per chamber e b (m^2),
+  // the strip's width times its lever. For identical chambers the tip force is one product with
+  // uniform_force_lever_ = sum_j l_j w_j / sum_j l_j^2 w_j (1/m; 0 otherwise).
+  struct ForceJoint {
+    int chamber_a, chamber_b;
+    double tip_distance_m, weight;
+  };
+  std::vector<ForceJoint> force_joints_;
+  std::vector<double> push_lever_m2_;
+  double force_l2w_ = 0.0;  // sum_j l_j^2 w_j (m^2)
+  double uniform_force_lever_ = 0.0;
   bool membrane_ = false;  // the membrane wall law (parameters_.wall_law)
   double table_error_rad_ = 0.0;
   std::uint64_t shape_ = 0;  // chamber count << 32 | group count: what a workspace must have been sized for

@@ -1,0 +1,130 @@
+"""The blocked tip force predicted from bending alone, against published measurements.
+
+usage: python3 scripts/accuracy_force.py [--plot FILE]   (needs the built package: source devel/setup.bash)
+
+For each segment of Marchese, Katzschmann & Rus 2015 (data/marchese2015_*_bending.csv and *_blocked_force.csv), both
+wall laws are fitted to the bending data alone (minimax on the segment's bend, pneumatic_finger.calibrate, the code of
+finger_calibrate), the law with the smaller bending error is kept (for both segments the choice that
+`finger_calibrate --wall-law auto` makes), and its blocked tip force (FingerModel.blocked_tip_force, docs/MODEL.md
+"Force") is predicted at every pressure of the force data, which no fit saw. Prints the Markdown of docs/FORCE.md
+("Measured against predicted") and draws the plot (default docs/force_blocked.png). About a minute.
+"""
+import argparse
+import csv
+import math
+import pathlib
+
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+import numpy as np  # noqa: E402
+
+import pneumatic_finger.core as pf  # noqa: E402
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+MU, GAP, JM = "shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"
+# The goal: within 15 % of the measured force, or within 0.05 N where the force is small.
+RELATIVE, ABSOLUTE_N = 0.15, 0.05
+
+# Per segment, per law, the start and the keys, as scripts/accuracy_laws.py fits them (the paper law from its uniform
+# wall, b = L/2, since it cannot take the segments' lever b > L).
+SEGMENTS = [
+    {"name": "ribbed", "laws": {
+        "paper": {"start": {"wall_law": "paper", "wall_critical_height_m": 0.00155}, "keys": [MU, GAP]},
+        "membrane": {"start": {}, "keys": [MU, GAP, JM]}}},
+    {"name": "cylindrical", "laws": {
+        "paper": {"start": {"wall_law": "paper", "wall_critical_height_m": 0.0014}, "keys": [MU, GAP]},
+        "membrane": {"start": {}, "keys": [MU, GAP, JM]}}},
+]
+
+
+def read_rows(path):
+    lines = [line for line in open(ROOT / path) if not line.startswith("#")]
+    return sorted(csv.DictReader(lines), key=lambda r: float(r["gauge_pa"]))
+
+
+def fit_bending(seg):
+    """Both laws fitted to the bend; returns the better (law, overrides, bending error in degrees, warnings)."""
+    config = str(ROOT / f"config/marchese2015_{seg['name']}.yaml")
+    data = str(ROOT / f"data/marchese2015_{seg['name']}_bending.csv")
+    fits = []
+    for law, spec in seg["laws"].items():
+        r = pf.calibrate(data=data, keys=spec["keys"], config=config, overrides=spec["start"], compare="tip_angle")
+        fits.append((r["objective_value"] * 180 / math.pi, law, {**spec["start"], **r["fitted"]}, r["warnings"]))
+    error, law, overrides, warnings = min(fits, key=lambda f: f[0])
+    return law, overrides, error, warnings, config
+
+
+def study(seg):
+    law, overrides, bend_error, warnings, config = fit_bending(seg)
+    model = pf.FingerModel(config, overrides=overrides)
+    rows = read_rows(f"data/marchese2015_{seg['name']}_blocked_force.csv")
+    pressure = np.array([float(r["gauge_pa"]) for r in rows])
+    measured = np.array([float(r["tip_force_n"]) for r in rows])
+    predicted = model.blocked_tip_force(pressure)
+    within = np.abs(predicted - measured) <= np.maximum(RELATIVE * measured, ABSOLUTE_N)
+    return {"seg": seg["name"], "law": law, "overrides": overrides, "bend_error": bend_error, "warnings": warnings,
+            "contact": model.contact_gauge_pa, "pressure": pressure, "measured": measured, "predicted": predicted,
+            "within": within}
+
+
+def summary(r):
+    err = r["predicted"] - r["measured"]
+    miss = ~r["within"]
+    worst = int(np.argmax(np.abs(err)))
+    return (f"| {r['seg']} | {r['law']} | {r['bend_error']:.2f} | {r['contact'] / 1e3:.1f} | "
+            f"{int(r['within'].sum())} of {len(err)} | "
+            f"{', '.join(f'{p / 1e3:.1f}' for p in r['pressure'][miss]) or 'none'} | "
+            f"{err[worst]:+.3f} at {r['pressure'][worst] / 1e3:.1f} kPa |")
+
+
+def rows_table(r):
+    out = [f"**{r['seg']}** ({r['law']} law: " + ", ".join(f"{k} = {v:.4g}" for k, v in r["overrides"].items()
+                                                            if isinstance(v, float)) + ")", "",
+           "| gauge (kPa) | measured (N) | predicted (N) | error (N) | error (%) | within the goal |",
+           "|---|---|---|---|---|---|"]
+    for p, m, f, ok in zip(r["pressure"], r["measured"], r["predicted"], r["within"]):
+        pct = f"{100 * (f - m) / m:+.0f}" if m > 0 else "-"
+        out.append(f"| {p / 1e3:.1f} | {m:.3f} | {f:.3f} | {f - m:+.3f} | {pct} | {'yes' if ok else 'no'} |")
+    return out
+
+
+def plot(results, path):
+    fig, axes = plt.subplots(1, len(results), figsize=(5.2 * len(results), 4.0))
+    for ax, r in zip(axes, results):
+        ax.plot(r["pressure"] / 1e3, r["measured"], "o", label="measured (Marchese et al. 2015)")
+        ax.plot(r["pressure"] / 1e3, r["predicted"], "-", label=f"predicted, {r['law']} law fitted to bending")
+        band = np.maximum(RELATIVE * r["measured"], ABSOLUTE_N)
+        ax.fill_between(r["pressure"] / 1e3, r["measured"] - band, r["measured"] + band, alpha=0.15,
+                        label="goal: 15 % or 0.05 N")
+        ax.axvline(r["contact"] / 1e3, color="grey", lw=0.8, ls=":", label="the walls touch (the fitted gap)")
+        ax.set_title(f"{r['seg']} segment: blocked tip force")
+        ax.set_xlabel("gauge pressure (kPa)")
+        ax.set_ylabel("tip force (N)")
+        ax.legend(fontsize=7, loc="upper left")
+    fig.tight_layout()
+    fig.savefig(path, dpi=110)
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--plot", default=str(ROOT / "docs/force_blocked.png"))
+    args = parser.parse_args()
+    results = [study(s) for s in SEGMENTS]
+    print("| segment | law (by bending) | bending fit: largest error (deg) | walls touch at (kPa) | "
+          "force within the goal | pressures outside it (kPa) | largest error (N) |")
+    print("|---|---|---|---|---|---|---|")
+    for r in results:
+        print(summary(r))
+    for r in results:
+        print()
+        for w in r["warnings"]:
+            print(f"- {r['seg']}, bending fit: {w}")
+        print()
+        print("\n".join(rows_table(r)))
+    plot(results, args.plot)
+
+
+if __name__ == "__main__":
+    main()

@@ -1,0 +1,149 @@
+// The force model (docs/MODEL.md, "Force"): the straight finger's joint moments and the blocked tip force, against
+// the quad-precision reference's free bulge (test/reference_quad.cpp) and the page's formulas written out here, and
+// the static balance checked by explicit forward kinematics of the chain the force holds.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
+#include "reference_quad.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+pf::FingerParameters parametersFrom(const std::string& yaml) {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlText(yaml, "test", raw);
+  return pf::FingerParameters::fromRaw(raw);
+}
+
+// The strip of the free wall beyond the contact plane (2a, m), from the reference's bulge h: the paper law's half
+// ellipse of semi-axes R, R + h cut R + c from its centre, or the membrane's sphere of radius R + h (at most R).
+double referenceStrip(double h, double r, double c, bool membrane) {
+  if (h <= c) return 0.0;
+  const long double R = r, H = h, C = c;
+  const long double chord = std::sqrt((R + H) * (R + H) - (R + C) * (R + C));
+  return static_cast<double>(2 * (membrane ? std::min(chord, R) : R / (R + H) * chord));
+}
+
+// F = sum_j M_j l_j w_j / sum_j l_j^2 w_j for the joints' moments M (joint 1 first), the segments Z, share s0.
+double referenceTipForce(const std::vector<double>& moment, const std::vector<double>& z, double s0) {
+  long double num = 0, den = 0, l = 0;
+  for (int j = static_cast<int>(z.size()) - 1; j >= 0; --j) {
+    l += z[static_cast<std::size_t>(j)];
+    const long double w = j == 0 ? 1 + s0 : 2;
+    num += moment[static_cast<std::size_t>(j)] * l * w;
+    den += l * l * w;
+  }
+  return static_cast<double>(num / den);
+}
+
+}  // namespace
+
+// The package's finger (paper law): the blocked force at pressures well past contact, where the strip is well
+// conditioned, against the reference's bulge and the formula.
+TEST(FingerForce, PaperFingerBlockedForceMatchesTheReference) {
+  const pf::FingerParameters p = pf::FingerParameters::defaults();
+  const pf::FingerModel model(p);
+  const reference::ChamberGeometry chamber{p.chamber_height_m[0], p.wall_critical_height_m[0], p.chamber_gap_m[0],
+                                           p.shear_modulus_pa[0]};
+  for (double gauge_pa = 2 * model.contactGaugePa(); gauge_pa <= 3e5; gauge_pa *= 1.07) {
+    const double h = reference::chamberChain(gauge_pa, p.atmospheric_pressure_pa, chamber).bulge_m;
+    const double strip = referenceStrip(h, 0.5 * p.chamber_height_m[0], p.chamber_gap_m[0], false);
+    const double m = gauge_pa * strip * p.chamber_width_m[0] * p.wall_critical_height_m[0];
+    const double expected = referenceTipForce(std::vector<double>(7, m), p.segment_length_m, p.base_wall_share);
+    EXPECT_NEAR(model.blockedTipForceN(gauge_pa), expected, 1e-12 * expected) << gauge_pa;
+    std::vector<double> moments(7);
+    model.straightJointMomentsNm(gauge_pa, moments.data());
+    for (double mj : moments) EXPECT_NEAR(mj, m, 1e-12 * m) << gauge_pa;
+  }
+}
+
+// A membrane wall (Gent, no limit point within the sweep) likewise, with the strip capped at the wall's height.
+TEST(FingerForce, MembraneFingerBlockedForceMatchesTheReference) {
+  const pf::FingerParameters p =
+      parametersFrom("wall_law: membrane\nshear_modulus_pa: 2e4\nwall_thickness_m: 0.002\nwall_locking_jm: 6\n"
+                     "chamber_gap_m: 0.0003\n");
+  const pf::FingerModel model(p);
+  const reference::Membrane wall{2e4, 0.002, p.chamber_height_m[0], 6};
+  const double r = 0.5 * p.chamber_height_m[0];
+  bool capped = false;
+  for (double gauge_pa = 2 * model.contactGaugePa(); gauge_pa <= 4e4; gauge_pa *= 1.05) {
+    const double h = r * reference::membraneStretchExcess(wall, gauge_pa);
+    const double strip = referenceStrip(h, r, p.chamber_gap_m[0], true);
+    capped = capped || strip == 2 * r;
+    const double m = gauge_pa * strip * p.chamber_width_m[0] * p.wall_critical_height_m[0];
+    const double expected = referenceTipForce(std::vector<double>(7, m), p.segment_length_m, p.base_wall_share);
+    EXPECT_NEAR(model.blockedTipForceN(gauge_pa), expected, 1e-12 * expected) << gauge_pa;
+  }
+  EXPECT_TRUE(capped) << "the sweep never reached the strip's cap (the wall's height)";
+}
+
+// Unequal chambers: the weaker of two facing walls bounds a joint's moment, and the force is the planar balance of the
+// chain. Checked by forward kinematics: joints turned by (M_j - F l_j) w_j (times a small scale) leave the tip where
+// the plate holds it, to first order.
+TEST(FingerForce, UnequalChambersBalanceTheChainWithTheTipHeld) {
+  const pf::FingerParameters p = parametersFrom(
+      "chamber_width_m: [0.007, 0.007, 0.006, 0.007, 0.008, 0.007, 0.007]\n"
+      "chamber_gap_m: [0.00005, 0.00005, 0.00005, 0.00004, 0.00005, 0.00005, 0.00005]\n"
+      "segment_length_m: [0.010, 0.010, 0.012, 0.010, 0.010, 0.009, 0.010]\n"
+      "base_wall_share: 0.3\nshear_modulus_pa: 2.2e8\n");
+  const pf::FingerModel model(p);
+  const double gauge_pa = 2e5;
+  std::vector<double> moments(7);
+  model.straightJointMomentsNm(gauge_pa, moments.data());
+  for (double m : moments) ASSERT_GT(m, 0.0) << "every wall pair must touch for this test";
+  for (int j = 0; j < 7; ++j) {
+    auto wall_moment = [&](int k) {
+      const auto uk = static_cast<std::size_t>(k);
+      const reference::ChamberGeometry c{p.chamber_height_m[uk], p.wall_critical_height_m[uk], p.chamber_gap_m[uk],
+                                         p.shear_modulus_pa[uk]};
+      const double h = reference::chamberChain(gauge_pa, p.atmospheric_pressure_pa, c).bulge_m;
+      return gauge_pa * referenceStrip(h, 0.5 * p.chamber_height_m[uk], p.chamber_gap_m[uk], false) *
+             p.chamber_width_m[uk] * p.wall_critical_height_m[uk];
+    };
+    const double expected = std::min(wall_moment(std::max(j - 1, 0)), wall_moment(j));
+    EXPECT_NEAR(moments[static_cast<std::size_t>(j)], expected, 1e-12 * expected) << "joint " << j + 1;
+  }
+  const double force = model.blockedTipForceN(gauge_pa);
+  EXPECT_NEAR(force, referenceTipForce(moments, p.segment_length_m, p.base_wall_share), 1e-12 * force);
+  // The balance itself: the joints' turns under moment less tip force, through sin, move the tip only to second
+  // order in the scale eps (y ~ eps^2 l); the force 1 % off moves it by eps * (1 % of the load's lever).
+  auto tip_y = [&](double f, double eps) {
+    long double angle = 0, y = 0, l = 0;
+    std::vector<long double> lever(7);
+    for (int j = 6; j >= 0; --j) lever[static_cast<std::size_t>(j)] = (l += p.segment_length_m[static_cast<std::size_t>(j)]);
+    for (std::size_t j = 0; j < 7; ++j) {
+      angle += eps * (moments[j] - f * lever[j]) * (j == 0 ? 1 + p.base_wall_share : 2.0);
+      y += p.segment_length_m[j] * std::sin(angle);
+    }
+    return static_cast<double>(y);
+  };
+  const double eps = 1e-3 / moments[3];  // joint turns of about a milliradian
+  EXPECT_LT(std::fabs(tip_y(force, eps)), 1e-3 * std::fabs(tip_y(1.01 * force, eps)));
+}
+
+// Below contact the walls do not touch: no force, exactly. A vacuum likewise (+0, not -0). NaN in, NaN out. Beyond a
+// Neo-Hookean wall's limit point there is no free shape to flatten: NaN, not a number made up.
+TEST(FingerForce, NoContactVacuumNaNAndTheLimitPoint) {
+  const pf::FingerModel model(pf::FingerParameters::defaults());
+  EXPECT_EQ(model.blockedTipForceN(0.0), 0.0);
+  EXPECT_EQ(model.blockedTipForceN(0.999 * model.contactGaugePa()), 0.0);
+  EXPECT_EQ(model.blockedTipForceN(model.contactGaugePa()), 0.0);
+  EXPECT_GT(model.blockedTipForceN(1.001 * model.contactGaugePa()), 0.0);
+  EXPECT_FALSE(std::signbit(model.blockedTipForceN(-5000.0)));
+  EXPECT_EQ(model.blockedTipForceN(-5000.0), 0.0);
+  EXPECT_TRUE(std::isnan(model.blockedTipForceN(std::numeric_limits<double>::quiet_NaN())));
+  const pf::FingerModel balloon(
+      parametersFrom("wall_law: membrane\nshear_modulus_pa: 2e4\nwall_thickness_m: 0.002\nwall_locking_jm: 0\n"));
+  EXPECT_GT(balloon.blockedTipForceN(0.99 * balloon.limitGaugePa()), 0.0);
+  EXPECT_TRUE(std::isnan(balloon.blockedTipForceN(1.01 * balloon.limitGaugePa())));
+  std::vector<double> moments(7);
+  balloon.straightJointMomentsNm(1.01 * balloon.limitGaugePa(), moments.data());
+  for (double m : moments) EXPECT_TRUE(std::isnan(m));
+}
