@@ -8,7 +8,11 @@
 #include <string>
 #include <vector>
 
+#include <Eigen/Geometry>
+
+#include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/obstacle.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "reference_quad.hpp"
 
@@ -146,4 +150,123 @@ TEST(FingerForce, NoContactVacuumNaNAndTheLimitPoint) {
   std::vector<double> moments(7);
   balloon.straightJointMomentsNm(1.01 * balloon.limitGaugePa(), moments.data());
   for (double m : moments) EXPECT_TRUE(std::isnan(m));
+}
+
+namespace {
+
+// The contact rule's state for an obstacle at a pressure (from scratch).
+pf::ContactState contactAt(const pf::FingerModel& model, double gauge_pa, const pf::Obstacle& obstacle) {
+  return pf::ContactSolver(model).solve(gauge_pa, obstacle);
+}
+
+// How far each contact point moves into the object (along its segment's flexion-side normal) when the joints turn by
+// dq: the backbone rebuilt by forward kinematics with q + dq, each contact point carried rigidly by its segment.
+std::vector<double> contactMotion(const pf::FingerParameters& p, const pf::ContactState& c, const std::vector<double>& dq) {
+  const int n = p.chamber_count;
+  auto backbone = [&](const std::vector<double>& q, std::vector<Eigen::Vector2d>& o, std::vector<double>& theta) {
+    o.assign(static_cast<std::size_t>(n + 2), Eigen::Vector2d::Zero());
+    theta.assign(static_cast<std::size_t>(n + 1), 0.0);
+    o[1] = Eigen::Vector2d(p.base_segment_length_m, 0.0);
+    for (int i = 1; i <= n; ++i) {
+      theta[static_cast<std::size_t>(i)] = theta[static_cast<std::size_t>(i - 1)] + q[static_cast<std::size_t>(i - 1)];
+      const double t = theta[static_cast<std::size_t>(i)], z = p.segment_length_m[static_cast<std::size_t>(i - 1)];
+      o[static_cast<std::size_t>(i + 1)] = o[static_cast<std::size_t>(i)] + z * Eigen::Vector2d(std::cos(t), std::sin(t));
+    }
+  };
+  std::vector<double> q(static_cast<std::size_t>(n)), q2(q);
+  for (int j = 0; j < n; ++j) q[static_cast<std::size_t>(j)] = c.joint_angle_rad[j];
+  for (int j = 0; j < n; ++j) q2[static_cast<std::size_t>(j)] = q[static_cast<std::size_t>(j)] + dq[static_cast<std::size_t>(j)];
+  std::vector<Eigen::Vector2d> o, o2;
+  std::vector<double> th, th2;
+  backbone(q, o, th);
+  backbone(q2, o2, th2);
+  std::vector<double> into;
+  for (std::size_t k = 0; k < c.contact_points_m.size(); ++k) {
+    const auto m = static_cast<std::size_t>(c.contact_segments[k]);
+    const double turn = th2[m] - th[m];
+    const Eigen::Vector2d arm = c.contact_points_m[k] - o[m];
+    const Eigen::Vector2d moved = o2[m] + Eigen::Rotation2Dd(turn) * arm;
+    const Eigen::Vector2d d = (o[m + 1] - o[m]).normalized();
+    into.push_back((moved - c.contact_points_m[k]).dot(Eigen::Vector2d(-d.y(), d.x())));
+  }
+  return into;
+}
+
+}  // namespace
+
+// A plate just above the straight finger's tip, across it (the published blocked-force test): the contact rule holds
+// every joint at the first flexion, and the contact force at the tip is then the blocked tip force.
+TEST(FingerForce, APlateAtTheTipPressesWithTheBlockedTipForce) {
+  const pf::FingerParameters p = pf::FingerParameters::defaults();
+  const pf::FingerModel model(p);
+  const double tip_x = 0.085;
+  const pf::Obstacle plate = pf::Obstacle::polygon(
+      {{tip_x - 0.005, 1e-6}, {tip_x + 0.005, 1e-6}, {tip_x + 0.005, 0.01}, {tip_x - 0.005, 0.01}});
+  for (double gauge_pa : {5e4, 1e5, 1.96133e5}) {
+    const pf::ContactState c = contactAt(model, gauge_pa, plate);
+    ASSERT_EQ(c.status, pf::ContactState::Status::kInContact) << gauge_pa;
+    ASSERT_EQ(c.contact_points_m.size(), 1u);
+    EXPECT_EQ(c.contact_segments[0], p.chamber_count) << "the tip segment touches";
+    std::vector<double> f;
+    pf::contactNormalForcesN(model, gauge_pa, c, f);
+    ASSERT_EQ(f.size(), 1u);
+    const double blocked = model.blockedTipForceN(gauge_pa);
+    EXPECT_NEAR(f[0], blocked, 1e-3 * blocked) << gauge_pa;
+  }
+}
+
+// A disk the finger closes on: the forces hold the chain so that no contact point moves along its normal (to first
+// order, by forward kinematics), which a force 1 % off does not; they are positive and rise with the pressure.
+TEST(FingerForce, ContactForcesBalanceTheHeldChain) {
+  const pf::FingerParameters p = pf::FingerParameters::defaults();
+  const pf::FingerModel model(p);
+  const pf::Obstacle disk = pf::Obstacle::disk(0.075, 0.035, 0.01);
+  double previous = 0.0;
+  for (double gauge_pa : {1.6e5, 2.0e5, 2.4e5}) {
+    const pf::ContactState c = contactAt(model, gauge_pa, disk);
+    ASSERT_EQ(c.status, pf::ContactState::Status::kInContact);
+    std::vector<double> f;
+    pf::contactNormalForcesN(model, gauge_pa, c, f);
+    ASSERT_EQ(f.size(), c.contact_points_m.size());
+    EXPECT_GT(f.back(), previous) << gauge_pa;
+    previous = f.back();
+    std::vector<double> moment(7);
+    model.heldJointMomentsNm(gauge_pa, c.held_since_gauge_pa.data(), moment.data());
+    // Each joint turns by its moment less the contact forces' torques (the force on the finger points out of the
+    // object, against the segment's flexion-side normal), times its compliance; eps keeps the turns near 1e-4 rad.
+    auto turns = [&](double scale) {
+      std::vector<double> dq(7);
+      for (int j = 0; j < 7; ++j) {
+        double torque = 0.0;
+        for (std::size_t k = 0; k < f.size(); ++k) {
+          const auto m = static_cast<std::size_t>(c.contact_segments[k]);
+          if (static_cast<std::size_t>(j) >= m) continue;
+          const Eigen::Vector2d d = (c.backbone_m.col(m + 1) - c.backbone_m.col(m)).normalized();
+          const Eigen::Vector2d force = -scale * f[k] * Eigen::Vector2d(-d.y(), d.x());
+          const Eigen::Vector2d arm = c.contact_points_m[k] - Eigen::Vector2d(c.backbone_m.col(j + 1));
+          torque += arm.x() * force.y() - arm.y() * force.x();
+        }
+        dq[static_cast<std::size_t>(j)] = 1e-4 / moment[3] * (moment[static_cast<std::size_t>(j)] + torque) *
+                                          model.jointComplianceWeight(j);
+      }
+      return dq;
+    };
+    const std::vector<double> held = contactMotion(p, c, turns(1.0)), off = contactMotion(p, c, turns(1.01));
+    for (std::size_t k = 0; k < f.size(); ++k) {
+      if (f[k] == 0.0) continue;  // a contact let go may move away
+      EXPECT_LT(std::fabs(held[k]), 1e-3 * std::fabs(off[k])) << gauge_pa << " contact " << k;
+    }
+  }
+}
+
+// No contact, no force; a NaN pressure gives NaN forces, not made-up ones.
+TEST(FingerForce, ContactForcesOnlyInContact) {
+  const pf::FingerModel model(pf::FingerParameters::defaults());
+  std::vector<double> f{1.0};
+  pf::contactNormalForcesN(model, 1e5, contactAt(model, 1e5, pf::Obstacle::disk(0.5, 0.5, 0.01)), f);
+  EXPECT_TRUE(f.empty());
+  const pf::ContactState c = contactAt(model, 2e5, pf::Obstacle::disk(0.075, 0.035, 0.01));
+  pf::contactNormalForcesN(model, std::numeric_limits<double>::quiet_NaN(), c, f);
+  ASSERT_FALSE(f.empty());
+  for (double v : f) EXPECT_TRUE(std::isnan(v));
 }

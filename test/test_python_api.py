@@ -100,6 +100,24 @@ def test_blocked_tip_force_equals_the_cli_bit_for_bit():
         model.blocked_tip_force(numpy.zeros((2, 2)))
 
 
+def test_contact_gives_the_touches_and_their_normal_forces():
+    model = pf.FingerModel()
+    got = model.contact(numpy.array([1.0e5, 2.0e5, 2.4e5]), disk=(0.075, 0.035, 0.01))
+    assert got["contact_point_m"].shape == (3, 7, 2) and got["normal_force_n"].shape == (3, 7)
+    touched = ~numpy.isnan(got["normal_force_n"][-1])
+    assert touched.any() and (got["normal_force_n"][-1][touched] > 0).all()
+    assert not numpy.isnan(got["contact_point_m"][-1][touched]).any()
+    assert numpy.isnan(got["contact_point_m"][-1][~touched]).all()
+    # The force rises with the pressure at the first touch, and a point on the disk's edge is where it presses.
+    first = got["normal_force_n"][1:, 0]
+    assert first[1] > first[0] > 0
+    point = got["contact_point_m"][-1, 0]
+    assert abs(numpy.hypot(point[0] - 0.075, point[1] - 0.035) - 0.01) < 1e-6
+    # Asked for alone, the forces are the same numbers.
+    lean = model.contact(numpy.array([1.0e5, 2.0e5, 2.4e5]), disk=(0.075, 0.035, 0.01), outputs=["normal_force_n"])
+    assert numpy.array_equal(lean["normal_force_n"], got["normal_force_n"], equal_nan=True)
+
+
 def test_bad_input_raises_value_error_naming_it():
     with pytest.raises(ValueError, match="no_such_key"):
         pf.FingerModel(overrides={"no_such_key": 1.0})

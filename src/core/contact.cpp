@@ -220,6 +220,7 @@ TouchEvent searchTouch(Sampler& s, const Obstacle& obstacle, const BackbonePoint
   }
   event.search_x = b.lo;
   event.frozen = m;
+  event.segment = seg;
   event.frozen_q = frozen_q;
   s.heldAngles(b.lo, s.first - 1, m, event.frozen_q);
   event.point_m = obstacle.nearestPoint(points.col(seg), points.col(seg + 1));
@@ -276,6 +277,7 @@ ContactState ContactTracker::solve(double gauge_pa) {
   const int n = model.chamberCount();
   ContactState out;
   out.held.assign(static_cast<std::size_t>(n), false);
+  out.held_since_gauge_pa.setConstant(n, std::numeric_limits<double>::quiet_NaN());
   const double pressure = std::max(gauge_pa, 0.0);
   out.joint_angle_rad.resize(n);  // the free angles first; the held ones are written over them below
   double free_half_angle_rad = 0.0;  // theta_1, the half angle of chamber 1's walls (all of them, identical chambers)
@@ -326,6 +328,8 @@ ContactState ContactTracker::solve(double gauge_pa) {
     if (out.touches == 0) out.first_touch_gauge_pa = e.gauge_pa;
     ++out.touches;
     out.contact_points_m.push_back(e.point_m);
+    out.contact_segments.push_back(e.segment);
+    out.held_since_gauge_pa.segment(frozen, e.frozen - frozen).setConstant(e.gauge_pa);
     frozen = e.frozen;
     out.joint_angle_rad.head(frozen) = e.frozen_q.head(frozen);
   }

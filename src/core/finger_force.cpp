@@ -12,18 +12,26 @@
 
 namespace pneumatic_finger {
 
+// The free wall's bulge at @p gauge_pa (m): stages 1-3 of its law (NaN beyond the membrane law's limit point).
+double FingerModel::freeBulgeM(const ChamberGroup& g, double gauge_pa) const {
+  if (!(gauge_pa > 0)) return 0.0;
+  if (membrane_) return 0.5 * g.chamber_height_m * membraneStretchExcess(g.membrane, gauge_pa);
+  return bulge(stretchExcess(energyGroup(gauge_pa, parameters_.atmospheric_pressure_pa, g.shear_modulus_pa)),
+               g.chamber_height_m);
+}
+
 // The strip's height 2a (m). The free wall at this pressure is the law's own shape, grown by h from the rest circle of
 // radius R = L/2: a sphere of radius R + h (membrane law), or half an ellipse of semi-axes R and R + h (paper law,
-// stage 3). The contact plane lies R + c from its centre, where h = c first touches; a is the shape's half-chord
-// there, at most R (the wall is L tall). 0 up to the contact pressure and for a vacuum; NaN beyond the limit point.
-double FingerModel::contactStripHeightM(const ChamberGroup& g, double gauge_pa) const {
+// stage 3). The contact plane lies R + h_plane from its centre: h_plane = c for the straight finger, where the walls
+// first touch, and the bulge at its touch for a joint held since (docs/MODEL.md). a is the shape's half-chord there,
+// at most R (the wall is L tall). 0 up to the contact pressure and for a vacuum; NaN beyond the limit point.
+double FingerModel::contactStripHeightM(const ChamberGroup& g, double gauge_pa, double plane_bulge_m) const {
   if (!(gauge_pa > g.contact_gauge_pa)) return 0.0;
-  const double r = 0.5 * g.chamber_height_m, c = g.chamber_gap_m;
-  const double h =
-      membrane_ ? r * membraneStretchExcess(g.membrane, gauge_pa)
-                : bulge(stretchExcess(energyGroup(gauge_pa, parameters_.atmospheric_pressure_pa, g.shear_modulus_pa)),
-                        g.chamber_height_m);
-  const double chord = std::sqrt((h - c) * (2.0 * r + h + c));  // sqrt((R + h)^2 - (R + c)^2), no cancellation
+  const double h = freeBulgeM(g, gauge_pa);
+  if (std::isnan(h)) return h;
+  if (!(h > plane_bulge_m)) return 0.0;
+  const double r = 0.5 * g.chamber_height_m, p = plane_bulge_m;
+  const double chord = std::sqrt((h - p) * (2.0 * r + h + p));  // sqrt((R + h)^2 - (R + p)^2), no cancellation
   return 2.0 * (membrane_ ? std::min(chord, r) : r / (r + h) * chord);
 }
 
@@ -52,14 +60,16 @@ void FingerModel::buildForceModel() {
   uniform_force_lever_ = groups_.size() == 1 && uniform ? l_w / force_l2w_ : 0.0;
 }
 
-// The weaker of a joint's two facing walls bounds what passes between them: min_k P (2a)_k e_k b_k.
-double FingerModel::jointMomentNm(std::size_t joint, double gauge_pa) const {
+// The weaker of a joint's two facing walls bounds what passes between them: min_k P (2a)_k e_k b_k, with each wall's
+// contact plane at its bulge at @p held_since_gauge_pa (c when it was held before the walls touched).
+double FingerModel::jointMomentNm(std::size_t joint, double gauge_pa, double held_since_gauge_pa) const {
   double m = std::numeric_limits<double>::infinity();
   for (const int k : {force_joints_[joint].chamber_a, force_joints_[joint].chamber_b}) {
     const auto uk = static_cast<std::size_t>(k);
     const ChamberGroup& g = groups_[static_cast<std::size_t>(group_of_chamber_[uk])];
-    const double strip_m = contactStripHeightM(g, gauge_pa);
-    if (std::isnan(strip_m)) return strip_m;  // beyond the limit point: no free shape to flatten
+    const double plane_m = std::max(g.chamber_gap_m, freeBulgeM(g, held_since_gauge_pa));
+    const double strip_m = contactStripHeightM(g, gauge_pa, plane_m);
+    if (std::isnan(strip_m) || std::isnan(plane_m)) return std::numeric_limits<double>::quiet_NaN();
     m = std::min(m, strip_m > 0 ? gauge_pa * strip_m * push_lever_m2_[uk] : 0.0);
   }
   return m;
@@ -67,8 +77,19 @@ double FingerModel::jointMomentNm(std::size_t joint, double gauge_pa) const {
 
 void FingerModel::straightJointMomentsNm(double gauge_pa, double* moment_nm) const {
   for (std::size_t j = 0; j < force_joints_.size(); ++j) {
-    moment_nm[j] = std::isnan(gauge_pa) ? gauge_pa : jointMomentNm(j, gauge_pa);
+    moment_nm[j] = std::isnan(gauge_pa) ? gauge_pa : jointMomentNm(j, gauge_pa, 0.0);
   }
+}
+
+void FingerModel::heldJointMomentsNm(double gauge_pa, const double* held_since_gauge_pa, double* moment_nm) const {
+  for (std::size_t j = 0; j < force_joints_.size(); ++j) {
+    const double since = held_since_gauge_pa[j];
+    moment_nm[j] = std::isnan(gauge_pa) ? gauge_pa : std::isnan(since) ? 0.0 : jointMomentNm(j, gauge_pa, since);
+  }
+}
+
+double FingerModel::jointComplianceWeight(int joint) const {
+  return force_joints_.at(static_cast<std::size_t>(joint)).weight;
 }
 
 // The plate holds the tip. Joint j turns by (M_j - F l_j) w_j, its moment less the tip force's times its compliance;
@@ -77,12 +98,12 @@ void FingerModel::straightJointMomentsNm(double gauge_pa, double* moment_nm) con
 double FingerModel::blockedTipForceN(double gauge_pa) const {
   if (std::isnan(gauge_pa)) return gauge_pa;
   if (uniform_force_lever_ > 0) {
-    const double strip_m = contactStripHeightM(groups_[0], gauge_pa);
+    const double strip_m = contactStripHeightM(groups_[0], gauge_pa, groups_[0].chamber_gap_m);
     return strip_m > 0 || std::isnan(strip_m) ? gauge_pa * strip_m * push_lever_m2_[0] * uniform_force_lever_ : 0.0;
   }
   double moment_lever = 0.0;
   for (std::size_t j = 0; j < force_joints_.size(); ++j) {
-    moment_lever += jointMomentNm(j, gauge_pa) * force_joints_[j].tip_distance_m * force_joints_[j].weight;
+    moment_lever += jointMomentNm(j, gauge_pa, 0.0) * force_joints_[j].tip_distance_m * force_joints_[j].weight;
   }
   return moment_lever / force_l2w_;
 }

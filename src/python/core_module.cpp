@@ -96,7 +96,8 @@ const std::vector<OutputField> kStateFields = {
     {"status", E::kCode, {}}};
 const std::vector<OutputField> kContactFields = {
     {"joint_angle_rad", E::kFloat64, {-1}}, {"backbone_m", E::kFloat64, {-2, 2}}, {"held", E::kFlag, {-1}},
-    {"first_touch_gauge_pa", E::kFloat64, {}}, {"status", E::kCode, {}}};
+    {"first_touch_gauge_pa", E::kFloat64, {}}, {"status", E::kCode, {}},
+    {"contact_point_m", E::kFloat64, {-1, 2}}, {"normal_force_n", E::kFloat64, {-1}}};
 const std::vector<OutputField> kDesignFields = {{"tip_angle_rad", E::kFloat64, {}}, {"tip_x_m", E::kFloat64, {}},
                                                 {"tip_y_m", E::kFloat64, {}},       {"contact_gauge_pa", E::kFloat64, {}},
                                                 {"status", E::kCode, {}}};
@@ -108,6 +109,8 @@ struct ContactRows {
   bool* held;
   double* first_touch_gauge_pa;
   std::uint8_t* status;
+  double* contact_point_m;  // (N, 2) per pressure: the touches in order, NaN after the last
+  double* normal_force_n;   // (N,) per pressure: the normal force at each, NaN after the last (computed only if asked)
 };
 
 class PyFingerModel {
@@ -188,7 +191,8 @@ class PyFingerModel {
     OutputArrays arrays(kContactFields, outputs, out, p.size(), model_->chamberCount());
     arrays.refuseOverlap(p.data(), count * sizeof(double));
     ContactRows rows{arrays.data<double>("joint_angle_rad"), arrays.data<double>("backbone_m"), arrays.data<bool>("held"),
-                     arrays.data<double>("first_touch_gauge_pa"), arrays.data<std::uint8_t>("status")};
+                     arrays.data<double>("first_touch_gauge_pa"), arrays.data<std::uint8_t>("status"),
+                     arrays.data<double>("contact_point_m"), arrays.data<double>("normal_force_n")};
     std::vector<pf::Obstacle> obstacles;
     for (py::ssize_t i = 0; i < (per_pressure ? disks.shape(0) : 1); ++i) {
       const double* d = disks.data() + 3 * i;
@@ -266,6 +270,27 @@ class PyFingerModel {
       for (std::size_t k = 0; rows.held && k < n; ++k) rows.held[i * n + k] = s.held[k];
       if (rows.first_touch_gauge_pa) rows.first_touch_gauge_pa[i] = s.first_touch_gauge_pa;
       if (rows.status) rows.status[i] = contactStatusCode(s.status);
+      writeTouches(s, gauge_pa[i], rows, i);
+    }
+  }
+
+  // The contact points and, only when asked for, their normal forces (contactNormalForcesN), NaN-padded to N.
+  void writeTouches(const pf::ContactState& s, double gauge_pa, const ContactRows& rows, std::size_t i) const {
+    const auto n = static_cast<std::size_t>(model_->chamberCount());
+    if (rows.contact_point_m) {
+      double* row = rows.contact_point_m + i * 2 * n;
+      std::fill(row, row + 2 * n, NAN);
+      for (std::size_t k = 0; k < s.contact_points_m.size() && k < n; ++k) {
+        row[2 * k] = s.contact_points_m[k].x();
+        row[2 * k + 1] = s.contact_points_m[k].y();
+      }
+    }
+    if (rows.normal_force_n) {
+      std::vector<double> force;
+      pf::contactNormalForcesN(*model_, gauge_pa, s, force);
+      double* row = rows.normal_force_n + i * n;
+      std::fill(row, row + n, NAN);
+      std::copy(force.begin(), force.begin() + static_cast<std::ptrdiff_t>(std::min(force.size(), n)), row);
     }
   }
 
@@ -388,8 +413,10 @@ PYBIND11_MODULE(_core, m) {
       .def("contact", &PyFingerModel::contact, py::arg("gauge_pa"), py::arg("disk"), py::arg("outputs") = py::none(),
            py::arg("out") = py::none(),
            "The finger closing on a disk (x_m, y_m, radius_m) of its plane, or one disk per pressure (P, 3): "
-           "joint_angle_rad (P, N), backbone_m (P, N+2, 2), held (P, N) bool, first_touch_gauge_pa (P,) and status (P,) "
-           "uint8 codes (CONTACT_STATUS names them); outputs and out as for evaluate")
+           "joint_angle_rad (P, N), backbone_m (P, N+2, 2), held (P, N) bool, first_touch_gauge_pa (P,), status (P,) "
+           "uint8 codes (CONTACT_STATUS names them), contact_point_m (P, N, 2) and normal_force_n (P, N): each touch's "
+           "point and the normal force (N) the finger presses with there, in touch order, NaN after the last; outputs "
+           "and out as for evaluate")
       .def("sweep_designs", &PyFingerModel::sweepDesigns, py::arg("keys"), py::arg("values"), py::arg("gauge_pa"),
            py::arg("outputs") = py::none(),
            "Many designs at one pressure: this model with keys set to each row of values (designs, len(keys)): "

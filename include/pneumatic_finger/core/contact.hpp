@@ -5,7 +5,7 @@
 // angle q_n(p) until the backbone O_0..O_{N+1} would enter the obstacle. At that first touch, at pressure p*, let
 // segment m (O_m -> O_{m+1}, moved by joints 1..m) be the segment that touches: every still-free joint up to m
 // freezes at its angle at p*. Later joints go on following q_n(p), and the rule repeats up to the pressure asked
-// for. No force is modelled: nothing in the model or in the data gives one.
+// for. The force at the contacts is contactNormalForcesN's, computed only on request.
 #pragma once
 
 #include <Eigen/Core>
@@ -38,6 +38,8 @@ struct ContactState {
   BackbonePoints backbone_m;           ///< O_0..O_{N+1} (m)
   std::vector<bool> held;              ///< per joint: frozen by contact
   std::vector<Eigen::Vector2d> contact_points_m;  ///< where the backbone touches (one per touch event)
+  std::vector<int> contact_segments;   ///< per contact point: the backbone segment touching (O_m -> O_{m+1}: m)
+  JointAngles held_since_gauge_pa;     ///< per joint: the pressure of the touch that froze it (Pa; NaN: free)
   double first_touch_gauge_pa = std::numeric_limits<double>::quiet_NaN();  ///< p* of the first touch (NaN: none)
   int touches = 0;                     ///< touch events solved
 };
@@ -48,9 +50,19 @@ struct TouchEvent {
   double gauge_pa = 0.0;
   double search_x = 0.0;  ///< the search variable at the touch (contact.cpp)
   int frozen = 0;
+  int segment = 0;  ///< the backbone segment that touches (O_segment -> O_segment+1)
   JointAngles frozen_q;
   Eigen::Vector2d point_m = Eigen::Vector2d::Zero();
 };
+
+/// The normal force (N) with which the finger presses at each of @p contact's contact points at @p gauge_pa
+/// (docs/MODEL.md, "Force"; src/core/contact_force.cpp), into @p force_n (one per contact point; cleared first).
+/// Each held joint exerts the moment of its walls held since its touch (FingerModel::heldJointMomentsNm); the moments
+/// are shared by the joints' compliance so that no contact point moves along its normal, the normal of its backbone
+/// segment; frictionless. A contact that would pull gets 0 and the others are solved again. Empty for a contact
+/// state that is not in contact.
+void contactNormalForcesN(const FingerModel& model, double gauge_pa, const ContactState& contact,
+                          std::vector<double>& force_n);
 
 /// Applies the contact rule to a model. Holds no state of its own: safe beside the model's other const users.
 class ContactSolver {

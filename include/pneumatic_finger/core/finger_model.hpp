@@ -193,6 +193,15 @@ class FingerModel {
   /// and for a vacuum; NaN for a NaN pressure and beyond the membrane law's limit point.
   void straightJointMomentsNm(double gauge_pa, double* moment_nm) const;
 
+  /// The moments (N m) at the joints of a finger whose joint j has been held since the pressure
+  /// @p held_since_gauge_pa[j] (NaN: free, and 0 moment), at @p gauge_pa: as straightJointMomentsNm, with each held
+  /// wall's contact plane where its free bulge was at that pressure (c if before contact). The contact rule's
+  /// ContactState::held_since_gauge_pa is this input; contactNormalForcesN shares these moments among the contacts.
+  void heldJointMomentsNm(double gauge_pa, const double* held_since_gauge_pa, double* moment_nm) const;
+
+  /// Joint @p joint's (0-based) compliance weight in the force model: 2 (two walls turn it), 1 + s0 for joint 1.
+  double jointComplianceWeight(int joint) const;
+
   /// The blocked tip force (N) at @p gauge_pa: the finger held straight by a plate at its tip, orthogonal to the
   /// bending plane. The joints' moments are shared by their compliance, linear about the straight finger (the planar
   /// static balance with the tip held): F = sum_j M_j l_j w_j / sum_j l_j^2 w_j, l_j the joint's distance to the tip,
@@ -265,10 +274,13 @@ class FingerModel {
   /// The force model's constants, computed once (finger_force.cpp): per joint its pushing walls, distance to the
   /// tip and compliance weight.
   void buildForceModel();
-  /// The height 2a (m) of the strip of @p group's wall pressed flat against its neighbour's at @p gauge_pa.
-  double contactStripHeightM(const ChamberGroup& group, double gauge_pa) const;
-  /// The moment (N m) at joint @p joint (0-based) of the straight finger at @p gauge_pa (not NaN).
-  double jointMomentNm(std::size_t joint, double gauge_pa) const;
+  /// The free bulge h (m) of @p group's wall at @p gauge_pa (stages 1-3; 0 for P <= 0; NaN beyond the limit point).
+  double freeBulgeM(const ChamberGroup& group, double gauge_pa) const;
+  /// The height 2a (m) of the strip of @p group's wall pressed flat against its neighbour's at @p gauge_pa, the
+  /// contact plane at bulge @p plane_bulge_m.
+  double contactStripHeightM(const ChamberGroup& group, double gauge_pa, double plane_bulge_m) const;
+  /// The moment (N m) at joint @p joint (0-based) at @p gauge_pa (not NaN), held since @p held_since_gauge_pa.
+  double jointMomentNm(std::size_t joint, double gauge_pa, double held_since_gauge_pa) const;
   /// Throws: @p workspace was sized for a model of another shape (evaluate(), evaluateMany()).
   [[noreturn]] void refuseWorkspace(const FingerWorkspace& workspace) const;
   /// The rest shape, with NaN for stretch and bulge when the options leave them out (chamber_detail false).

@@ -1,0 +1,85 @@
+// The normal force at each contact point of a finger the contact rule holds (docs/MODEL.md, "Force"). The held
+// joints' moments (FingerModel::heldJointMomentsNm) are the load; the object answers at the contact points, along
+// the normals of the touching backbone segments, frictionless. As for the blocked tip force, the chain is statically
+// indeterminate and the joints' compliance shares the load: joint j turns by (M_j - sum_k r_jk F_k) w_j, and no
+// contact point moves along its normal, sum_j r_jk (M_j - sum_l r_jl F_l) w_j = 0 for every contact k. r_jk is how
+// far contact k moves into the object per radian of joint j: (z x (p_k - O_j)) . n_k, for the joints that move the
+// touching segment (1..m for segment O_m -> O_{m+1}).
+#include <Eigen/Dense>
+
+#include <cmath>
+#include <limits>
+#include <vector>
+
+#include "pneumatic_finger/core/contact.hpp"
+
+namespace pneumatic_finger {
+
+namespace {
+
+// The small normal equations, A F = b, with F >= 0: a contact that would pull (F_k < 0) is let go (the most negative
+// first) and the rest solved again. A has at most one row per touch event.
+void solveNonNegative(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, std::vector<double>& force_n) {
+  const auto k = static_cast<int>(b.size());
+  std::vector<bool> active(static_cast<std::size_t>(k), true);
+  force_n.assign(static_cast<std::size_t>(k), 0.0);
+  for (int round = 0; round < k; ++round) {
+    std::vector<int> idx;
+    for (int i = 0; i < k; ++i) {
+      if (active[static_cast<std::size_t>(i)]) idx.push_back(i);
+    }
+    const auto m = static_cast<Eigen::Index>(idx.size());
+    Eigen::MatrixXd sub(m, m);
+    Eigen::VectorXd rhs(m);
+    for (Eigen::Index r = 0; r < m; ++r) {
+      rhs(r) = b(idx[static_cast<std::size_t>(r)]);
+      for (Eigen::Index c = 0; c < m; ++c) sub(r, c) = a(idx[static_cast<std::size_t>(r)], idx[static_cast<std::size_t>(c)]);
+    }
+    // Two contacts on one segment give equal rows: the least-norm answer shares between them.
+    const Eigen::VectorXd f = sub.completeOrthogonalDecomposition().solve(rhs);
+    Eigen::Index worst = 0;
+    if (m == 0 || f.minCoeff(&worst) >= 0) {
+      for (Eigen::Index r = 0; r < m; ++r) force_n[static_cast<std::size_t>(idx[static_cast<std::size_t>(r)])] = f(r);
+      return;
+    }
+    active[static_cast<std::size_t>(idx[static_cast<std::size_t>(worst)])] = false;
+  }
+}
+
+}  // namespace
+
+void contactNormalForcesN(const FingerModel& model, double gauge_pa, const ContactState& contact,
+                          std::vector<double>& force_n) {
+  force_n.clear();
+  if (contact.status != ContactState::Status::kInContact || contact.contact_points_m.empty()) return;
+  const int n = model.chamberCount();
+  const auto count = static_cast<Eigen::Index>(contact.contact_points_m.size());
+  std::vector<double> moment(static_cast<std::size_t>(n));
+  model.heldJointMomentsNm(gauge_pa, contact.held_since_gauge_pa.data(), moment.data());
+  // r (joints x contacts): the lever of each contact's normal force about each joint that moves it.
+  Eigen::MatrixXd r = Eigen::MatrixXd::Zero(n, count);
+  for (Eigen::Index k = 0; k < count; ++k) {
+    const int segment = contact.contact_segments[static_cast<std::size_t>(k)];
+    const Eigen::Vector2d d = contact.backbone_m.col(segment + 1) - contact.backbone_m.col(segment);
+    const Eigen::Vector2d normal = Eigen::Vector2d(-d.y(), d.x()).normalized();  // the flexion side: into the object
+    const Eigen::Vector2d& p = contact.contact_points_m[static_cast<std::size_t>(k)];
+    for (int j = 0; j < segment && j < n; ++j) {
+      const Eigen::Vector2d arm = p - contact.backbone_m.col(j + 1);  // O_{j+1} is joint j + 1's axis
+      r(j, k) = Eigen::Vector2d(-arm.y(), arm.x()).dot(normal);
+    }
+  }
+  Eigen::VectorXd w(n), m(n);
+  for (int j = 0; j < n; ++j) {
+    w(j) = model.jointComplianceWeight(j);
+    m(j) = moment[static_cast<std::size_t>(j)];
+  }
+  if (!m.allFinite()) {
+    force_n.assign(static_cast<std::size_t>(count), std::numeric_limits<double>::quiet_NaN());
+    return;
+  }
+  const Eigen::MatrixXd a = r.transpose() * w.asDiagonal() * r;
+  const Eigen::VectorXd b = r.transpose() * w.asDiagonal() * m;
+  solveNonNegative(a, b, force_n);
+}
+
+}  // namespace pneumatic_finger
