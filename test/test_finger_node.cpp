@@ -407,6 +407,13 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
     for (int i = 0; i < 7; ++i) EXPECT_EQ(listener_->joint_states[stamp].position[static_cast<std::size_t>(i)], free.joint_angle_rad[i]);
     EXPECT_TRUE(std::isnan(s.touch_gauge_pa));
     EXPECT_TRUE(s.contact_points.empty());
+    // No contact, no force: the free joints carry no moment, and joint_states.effort says so.
+    EXPECT_TRUE(s.contact_normal_forces_n.empty());
+    ASSERT_EQ(s.joint_moment_nm.size(), 7u);
+    for (std::size_t k = 0; k < 7; ++k) {
+      EXPECT_EQ(s.joint_moment_nm[k], 0.0);
+      EXPECT_EQ(listener_->joint_states[stamp].effort.at(k), 0.0);
+    }
   }
 
   // A 12 mm ball 2 mm off the finger's plane: its section is a disk of radius sqrt(12^2 - 2^2) mm.
@@ -431,6 +438,21 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
     ASSERT_EQ(s.contact_points.size(), want.contact_points_m.size());
     EXPECT_NEAR(s.contact_points[0].x, want.contact_points_m[0].x(), 1e-9);
     EXPECT_NEAR(s.tip_angle_rad, want.joint_angle_rad.sum(), 1e-12);
+    // The force model at the contact (the core's, on the same section): the held joints' moments in finger_state and
+    // joint_states.effort, the normal force at each contact point.
+    std::vector<double> want_force, want_moment(7);
+    pf::contactNormalForcesN(model, 196133.0, want, want_force);
+    model.heldJointMomentsNm(196133.0, want.held_since_gauge_pa.data(), want_moment.data());
+    ASSERT_EQ(s.contact_normal_forces_n.size(), want_force.size());
+    for (std::size_t k = 0; k < want_force.size(); ++k) {
+      EXPECT_GT(want_force[k], 0.0);
+      EXPECT_NEAR(s.contact_normal_forces_n[k], want_force[k], 1e-9 * want_force[k]) << "contact " << k;
+    }
+    for (std::size_t k = 0; k < 7; ++k) {
+      EXPECT_NEAR(s.joint_moment_nm[k], want_moment[k], 1e-9 * std::fabs(want_moment[k])) << "joint " << k + 1;
+      EXPECT_EQ(js.effort.at(k), s.joint_moment_nm[k]);
+      EXPECT_EQ(s.joint_moment_nm[k] > 0, static_cast<bool>(want.held[k])) << "joint " << k + 1;
+    }
   }
 
   // Cleared: the free finger again.

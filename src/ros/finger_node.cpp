@@ -96,6 +96,8 @@ void FingerNode::sizeMessages() {
   const std::string& prefix = settings_.urdf.prefix;
   joint_states_.name.resize(un);
   joint_states_.position.resize(un);
+  joint_states_.effort.resize(un);
+  finger_state_.joint_moment_nm.resize(un);
   transforms_.resize(un);
   for (int i = 1; i <= n; ++i) {
     const auto k = static_cast<std::size_t>(i - 1);
@@ -254,6 +256,7 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
       finger_state_.contact_points.push_back(p);
     }
   }
+  writeForces(state.gauge_pa, contact);
   // The error bar of the free model at this pressure (vacuum: the rest shape, 0).
   const TipUncertainty::At bar = tip_uncertainty_.at(state.gauge_pa);
   finger_state_.tip_angle_uncertainty_rad = bar.tip_angle_rad;
@@ -265,6 +268,21 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
   joint_states_pub_.publish(joint_states_);
   finger_state_pub_.publish(finger_state_);
   publishTipMarker(bar);
+}
+
+// The force model only where there is contact (a scene that needs it): the held joints' moments, into finger_state
+// and joint_states.effort, and the normal force at each contact point. A free finger's joints carry no moment: its
+// walls are at their free bulge, so the zeros are the model's answer, not a stand-in.
+void FingerNode::writeForces(double gauge_pa, const ContactState* contact) {
+  const auto n = static_cast<std::size_t>(settings_.finger.chamber_count);
+  std::fill(finger_state_.joint_moment_nm.begin(), finger_state_.joint_moment_nm.end(), 0.0);
+  finger_state_.contact_normal_forces_n.clear();
+  if (contact && contact->status == ContactState::Status::kInContact) {
+    model_->heldJointMomentsNm(gauge_pa, contact->held_since_gauge_pa.data(), finger_state_.joint_moment_nm.data());
+    contactNormalForcesN(*model_, gauge_pa, *contact, finger_state_.contact_normal_forces_n);
+  }
+  std::copy(finger_state_.joint_moment_nm.begin(), finger_state_.joint_moment_nm.begin() + static_cast<long>(n),
+            joint_states_.effort.begin());
 }
 
 void FingerNode::publishTipMarker(const TipUncertainty::At& bar) {

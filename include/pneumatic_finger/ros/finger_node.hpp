@@ -78,6 +78,8 @@ class FingerNode {
   TipUncertainty tip_uncertainty_;
   double marker_bar_m_ = -1.0;
   bool marker_extrapolated_ = false;
+  /// The held joints' moments and the contact forces into finger_state and joint_states.effort (only in contact).
+  void writeForces(double gauge_pa, const ContactState* contact);
   void publishTipMarker(const TipUncertainty::At& bar);
   ros::ServiceServer inverse_srv_;
   // Made only with publish_tf: without it the node does not even advertise /tf and /tf_static.
