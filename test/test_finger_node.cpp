@@ -3,6 +3,7 @@
 #include <Eigen/Geometry>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
+#include <visualization_msgs/MarkerArray.h>
 #include <ros/topic.h>
 #include <sensor_msgs/FluidPressure.h>
 #include <sensor_msgs/JointState.h>
@@ -368,6 +369,14 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
   pf::FingerModel model(params);
   pf::FingerWorkspace ws(model);
   ros::Publisher object_pub = nh_->advertise<pf::GraspObject>("grasp_object", 1, true);
+  // rviz's force arrows: the last array the node sent (it sends them only to a subscriber, and only in contact).
+  std::mutex arrows_mutex;
+  visualization_msgs::MarkerArray arrows;
+  ros::Subscriber arrows_sub = nh_->subscribe<visualization_msgs::MarkerArray>(
+      "contact_force_markers", 10, [&](const visualization_msgs::MarkerArray::ConstPtr& m) {
+        std::lock_guard<std::mutex> lock(arrows_mutex);
+        arrows = *m;
+      });
   const Eigen::Isometry3d parent_from_finger =
       Eigen::Translation3d(kMountXyz[0], kMountXyz[1], kMountXyz[2]) *
       Eigen::AngleAxisd(kMountRpy[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(kMountRpy[1], Eigen::Vector3d::UnitY()) *
@@ -422,6 +431,8 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
   const pf::ContactState want =
       pf::ContactSolver(model).solve(196133.0, pf::Obstacle::disk(0.06, 0.03, std::sqrt(0.012 * 0.012 - 0.002 * 0.002)));
   ASSERT_EQ(want.status, pf::ContactState::Status::kInContact);
+  std::size_t want_force_count = 0;
+  double want_first_force = 0.0;
   {
     std::lock_guard<std::mutex> lock(listener_->mutex);
     const auto& s = listener_->finger_states[stamp];
@@ -442,6 +453,8 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
     // joint_states.effort, the normal force at each contact point.
     std::vector<double> want_force, want_moment(7);
     pf::contactNormalForcesN(model, 196133.0, want, want_force);
+    want_force_count = want_force.size();
+    want_first_force = want_force.at(0);
     model.heldJointMomentsNm(196133.0, want.held_since_gauge_pa.data(), want_moment.data());
     ASSERT_EQ(s.contact_normal_forces_n.size(), want_force.size());
     for (std::size_t k = 0; k < want_force.size(); ++k) {
@@ -453,6 +466,21 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
       EXPECT_EQ(js.effort.at(k), s.joint_moment_nm[k]);
       EXPECT_EQ(s.joint_moment_nm[k] > 0, static_cast<bool>(want.held[k])) << "joint " << k + 1;
     }
+  }
+  {
+    // An arrow per contact from the contact point, 2 cm per newton (~force_arrow_m_per_n's default).
+    publishAndWait(196133.0);
+    ros::Duration(0.1).sleep();
+    std::lock_guard<std::mutex> lock(arrows_mutex);
+    ASSERT_EQ(arrows.markers.size(), want_force_count + 1) << "a DELETEALL, then one arrow per contact";
+    EXPECT_EQ(arrows.markers[0].action, visualization_msgs::Marker::DELETEALL);
+    const visualization_msgs::Marker& a = arrows.markers[1];
+    EXPECT_EQ(a.type, visualization_msgs::Marker::ARROW);
+    EXPECT_EQ(a.header.frame_id, kPrefix + "segment_0");
+    ASSERT_EQ(a.points.size(), 2u);
+    EXPECT_NEAR(a.points[0].x, want.contact_points_m[0].x(), 1e-9);
+    const double length = std::hypot(a.points[1].x - a.points[0].x, a.points[1].y - a.points[0].y);
+    EXPECT_NEAR(length, 0.02 * want_first_force, 1e-9);
   }
 
   // Cleared: the free finger again.

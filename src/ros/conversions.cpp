@@ -47,4 +47,37 @@ std::string solidFromMessage(const GraspObject& msg, SolidObject& solid) {
 }
 
 
+visualization_msgs::MarkerArray contactForceArrows(const ContactState& contact, const std::vector<double>& force_n,
+                                                   const std::string& frame_id, const std::string& ns,
+                                                   double metres_per_newton) {
+  visualization_msgs::MarkerArray out;
+  visualization_msgs::Marker clear;
+  clear.header.frame_id = frame_id;
+  clear.ns = ns;
+  clear.action = visualization_msgs::Marker::DELETEALL;
+  out.markers.push_back(clear);
+  for (std::size_t k = 0; k < force_n.size() && k < contact.contact_points_m.size(); ++k) {
+    if (!std::isfinite(force_n[k]) || force_n[k] <= 0) continue;
+    const auto m = static_cast<Eigen::Index>(contact.contact_segments.at(k));
+    const Eigen::Vector2d d = (contact.backbone_m.col(m + 1) - contact.backbone_m.col(m)).normalized();
+    const Eigen::Vector2d from = contact.contact_points_m[k];
+    const Eigen::Vector2d to = from + force_n[k] * metres_per_newton * Eigen::Vector2d(-d.y(), d.x());
+    visualization_msgs::Marker a;
+    a.header.frame_id = frame_id;
+    a.ns = ns;
+    a.id = static_cast<int>(k);
+    a.type = visualization_msgs::Marker::ARROW;
+    a.action = visualization_msgs::Marker::ADD;
+    a.pose.orientation.w = 1.0;
+    a.frame_locked = true;
+    geometry_msgs::Point p0, p1;
+    p0.x = from.x(), p0.y = from.y(), p1.x = to.x(), p1.y = to.y();
+    a.points = {p0, p1};
+    a.scale.x = 0.0015, a.scale.y = 0.003, a.scale.z = 0.004;  // shaft and head diameters, head length (m)
+    a.color.r = 1.0f, a.color.g = 0.25f, a.color.b = 0.1f, a.color.a = 1.0f;
+    out.markers.push_back(a);
+  }
+  return out;
+}
+
 }  // namespace pneumatic_finger

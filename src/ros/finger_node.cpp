@@ -126,6 +126,7 @@ void FingerNode::setUpTipMarker(ros::NodeHandle& nh) {
   const std::string& prefix = settings_.urdf.prefix;
   tip_uncertainty_ = settings_.tip_uncertainty;
   tip_marker_pub_ = nh.advertise<visualization_msgs::Marker>("tip_uncertainty_marker", 1, true);
+  force_marker_pub_ = nh.advertise<visualization_msgs::MarkerArray>("contact_force_markers", 1);
   tip_marker_.header.frame_id = tipLinkName(prefix);
   tip_marker_.header.stamp = ros::Time(0);  // "latest"
   tip_marker_.frame_locked = true;  // rviz re-transforms it every frame: the sphere rides on the tip as the finger moves
@@ -277,10 +278,18 @@ void FingerNode::writeForces(double gauge_pa, const ContactState* contact) {
   const auto n = static_cast<std::size_t>(settings_.finger.chamber_count);
   std::fill(finger_state_.joint_moment_nm.begin(), finger_state_.joint_moment_nm.end(), 0.0);
   finger_state_.contact_normal_forces_n.clear();
-  if (contact && contact->status == ContactState::Status::kInContact) {
+  const bool in_contact = contact && contact->status == ContactState::Status::kInContact;
+  if (in_contact) {
     model_->heldJointMomentsNm(gauge_pa, contact->held_since_gauge_pa.data(), finger_state_.joint_moment_nm.data());
     contactNormalForcesN(*model_, gauge_pa, *contact, finger_state_.contact_normal_forces_n);
   }
+  // The arrows only for someone who looks, and once more when the contact ends (to clear them).
+  if ((in_contact || arrows_shown_) && force_marker_pub_.getNumSubscribers() > 0) {
+    force_marker_pub_.publish(contactForceArrows(in_contact ? *contact : ContactState(),
+                                                 finger_state_.contact_normal_forces_n, finger_state_.header.frame_id,
+                                                 settings_.urdf.prefix + "contact_force", settings_.force_arrow_m_per_n));
+  }
+  arrows_shown_ = in_contact;
   std::copy(finger_state_.joint_moment_nm.begin(), finger_state_.joint_moment_nm.begin() + static_cast<long>(n),
             joint_states_.effort.begin());
 }

@@ -59,6 +59,8 @@ const std::vector<NodeParameterSpec>& specs() {
       numberParameter("object_rate_hz", node.object_rate_hz, 0, true, 1000, "Hz",
              "while there is a grasp object: how often its pose in the finger's frame is looked up (tf) and, when it "
              "changed (the arm or the object moved), the finger re-solved and re-published"),
+      numberParameter("force_arrow_m_per_n", node.force_arrow_m_per_n, 0, true, 10, "m/N",
+             "contact_force_markers: each contact's arrow is this long per newton of its normal force"),
       numberParameter("transform_timeout_s", node.transform_timeout_s, 0, false, 3600, "s",
              "the object's transform from tf older than this (its publisher stopped, e.g. robot_state_publisher "
              "died) is no transform: object_status OBJECT_NO_TRANSFORM, the free finger, until it is fresh again; "
@@ -211,6 +213,7 @@ void readModelAndInput(const NodeParameterReader& in, NodeSettings& s) {
   s.input.validated_max_gauge_pa = in.number("validated_max_gauge_pa", s.urdf.max_gauge_pa);
   s.object_rate_hz = in.number("object_rate_hz");
   s.transform_timeout_s = in.number("transform_timeout_s");
+  s.force_arrow_m_per_n = in.number("force_arrow_m_per_n");
 }
 
 // The topics and the description parameter, each a valid ROS name.

@@ -3,12 +3,15 @@
 
 #include <Eigen/Geometry>
 #include <geometry_msgs/Transform.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include <cstdint>
 #include <string>
+#include <vector>
 
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/GraspObject.h"
+#include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/grasp_object.hpp"
 #include "pneumatic_finger/core/object_section.hpp"
 
@@ -23,5 +26,12 @@ Eigen::Isometry3d isometryFromMessage(const geometry_msgs::Transform& t);
 /// The solid a GraspObject message describes, in its own frame, into @p solid. @return why it is not valid, empty
 /// when it is.
 std::string solidFromMessage(const GraspObject& msg, SolidObject& solid);
+
+/// rviz's picture of the contact forces, in @p frame_id (the finger's mount frame, where the contact state lives): a
+/// DELETEALL for the namespace @p ns, then one arrow per contact point, from the point into the object along its
+/// segment's normal, @p metres_per_newton long per newton of @p force_n (the force the finger presses with).
+visualization_msgs::MarkerArray contactForceArrows(const ContactState& contact, const std::vector<double>& force_n,
+                                                   const std::string& frame_id, const std::string& ns,
+                                                   double metres_per_newton);
 
 }  // namespace pneumatic_finger

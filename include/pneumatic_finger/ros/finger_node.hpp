@@ -74,6 +74,8 @@ class FingerNode {
   // The tip's error bar (the parameter file's tip_uncertainty) as a translucent sphere at the tip, republished only
   // when its size changes by more than 1 % or it becomes (or stops being) an extrapolation.
   ros::Publisher tip_marker_pub_;
+  ros::Publisher force_marker_pub_;  // contact_force_markers: an arrow per contact, scaled in newtons
+  bool arrows_shown_ = false;
   visualization_msgs::Marker tip_marker_;  // the sphere, built once; a change sets its size and colour
   TipUncertainty tip_uncertainty_;
   double marker_bar_m_ = -1.0;
