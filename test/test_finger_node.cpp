@@ -468,7 +468,8 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
     }
   }
   {
-    // An arrow per contact from the contact point, 2 cm per newton (~force_arrow_m_per_n's default).
+    // An arrow per contact, ending at the contact point (beside the finger), 20 cm per newton (~force_arrow_m_per_n's
+    // default).
     publishAndWait(196133.0);
     ros::Duration(0.1).sleep();
     std::lock_guard<std::mutex> lock(arrows_mutex);
@@ -478,9 +479,10 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
     EXPECT_EQ(a.type, visualization_msgs::Marker::ARROW);
     EXPECT_EQ(a.header.frame_id, kPrefix + "segment_0");
     ASSERT_EQ(a.points.size(), 2u);
-    EXPECT_NEAR(a.points[0].x, want.contact_points_m[0].x(), 1e-9);
+    EXPECT_NEAR(a.points[1].x, want.contact_points_m[0].x(), 1e-9);
+    EXPECT_NEAR(a.points[1].y, want.contact_points_m[0].y(), 1e-9);
     const double length = std::hypot(a.points[1].x - a.points[0].x, a.points[1].y - a.points[0].y);
-    EXPECT_NEAR(length, 0.02 * want_first_force, 1e-9);
+    EXPECT_NEAR(length, 0.2 * want_first_force, 1e-9);
   }
 
   // Cleared: the free finger again.

@@ -49,7 +49,7 @@ std::string solidFromMessage(const GraspObject& msg, SolidObject& solid) {
 
 visualization_msgs::MarkerArray contactForceArrows(const ContactState& contact, const std::vector<double>& force_n,
                                                    const std::string& frame_id, const std::string& ns,
-                                                   double metres_per_newton) {
+                                                   double metres_per_newton, double side_offset_m) {
   visualization_msgs::MarkerArray out;
   visualization_msgs::Marker clear;
   clear.header.frame_id = frame_id;
@@ -60,8 +60,10 @@ visualization_msgs::MarkerArray contactForceArrows(const ContactState& contact, 
     if (!std::isfinite(force_n[k]) || force_n[k] <= 0) continue;
     const auto m = static_cast<Eigen::Index>(contact.contact_segments.at(k));
     const Eigen::Vector2d d = (contact.backbone_m.col(m + 1) - contact.backbone_m.col(m)).normalized();
-    const Eigen::Vector2d from = contact.contact_points_m[k];
-    const Eigen::Vector2d to = from + force_n[k] * metres_per_newton * Eigen::Vector2d(-d.y(), d.x());
+    // Drawn on the finger's side, ending at the contact point, and beside the finger (side_offset_m across its width):
+    // the object would hide an arrow inside it, and the finger's body one within it.
+    const Eigen::Vector2d to = contact.contact_points_m[k];
+    const Eigen::Vector2d from = to - force_n[k] * metres_per_newton * Eigen::Vector2d(-d.y(), d.x());
     visualization_msgs::Marker a;
     a.header.frame_id = frame_id;
     a.ns = ns;
@@ -72,8 +74,9 @@ visualization_msgs::MarkerArray contactForceArrows(const ContactState& contact, 
     a.frame_locked = true;
     geometry_msgs::Point p0, p1;
     p0.x = from.x(), p0.y = from.y(), p1.x = to.x(), p1.y = to.y();
+    p0.z = p1.z = side_offset_m;
     a.points = {p0, p1};
-    a.scale.x = 0.0015, a.scale.y = 0.003, a.scale.z = 0.004;  // shaft and head diameters, head length (m)
+    a.scale.x = 0.002, a.scale.y = 0.004, a.scale.z = 0.004;  // shaft and head diameters, head length (m)
     a.color.r = 1.0f, a.color.g = 0.25f, a.color.b = 0.1f, a.color.a = 1.0f;
     out.markers.push_back(a);
   }

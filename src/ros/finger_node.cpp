@@ -287,7 +287,8 @@ void FingerNode::writeForces(double gauge_pa, const ContactState* contact) {
   if ((in_contact || arrows_shown_) && force_marker_pub_.getNumSubscribers() > 0) {
     force_marker_pub_.publish(contactForceArrows(in_contact ? *contact : ContactState(),
                                                  finger_state_.contact_normal_forces_n, finger_state_.header.frame_id,
-                                                 settings_.urdf.prefix + "contact_force", settings_.force_arrow_m_per_n));
+                                                 settings_.urdf.prefix + "contact_force", settings_.force_arrow_m_per_n,
+                                                 0.5 * settings_.finger.chamber_width_m[0] + 0.003));
   }
   arrows_shown_ = in_contact;
   std::copy(finger_state_.joint_moment_nm.begin(), finger_state_.joint_moment_nm.begin() + static_cast<long>(n),

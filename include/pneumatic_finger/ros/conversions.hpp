@@ -28,10 +28,11 @@ Eigen::Isometry3d isometryFromMessage(const geometry_msgs::Transform& t);
 std::string solidFromMessage(const GraspObject& msg, SolidObject& solid);
 
 /// rviz's picture of the contact forces, in @p frame_id (the finger's mount frame, where the contact state lives): a
-/// DELETEALL for the namespace @p ns, then one arrow per contact point, from the point into the object along its
-/// segment's normal, @p metres_per_newton long per newton of @p force_n (the force the finger presses with).
+/// DELETEALL for the namespace @p ns, then one arrow per contact point, pointing at the object along its segment's
+/// normal and ending at the point, @p metres_per_newton long per newton of @p force_n (the force the finger presses
+/// with), @p side_offset_m across the bending plane (beside the finger, which would hide it).
 visualization_msgs::MarkerArray contactForceArrows(const ContactState& contact, const std::vector<double>& force_n,
                                                    const std::string& frame_id, const std::string& ns,
-                                                   double metres_per_newton);
+                                                   double metres_per_newton, double side_offset_m);
 
 }  // namespace pneumatic_finger

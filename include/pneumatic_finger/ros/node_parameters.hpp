@@ -30,7 +30,7 @@ struct NodeSettings {
   bool publish_tf = true;
   std::string gripper_file;
   double object_rate_hz = 30.0;
-  double force_arrow_m_per_n = 0.02;  ///< rviz's contact force arrows: 2 cm per newton
+  double force_arrow_m_per_n = 0.2;  ///< rviz's contact force arrows: 20 cm per newton (the cell's 0.07 N: 13 mm)
   double transform_timeout_s = 1.0;  ///< as the pressure's stale_timeout_s: a second without news is a lost publisher
   std::string description_param = "robot_description", pressure_topic = "pressure", joint_states_topic = "joint_states",
               finger_state_topic = "finger_state", grasp_object_topic = "grasp_object";
