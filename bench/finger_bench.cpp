@@ -277,6 +277,32 @@ void benchBlockedForce(benchmark::State& state) {
   state.SetLabel("blocked tip force, validated range");
 }
 
+// The normal forces at the contacts (contactNormalForcesN) of the disk of contact/2, on the tracker's states at the
+// validated pressures: what a grasp adds to its contact solve when someone asks for the force. The states are solved
+// beforehand; only the force is timed.
+void benchContactForce(benchmark::State& state) {
+  const std::vector<double>& pressures = validatedPressures();
+  const pf::FingerModel model(kParams);
+  pf::ContactTracker tracker(model, pf::Obstacle::disk(0.075, 0.035, 0.01));
+  std::vector<pf::ContactState> states;
+  std::vector<double> touching;
+  for (double p : pressures) {
+    pf::ContactState s = tracker.solve(p);
+    if (s.status != pf::ContactState::Status::kInContact) continue;
+    states.push_back(std::move(s));
+    touching.push_back(p);
+  }
+  std::vector<double> force;
+  std::size_t i = 0;
+  for (auto _ : state) {
+    pf::contactNormalForcesN(model, touching[i], states[i], force);
+    benchmark::DoNotOptimize(force.data());
+    if (++i == states.size()) i = 0;
+  }
+  state.counters["pressures"] = static_cast<double>(states.size());
+  state.SetLabel("contact normal forces, disk at the tip, touching pressures");
+}
+
 // Two independent models (robust solver) evaluated alternately, each on its own pressure: if the CPU overlapped one
 // evaluation with the next, a pair would take less than twice one evaluation (robust/validated, the same loop).
 void benchPair(benchmark::State& state) {
@@ -487,6 +513,7 @@ int main(int argc, char** argv) {
   }
   benchmark::RegisterBenchmark("robust_pair/validated", benchPair);
   benchmark::RegisterBenchmark("force/blocked_tip", benchBlockedForce);
+  benchmark::RegisterBenchmark("force/contact", benchContactForce);
   benchmark::RegisterBenchmark("membrane/validated", benchMembrane);
   for (int stage = 1; stage <= 5; ++stage) {
     benchmark::RegisterBenchmark(("robust_stage/" + std::to_string(stage)).c_str(),

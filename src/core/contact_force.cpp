@@ -7,6 +7,7 @@
 // touching segment (1..m for segment O_m -> O_{m+1}).
 #include <Eigen/Dense>
 
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -46,6 +47,32 @@ void solveNonNegative(const Eigen::MatrixXd& a, const Eigen::VectorXd& b, std::v
   }
 }
 
+// The flexion-side normal of backbone segment @p segment: into the object.
+Eigen::Vector2d segmentNormal(const ContactState& contact, int segment) {
+  const Eigen::Vector2d d = contact.backbone_m.col(segment + 1) - contact.backbone_m.col(segment);
+  return Eigen::Vector2d(-d.y(), d.x()).normalized();
+}
+
+// How far @p point moves along @p normal per radian of joint j (0-based; joints 1..segment move its segment).
+double lever(const ContactState& contact, const Eigen::Vector2d& normal, const Eigen::Vector2d& point, int j) {
+  const Eigen::Vector2d arm = point - contact.backbone_m.col(j + 1);  // O_{j+1} is joint j + 1's axis
+  return Eigen::Vector2d(-arm.y(), arm.x()).dot(normal);
+}
+
+// One contact (the usual grasp): F = sum_j w_j M_j r_j / sum_j w_j r_j^2, no matrix, no allocation; 0 if it would pull.
+double singleContactForceN(const FingerModel& model, const ContactState& contact, const double* moment) {
+  const int segment = contact.contact_segments[0];
+  const Eigen::Vector2d normal = segmentNormal(contact, segment);
+  double num = 0.0, den = 0.0;
+  for (int j = 0; j < segment && j < model.chamberCount(); ++j) {
+    const double r = lever(contact, normal, contact.contact_points_m[0], j), w = model.jointComplianceWeight(j);
+    num += w * moment[j] * r;
+    den += w * r * r;
+  }
+  const double f = num / den;
+  return std::isnan(f) || f > 0 ? f : 0.0;
+}
+
 }  // namespace
 
 void contactNormalForcesN(const FingerModel& model, double gauge_pa, const ContactState& contact,
@@ -54,19 +81,19 @@ void contactNormalForcesN(const FingerModel& model, double gauge_pa, const Conta
   if (contact.status != ContactState::Status::kInContact || contact.contact_points_m.empty()) return;
   const int n = model.chamberCount();
   const auto count = static_cast<Eigen::Index>(contact.contact_points_m.size());
-  std::vector<double> moment(static_cast<std::size_t>(n));
+  std::array<double, kMaxChamberCount> moment;
   model.heldJointMomentsNm(gauge_pa, contact.held_since_gauge_pa.data(), moment.data());
+  if (count == 1) {
+    force_n.push_back(singleContactForceN(model, contact, moment.data()));
+    return;
+  }
   // r (joints x contacts): the lever of each contact's normal force about each joint that moves it.
   Eigen::MatrixXd r = Eigen::MatrixXd::Zero(n, count);
   for (Eigen::Index k = 0; k < count; ++k) {
     const int segment = contact.contact_segments[static_cast<std::size_t>(k)];
-    const Eigen::Vector2d d = contact.backbone_m.col(segment + 1) - contact.backbone_m.col(segment);
-    const Eigen::Vector2d normal = Eigen::Vector2d(-d.y(), d.x()).normalized();  // the flexion side: into the object
     const Eigen::Vector2d& p = contact.contact_points_m[static_cast<std::size_t>(k)];
-    for (int j = 0; j < segment && j < n; ++j) {
-      const Eigen::Vector2d arm = p - contact.backbone_m.col(j + 1);  // O_{j+1} is joint j + 1's axis
-      r(j, k) = Eigen::Vector2d(-arm.y(), arm.x()).dot(normal);
-    }
+    const Eigen::Vector2d normal = segmentNormal(contact, segment);
+    for (int j = 0; j < segment && j < n; ++j) r(j, k) = lever(contact, normal, p, j);
   }
   Eigen::VectorXd w(n), m(n);
   for (int j = 0; j < n; ++j) {

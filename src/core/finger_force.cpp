@@ -4,6 +4,7 @@
 // neighbour, and a flattened membrane carries no pressure difference, so that strip presses with the chamber's
 // pressure. The strip grows as the free wall would balloon: the force rises faster than the pressure.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -27,7 +28,11 @@ double FingerModel::freeBulgeM(const ChamberGroup& g, double gauge_pa) const {
 // at most R (the wall is L tall). 0 up to the contact pressure and for a vacuum; NaN beyond the limit point.
 double FingerModel::contactStripHeightM(const ChamberGroup& g, double gauge_pa, double plane_bulge_m) const {
   if (!(gauge_pa > g.contact_gauge_pa)) return 0.0;
-  const double h = freeBulgeM(g, gauge_pa);
+  return stripHeightM(g, freeBulgeM(g, gauge_pa), plane_bulge_m);
+}
+
+// The strip for a free bulge @p h already known (NaN stays NaN).
+double FingerModel::stripHeightM(const ChamberGroup& g, double h, double plane_bulge_m) const {
   if (std::isnan(h)) return h;
   if (!(h > plane_bulge_m)) return 0.0;
   const double r = 0.5 * g.chamber_height_m, p = plane_bulge_m;
@@ -60,31 +65,50 @@ void FingerModel::buildForceModel() {
   uniform_force_lever_ = groups_.size() == 1 && uniform ? l_w / force_l2w_ : 0.0;
 }
 
-// The weaker of a joint's two facing walls bounds what passes between them: min_k P (2a)_k e_k b_k, with each wall's
-// contact plane at its bulge at @p held_since_gauge_pa (c when it was held before the walls touched).
-double FingerModel::jointMomentNm(std::size_t joint, double gauge_pa, double held_since_gauge_pa) const {
+// The weaker of a joint's two facing walls bounds what passes between them: min_k P (2a)_k e_k b_k, from each group's
+// strip 2a (@p strip_m, indexed by group; NaN stays NaN).
+double FingerModel::jointMomentNm(std::size_t joint, double gauge_pa, const double* strip_m) const {
   double m = std::numeric_limits<double>::infinity();
   for (const int k : {force_joints_[joint].chamber_a, force_joints_[joint].chamber_b}) {
     const auto uk = static_cast<std::size_t>(k);
-    const ChamberGroup& g = groups_[static_cast<std::size_t>(group_of_chamber_[uk])];
-    const double plane_m = std::max(g.chamber_gap_m, freeBulgeM(g, held_since_gauge_pa));
-    const double strip_m = contactStripHeightM(g, gauge_pa, plane_m);
-    if (std::isnan(strip_m) || std::isnan(plane_m)) return std::numeric_limits<double>::quiet_NaN();
-    m = std::min(m, strip_m > 0 ? gauge_pa * strip_m * push_lever_m2_[uk] : 0.0);
+    const double strip = strip_m[static_cast<std::size_t>(group_of_chamber_[uk])];
+    if (std::isnan(strip)) return strip;
+    m = std::min(m, strip > 0 ? gauge_pa * strip * push_lever_m2_[uk] : 0.0);
   }
   return m;
 }
 
 void FingerModel::straightJointMomentsNm(double gauge_pa, double* moment_nm) const {
-  for (std::size_t j = 0; j < force_joints_.size(); ++j) {
-    moment_nm[j] = std::isnan(gauge_pa) ? gauge_pa : jointMomentNm(j, gauge_pa, 0.0);
-  }
+  std::vector<double> none(force_joints_.size(), 0.0);  // held since rest: every plane at c
+  heldJointMomentsNm(gauge_pa, none.data(), moment_nm);
 }
 
+// Each group's free bulge at P is solved once, and its contact plane and strip once per distinct touch pressure (a
+// grasp has a touch or two): a wall solve per group and per touch, not per joint.
 void FingerModel::heldJointMomentsNm(double gauge_pa, const double* held_since_gauge_pa, double* moment_nm) const {
+  const std::size_t groups = groups_.size();
+  std::array<double, kMaxChamberCount> bulge_m, strip_m;  // the first groups_.size() are used
+  for (std::size_t g = 0; g < groups; ++g) {
+    bulge_m[g] = gauge_pa > groups_[g].contact_gauge_pa ? freeBulgeM(groups_[g], gauge_pa) : 0.0;
+  }
+  double strips_since = std::numeric_limits<double>::quiet_NaN();
   for (std::size_t j = 0; j < force_joints_.size(); ++j) {
     const double since = held_since_gauge_pa[j];
-    moment_nm[j] = std::isnan(gauge_pa) ? gauge_pa : std::isnan(since) ? 0.0 : jointMomentNm(j, gauge_pa, since);
+    if (std::isnan(gauge_pa) || std::isnan(since)) {
+      moment_nm[j] = std::isnan(gauge_pa) ? gauge_pa : 0.0;
+      continue;
+    }
+    if (!(since == strips_since)) {
+      for (std::size_t g = 0; g < groups; ++g) {
+        const ChamberGroup& group = groups_[g];
+        const double plane_m = std::max(group.chamber_gap_m, freeBulgeM(group, since));
+        strip_m[g] = std::isnan(plane_m)                     ? plane_m
+                     : gauge_pa > group.contact_gauge_pa ? stripHeightM(group, bulge_m[g], plane_m)
+                                                         : 0.0;
+      }
+      strips_since = since;
+    }
+    moment_nm[j] = jointMomentNm(j, gauge_pa, strip_m.data());
   }
 }
 
@@ -101,9 +125,11 @@ double FingerModel::blockedTipForceN(double gauge_pa) const {
     const double strip_m = contactStripHeightM(groups_[0], gauge_pa, groups_[0].chamber_gap_m);
     return strip_m > 0 || std::isnan(strip_m) ? gauge_pa * strip_m * push_lever_m2_[0] * uniform_force_lever_ : 0.0;
   }
+  std::vector<double> moment(force_joints_.size());
+  straightJointMomentsNm(gauge_pa, moment.data());
   double moment_lever = 0.0;
   for (std::size_t j = 0; j < force_joints_.size(); ++j) {
-    moment_lever += jointMomentNm(j, gauge_pa, 0.0) * force_joints_[j].tip_distance_m * force_joints_[j].weight;
+    moment_lever += moment[j] * force_joints_[j].tip_distance_m * force_joints_[j].weight;
   }
   return moment_lever / force_l2w_;
 }

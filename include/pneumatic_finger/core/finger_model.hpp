@@ -279,8 +279,11 @@ class FingerModel {
   /// The height 2a (m) of the strip of @p group's wall pressed flat against its neighbour's at @p gauge_pa, the
   /// contact plane at bulge @p plane_bulge_m.
   double contactStripHeightM(const ChamberGroup& group, double gauge_pa, double plane_bulge_m) const;
-  /// The moment (N m) at joint @p joint (0-based) at @p gauge_pa (not NaN), held since @p held_since_gauge_pa.
-  double jointMomentNm(std::size_t joint, double gauge_pa, double held_since_gauge_pa) const;
+  /// The strip's height for a free bulge @p bulge_m already solved.
+  double stripHeightM(const ChamberGroup& group, double bulge_m, double plane_bulge_m) const;
+  /// The moment (N m) at joint @p joint (0-based) at @p gauge_pa (not NaN), from each group's strip (indexed by
+  /// group).
+  double jointMomentNm(std::size_t joint, double gauge_pa, const double* strip_m) const;
   /// Throws: @p workspace was sized for a model of another shape (evaluate(), evaluateMany()).
   [[noreturn]] void refuseWorkspace(const FingerWorkspace& workspace) const;
   /// The rest shape, with NaN for stretch and bulge when the options leave them out (chamber_detail false).
