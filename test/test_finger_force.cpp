@@ -270,3 +270,26 @@ TEST(FingerForce, ContactForcesOnlyInContact) {
   ASSERT_FALSE(f.empty());
   for (double v : f) EXPECT_TRUE(std::isnan(v));
 }
+
+// The pressure for a grip force: the force there is the one asked for, and just below it less; a force beyond the range
+// is refused with the most the finger gives, and a force that is not > 0 by name.
+TEST(FingerForce, ThePressureForAContactForce) {
+  const pf::FingerModel model(pf::FingerParameters::defaults());
+  pf::ContactTracker tracker(model, pf::Obstacle::disk(0.075, 0.035, 0.01));
+  auto contact_at = [&](double p) { return tracker.solve(p); };
+  const double most = pf::totalContactForceN(model, 294199.5, tracker.solve(294199.5));
+  ASSERT_GT(most, 0.0);
+  double gauge = 0;
+  std::string why;
+  for (double share : {0.1, 0.5, 0.9}) {
+    ASSERT_TRUE(pf::gaugeForContactForce(model, contact_at, share * most, 294199.5, gauge, why)) << why;
+    EXPECT_NEAR(pf::totalContactForceN(model, gauge, tracker.solve(gauge)), share * most, 1e-6 * most) << share;
+    EXPECT_LT(pf::totalContactForceN(model, gauge - 100.0, tracker.solve(gauge - 100.0)), share * most) << share;
+  }
+  EXPECT_FALSE(pf::gaugeForContactForce(model, contact_at, 2 * most, 294199.5, gauge, why));
+  EXPECT_NE(why.find("presses with at most"), std::string::npos) << why;
+  for (double bad : {0.0, -1.0, std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    EXPECT_FALSE(pf::gaugeForContactForce(model, contact_at, bad, 294199.5, gauge, why)) << bad;
+    EXPECT_NE(why.find("is not a finite force > 0"), std::string::npos) << why;
+  }
+}

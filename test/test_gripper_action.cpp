@@ -1,6 +1,7 @@
 // rostest: the gripper action (test/gripper_action.test). It succeeds at the goal's free pressure, stalls on an
 // object at the pressure of the touch plus the squeeze margin (the touch computed here with the core's
-// ContactSolver on the object's section), and aborts goals no pressure in range reaches.
+// ContactSolver on the object's section), grasps with a grip force in newtons (max_effort) at the core's pressure for
+// it, reports the grip force it reached, and aborts goals no pressure in range reaches (an angle, a force).
 #include <actionlib/client/simple_action_client.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -54,7 +55,8 @@ TEST(GripperAction, ClosesStallsOnTheObjectAndAbortsWhatNoPressureReaches) {
   EXPECT_TRUE(r->reached_goal);
   EXPECT_FALSE(r->stalled);
   EXPECT_NEAR(r->position, 0.5, 0.01);
-  EXPECT_NEAR(r->effort, free_pa, kSettleTolerancePa);
+  EXPECT_NEAR(r->gauge_pa, free_pa, kSettleTolerancePa);
+  EXPECT_EQ(r->effort, 0.0) << "no object: no grip force";
 
   // Unreachable: refused at once, naming the reason.
   const State far = send(client, 30.0);
@@ -81,13 +83,32 @@ TEST(GripperAction, ClosesStallsOnTheObjectAndAbortsWhatNoPressureReaches) {
   r = client.getResult();
   EXPECT_TRUE(r->stalled);
   EXPECT_FALSE(r->reached_goal);
-  EXPECT_NEAR(r->effort, touch.first_touch_gauge_pa + kSqueezeMarginPa, kSettleTolerancePa);
+  EXPECT_NEAR(r->gauge_pa, touch.first_touch_gauge_pa + kSqueezeMarginPa, kSettleTolerancePa);
+  // The grip force reached is the core's force at the pressure the finger reports.
+  pf::ContactTracker tracker(finger, pf::Obstacle::disk(0.06, 0.03, 0.012));
+  auto force_at = [&](double p) { return pf::totalContactForceN(finger, p, tracker.solve(p)); };
+  EXPECT_GT(r->effort, 0.0);
+  EXPECT_NEAR(r->effort, force_at(r->gauge_pa), 1e-6 * r->effort);
 
-  // The object needs more than max_effort allows, and the goal is beyond it too: aborted.
+  // A grip force in newtons: half what the finger gives at the top of its range, at the core's pressure for it.
+  const double most_n = force_at(294199.5), want_n = 0.5 * most_n;
+  double want_pa = 0;
+  ASSERT_TRUE(pf::gaugeForContactForce(finger, [&](double p) { return tracker.solve(p); }, want_n, 294199.5, want_pa,
+                                       why)) << why;
   ASSERT_EQ(send(client, 0.0), State::SUCCEEDED);
-  const State capped = send(client, 3.0, 0.5 * touch.first_touch_gauge_pa);
-  EXPECT_EQ(capped, State::ABORTED);
-  EXPECT_NE(capped.getText().find("does not touch the object up to it"), std::string::npos) << capped.getText();
+  ASSERT_EQ(send(client, 3.0, want_n), State::SUCCEEDED) << client.getState().getText();
+  r = client.getResult();
+  EXPECT_TRUE(r->stalled);
+  EXPECT_NEAR(r->gauge_pa, want_pa, kSettleTolerancePa);
+  EXPECT_NEAR(r->effort, force_at(r->gauge_pa), 1e-6 * r->effort);
+  EXPECT_NEAR(r->effort, want_n, 0.01 * want_n) << "within the settling tolerance's share of the force";
+
+  // More than the finger gives anywhere in its range: aborted before anything is commanded, with the most it gives.
+  ASSERT_EQ(send(client, 0.0), State::SUCCEEDED);
+  const State strong = send(client, 3.0, 2.0 * most_n);
+  EXPECT_EQ(strong, State::ABORTED);
+  EXPECT_NE(strong.getText().find("/f cannot grip with"), std::string::npos) << strong.getText();
+  EXPECT_NE(strong.getText().find("presses with at most"), std::string::npos) << strong.getText();
 }
 
 int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "gripper_action_test", 2); }

@@ -191,6 +191,16 @@ TEST(PickAndPlaceCell, DuringTheLiftEveryFingerTouchesTheObjectAndNoneEntersIt) 
     ros::Duration(0.05).sleep();
   }
   EXPECT_GT(checked, 5) << "the lift was not observed";
+  // A light object (config/cell.yaml's 10 g): carried because the grip's friction holds its weight, and the event says
+  // so with the numbers.
+  bool holds = false;
+  for (const std::string& e : watch.snapshot().events) {
+    if (e.find(": grasped 'cylinder' at ") == std::string::npos) continue;
+    EXPECT_NE(e.find("every finger touches it; friction 1 x 3 fingers x"), std::string::npos) << e;
+    EXPECT_NE(e.find("holds 1.5 x its weight 0.0981 N (0.01 kg)"), std::string::npos) << e;
+    holds = true;
+  }
+  EXPECT_TRUE(holds) << "no grasp event seen";
 }
 
 int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "pick_and_place_cell_test", 2); }

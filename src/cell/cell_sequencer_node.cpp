@@ -29,6 +29,7 @@
 #include "pneumatic_finger/GraspObject.h"
 #include "pneumatic_finger/GripperCommandAction.h"
 #include "pneumatic_finger/cell/cell_schedule.hpp"
+#include "pneumatic_finger/cell/grasp_hold.hpp"
 #include "pneumatic_finger/cell/side_grasp.hpp"
 #include "pneumatic_finger/ros/parameter_reader.hpp"
 #include "arm_kinematics.hpp"
@@ -40,8 +41,9 @@ namespace {
 struct Settings {
   std::vector<std::string> joint_names;
   pf::CellWaypoints waypoints;
-  double cycle_time_s = 0, grasp_position_rad = 0, grasp_max_effort_pa = 0, object_offset_m = 0, object_radius_m = 0,
-         object_height_m = 0, publish_rate_hz = 0;
+  double cycle_time_s = 0, grasp_position_rad = 0, grasp_force_n = 0, object_offset_m = 0, object_radius_m = 0,
+         object_height_m = 0, publish_rate_hz = 0, object_mass_kg = 0, friction_coefficient = 0, hold_margin = 0;
+  int finger_count = 0;
   int loop_count = 0;
   std::string base_link = "world", tool_link = "tool0", object_id;
 };
@@ -61,14 +63,20 @@ const std::vector<pf::NodeParameterSpec>& parameterSpecs() {
       pf::integerParameter("loop_count", 0, 0, 1000000, "cycles to run, then stop the launch (0: forever)"),
       pf::numberParameter("grasp_position_rad", 3.0, 0, true, 20, "rad",
                           "the grasp goal's closing angle: beyond the object, so that the object stops the fingers"),
-      pf::numberParameter("grasp_max_effort_pa", 0.0, 0, false, 1e7, "Pa",
-                          "the grasp goal's pressure limit (gauge); 0: the fingers' range"),
+      pf::numberParameter("grasp_force_n", 0.0, 0, false, 100, "N",
+                          "the grasp goal's grip force (max_effort): each finger's total normal force on the object; "
+                          "0: the touch plus the gripper action's squeeze margin"),
       pf::textParameter("object_id", "cylinder", "not empty", "the object's name (grasp_object, markers)"),
       pf::textParameter("gripper_file", "", "a gripper file (YAML)",
                         "the gripper's fingers (mounts and actuators): where the object is held is computed from them "
                         "and the object's size, so that the fingers close on its side"),
       pf::numberParameter("object_radius_m", 0.016, 0, true, 1, "m", "the cylinder's radius"),
       pf::numberParameter("object_height_m", 0.035, 0, true, 1, "m", "the cylinder's height"),
+      pf::numberParameter("object_mass_kg", 0.01, 0, true, 100, "kg", "the cylinder's mass: what the grip must hold"),
+      pf::numberParameter("friction_coefficient", 1.0, 0, true, 10, "-",
+                          "friction between the fingers' silicone and the object (silicone on plastic: about 1)"),
+      pf::numberParameter("hold_margin", 1.5, 1, false, 100, "-",
+                          "the grip's friction must hold this many times the object's weight"),
       pf::numberParameter("publish_rate_hz", 50.0, 0, true, 1000, "Hz", "the arm's joint_states and the object's rate"),
   };
   return table;
@@ -84,15 +92,20 @@ Settings readSettings(const ros::NodeHandle& pnh) {
   s.cycle_time_s = in.number("cycle_time_s");
   s.loop_count = static_cast<int>(in.number("loop_count"));
   s.grasp_position_rad = in.number("grasp_position_rad");
-  s.grasp_max_effort_pa = in.number("grasp_max_effort_pa");
+  s.grasp_force_n = in.number("grasp_force_n");
   s.object_id = in.text("object_id");
   if (s.object_id.empty()) throw pf::ParameterError("parameter 'object_id' must not be empty");
   s.object_radius_m = in.number("object_radius_m");
   s.object_height_m = in.number("object_height_m");
+  s.object_mass_kg = in.number("object_mass_kg");
+  s.friction_coefficient = in.number("friction_coefficient");
+  s.hold_margin = in.number("hold_margin");
   // Where the object is held: computed, so that every finger closes on its side, away from both rims.
   const std::string gripper_file = in.text("gripper_file");
   if (gripper_file.empty()) throw pf::ParameterError("parameter 'gripper_file' must name the gripper's file");
-  const pf::SideGrasp side = pf::sideGraspDepth(pf::loadGripperFile(gripper_file), s.object_radius_m, s.object_height_m);
+  const std::vector<pf::GripperFinger> fingers = pf::loadGripperFile(gripper_file);
+  s.finger_count = static_cast<int>(fingers.size());
+  const pf::SideGrasp side = pf::sideGraspDepth(fingers, s.object_radius_m, s.object_height_m);
   s.object_offset_m = side.centre_depth_m;
   ROS_INFO("cell_sequencer: the object is held with its centre %.1f mm along tool z, where every finger meets its side "
            "(%.1f mm or more from a rim)", 1e3 * side.centre_depth_m, 1e3 * side.rim_margin_m);
@@ -354,7 +367,7 @@ class CellSequencer {
     } else if (step.phase == pf::CellPhase::kGrasp) {
       pf::GripperCommandGoal goal;
       goal.position = settings_.grasp_position_rad;
-      goal.max_effort = settings_.grasp_max_effort_pa;
+      goal.max_effort = settings_.grasp_force_n;
       gripper_.sendGoal(goal);
     } else if (step.phase == pf::CellPhase::kLift) {
       if (judgeGrasp(step.cycle + 1, tool)) show_handle = 0;
@@ -370,12 +383,23 @@ class CellSequencer {
   bool judgeGrasp(long cycle, const Eigen::Isometry3d& tool) {
     const auto state = gripper_.getState();
     const auto result = gripper_.getResult();
+    // Every finger touches: the grip holds the object only if its friction holds the weight (each finger presses
+    // with at least the result's grip force, the smallest).
+    const pf::HoldVerdict hold =
+        result ? pf::judgeHold(settings_.finger_count, result->effort, settings_.object_mass_kg,
+                               settings_.friction_coefficient, settings_.hold_margin)
+               : pf::HoldVerdict{};
+    if (state == actionlib::SimpleClientGoalState::SUCCEEDED && result && result->stalled && !hold.holds) {
+      say("cycle " + std::to_string(cycle) + ": grasp slips, '" + settings_.object_id + "' stays on the pick table: " +
+          "every finger touches it, but " + hold.message);
+      return false;
+    }
     if (state == actionlib::SimpleClientGoalState::SUCCEEDED && result && result->stalled) {
       object_.held = true;
       object_.in_tool = tool.inverse() * object_.in_base;
       scene_.publishObject(object_, js_.header.stamp);
       say("cycle " + std::to_string(cycle) + ": grasped '" + settings_.object_id + "' at " +
-          std::to_string(result->effort) + " Pa: every finger touches it");
+          std::to_string(result->gauge_pa) + " Pa: every finger touches it; " + hold.message);
       return true;
     }
     say("cycle " + std::to_string(cycle) + ": grasp missed, '" + settings_.object_id + "' stays on the pick table: " +

@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <sstream>
 #include <vector>
 
 #include "pneumatic_finger/core/contact.hpp"
@@ -107,6 +108,42 @@ void contactNormalForcesN(const FingerModel& model, double gauge_pa, const Conta
   const Eigen::MatrixXd a = r.transpose() * w.asDiagonal() * r;
   const Eigen::VectorXd b = r.transpose() * w.asDiagonal() * m;
   solveNonNegative(a, b, force_n);
+}
+
+double totalContactForceN(const FingerModel& model, double gauge_pa, const ContactState& contact) {
+  std::vector<double> force;
+  contactNormalForcesN(model, gauge_pa, contact, force);
+  double total = 0.0;
+  for (double f : force) total += f;
+  return total;
+}
+
+// The force is 0 up to the touch and does not fall beyond it (each held wall's strip grows with the pressure, and a new
+// touch adds a contact): the pressure for a force is bracketed by [0, max] and halved until it is known to 1e-9 of
+// the range, far below the regulator's resolution.
+bool gaugeForContactForce(const FingerModel& model, const std::function<ContactState(double)>& contact_at,
+                          double force_n, double max_gauge_pa, double& gauge_pa, std::string& why) {
+  auto force_at = [&](double p) { return totalContactForceN(model, p, contact_at(p)); };
+  std::ostringstream s;
+  if (!(force_n > 0) || !std::isfinite(force_n)) {
+    s << "force " << force_n << " N is not a finite force > 0";
+    why = s.str();
+    return false;
+  }
+  const double most = force_at(max_gauge_pa);
+  if (!(most >= force_n)) {
+    s << "presses with at most " << most << " N, at " << max_gauge_pa << " Pa (the top of its range), short of "
+      << force_n << " N";
+    why = s.str();
+    return false;
+  }
+  double lo = 0.0, hi = max_gauge_pa;
+  while (hi - lo > 1e-9 * max_gauge_pa) {
+    const double mid = 0.5 * (lo + hi);
+    (force_at(mid) >= force_n ? hi : lo) = mid;
+  }
+  gauge_pa = hi;
+  return true;
 }
 
 }  // namespace pneumatic_finger

@@ -39,6 +39,7 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
   sizeMessages();
   setUpTipMarker(nh);
   inverse_srv_ = nh.advertiseService("pressure_for_tip_angle", &FingerNode::onInverse, this);
+  force_srv_ = nh.advertiseService("pressure_for_contact_force", &FingerNode::onContactForce, this);
   reconfigure_ = std::make_unique<dynamic_reconfigure::Server<FingerNodeConfig>>(private_nh);
   reconfigure_->setCallback([this](FingerNodeConfig& config, uint32_t level) { onReconfigure(config, level); });
   diagnostics_.setHardwareID(settings_.urdf.prefix + "pneumatic_finger");
@@ -416,16 +417,6 @@ bool FingerNode::updateObject() {
     ROS_WARN_THROTTLE(5.0, "finger_node: grasp object '%s' %s", object_->id.c_str(), grasp_->problem().c_str());
   }
   return changed;
-}
-
-bool FingerNode::onInverse(PressureForTipAngle::Request& req, PressureForTipAngle::Response& res) {
-  std::string why;
-  double gauge = 0;
-  res.success = model_->gaugeForTipAngle(req.tip_angle_rad, settings_.urdf.max_gauge_pa, gauge, why);
-  res.gauge_pa = res.success ? gauge : 0.0;
-  res.absolute_pa = res.success ? gauge + settings_.finger.atmospheric_pressure_pa : 0.0;
-  res.message = res.success ? "" : why;
-  return true;  // a refused request is an answer, not a transport failure
 }
 
 FingerNodeConfig FingerNode::currentConfig() const {

@@ -7,6 +7,7 @@
 #include <sensor_msgs/FluidPressure.h>
 #include <std_msgs/Float64.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cmath>
 #include <map>
@@ -17,6 +18,7 @@
 
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/GripperCommandAction.h"
+#include "pneumatic_finger/PressureForContactForce.h"
 #include "pneumatic_finger/PressureForTipAngle.h"
 #include "pneumatic_finger/core/grasp_plan.hpp"
 #include "pneumatic_finger/core/units.hpp"
@@ -105,11 +107,15 @@ class GripperActionServer {
   }
 
   void describe(const std::vector<Latest>& states, double goal_rad, pf::GripperCommandResult& r) const {
-    r.position = r.effort = 0;
+    r.position = r.gauge_pa = 0;
+    r.effort = INFINITY;
     r.stalled = r.reached_goal = true;
     for (const Latest& l : states) {
       r.position += l.state->tip_angle_rad / static_cast<double>(states.size());
-      r.effort += l.state->gauge_pa / static_cast<double>(states.size());
+      r.gauge_pa += l.state->gauge_pa / static_cast<double>(states.size());
+      double force_n = 0.0;  // this finger's total normal force on the object (finger_state's contact forces)
+      for (double f : l.state->contact_normal_forces_n) force_n += f;
+      r.effort = std::min(r.effort, force_n);
       r.stalled = r.stalled && l.state->object_status == pf::FingerModelState::OBJECT_TOUCHING;
       r.reached_goal = r.reached_goal && std::fabs(l.state->tip_angle_rad - goal_rad) <= goal_tolerance_rad_;
     }
@@ -175,6 +181,33 @@ class GripperActionServer {
     return states;
   }
 
+  // A grasp with a grip force: the pressure at which every finger presses on the object with @p force_n newtons, the
+  // largest any finger needs (each answers from its own model, pressure_for_contact_force). false: a finger cannot
+  // (its reason, with the most it gives), and nothing is commanded.
+  bool planForce(double force_n, pf::GripperPlan& plan, std::string& why) {
+    double needed = 0.0;
+    std::string by;
+    for (const std::string& ns : fingers_) {
+      pf::PressureForContactForce srv;
+      srv.request.force_n = force_n;
+      const std::string name = ros::names::append(ns, "pressure_for_contact_force");
+      if (!ros::service::waitForService(name, ros::Duration(2.0)) || !ros::service::call(name, srv)) {
+        why = "service '" + name + "' did not answer";
+        return false;
+      }
+      if (!srv.response.success) {
+        why = ns + " cannot grip with " + std::to_string(force_n) + " N: " + srv.response.message;
+        return false;
+      }
+      if (srv.response.gauge_pa >= needed) needed = srv.response.gauge_pa, by = ns;
+    }
+    std::ostringstream s;
+    s << "grasp with " << force_n << " N per finger: commanding " << needed << " Pa (" << by << " needs the most)";
+    plan.gauge_pa = needed;
+    plan.message = s.str();
+    return true;
+  }
+
   void publishSetpoint(double gauge_pa) {
     std_msgs::Float64 setpoint;
     setpoint.data = gauge_pa;
@@ -186,6 +219,19 @@ class GripperActionServer {
     server_.setAborted(result, why);
   }
 
+  // The fingers that cannot locate the object (OBJECT_NO_TRANSFORM), in words, or empty: a plan on the free finger
+  // would be a guess.
+  std::string unlocatedFingers(const std::vector<Latest>& states) const {
+    std::string unlocated;
+    for (std::size_t i = 0; i < fingers_.size(); ++i) {
+      if (states[i].state->object_status != pf::FingerModelState::OBJECT_NO_TRANSFORM) continue;
+      unlocated += (unlocated.empty() ? "" : ", ") + fingers_[i];
+    }
+    if (unlocated.empty()) return unlocated;
+    return unlocated + " cannot locate the object '" + states[0].state->object_id +
+           "': no fresh transform to its frame (is robot_state_publisher running?)";
+  }
+
   void execute(const pf::GripperCommandGoalConstPtr& goal) {
     // Opening needs no plan (every finger is open at 0 Pa): vent first, so that the gripper lets go even when a finger
     // or the regulator is lost and the goal below aborts.
@@ -194,15 +240,8 @@ class GripperActionServer {
     std::string lost;
     std::vector<Latest> states = statesForThePlan(lost);
     if (states.empty()) return abort(lost.empty() ? "shut down while planning" : lost);
-    std::string unlocated;
-    for (std::size_t i = 0; i < fingers_.size(); ++i) {
-      if (states[i].state->object_status != pf::FingerModelState::OBJECT_NO_TRANSFORM) continue;
-      unlocated += (unlocated.empty() ? "" : ", ") + fingers_[i];
-    }
-    if (!unlocated.empty()) {  // a plan on the free finger would be a guess
-      return abort(unlocated + " cannot locate the object '" + states[0].state->object_id +
-                   "': no fresh transform to its frame (is robot_state_publisher running?)");
-    }
+    const std::string unlocated = unlocatedFingers(states);
+    if (!unlocated.empty()) return abort(unlocated);
     std::vector<pf::FingerGoalAnswer> answers;
     bool object = false;
     for (std::size_t i = 0; i < fingers_.size(); ++i) {
@@ -219,10 +258,13 @@ class GripperActionServer {
       // Expected when the goal lies beyond the object (the touch comes first): the plan below says what it does.
       if (!srv.response.success) ROS_DEBUG("gripper_action_server: %s: %s", name.c_str(), srv.response.message.c_str());
     }
-    // max_effort, within the fingers' range (their max_gauge_pa, where they clamp).
-    const double limit = goal->max_effort > 0 ? std::min(goal->max_effort, max_gauge_pa_) : max_gauge_pa_;
-    const pf::GripperPlan plan = pf::planGripperCommand(answers, goal->position, limit, squeeze_margin_pa_, object);
+    // Within the fingers' range (their max_gauge_pa, where they clamp).
+    pf::GripperPlan plan = pf::planGripperCommand(answers, goal->position, max_gauge_pa_, squeeze_margin_pa_, object);
     if (plan.kind == pf::GripperPlan::Kind::kUnreachable) return abort(plan.message);
+    if (plan.kind == pf::GripperPlan::Kind::kGrasp && goal->max_effort > 0) {
+      std::string why;
+      if (!planForce(goal->max_effort, plan, why)) return abort(why);
+    }
     ROS_INFO("gripper_action_server: %s", plan.message.c_str());
 
     publishSetpoint(plan.gauge_pa);
@@ -239,7 +281,7 @@ class GripperActionServer {
       states = latest(commanded);
       if (states.empty()) continue;
       describe(states, goal->position, result);
-      feedback.position = result.position, feedback.effort = result.effort;
+      feedback.position = result.position, feedback.effort = result.effort, feedback.gauge_pa = result.gauge_pa;
       feedback.stalled = result.stalled, feedback.reached_goal = result.reached_goal;
       server_.publishFeedback(feedback);
       bool settled = true;
@@ -248,12 +290,13 @@ class GripperActionServer {
       if ((ros::Time::now() - commanded).toSec() > settle_timeout_s_) {
         std::ostringstream s;
         s << "the fingers did not settle at " << plan.gauge_pa << " Pa within " << settle_timeout_s_
-          << " s (at " << result.effort << " Pa)";
+          << " s (at " << result.gauge_pa << " Pa)";
         return abort(s.str(), result);
       }
     }
     std::ostringstream s;
-    s << "at " << result.effort << " Pa: tip angle " << result.position << " rad";
+    s << "at " << result.gauge_pa << " Pa: tip angle " << result.position << " rad, grip force " << result.effort
+      << " N";
     if (plan.kind == pf::GripperPlan::Kind::kGrasp ? result.stalled : (result.reached_goal || result.stalled)) {
       s << (result.stalled ? ", every finger touches the object" : ", goal reached");
       ROS_INFO("gripper_action_server: goal succeeded %s", s.str().c_str());

@@ -10,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include <functional>
 #include <limits>
 #include <string>
 #include <vector>
@@ -63,6 +64,16 @@ struct TouchEvent {
 /// state that is not in contact.
 void contactNormalForcesN(const FingerModel& model, double gauge_pa, const ContactState& contact,
                           std::vector<double>& force_n);
+
+/// The total normal force (N) of @p contact at @p gauge_pa: the sum of contactNormalForcesN (0 without contact).
+double totalContactForceN(const FingerModel& model, double gauge_pa, const ContactState& contact);
+
+/// The smallest gauge pressure (Pa) up to @p max_gauge_pa at which a finger closing on one object presses on it with
+/// a total normal force of @p force_n, by bisection (the force does not fall as the pressure rises); @p contact_at
+/// gives the contact state at a pressure (a ContactTracker's solve). false, with @p why, for a force that is not a
+/// finite number > 0, or one that no pressure up to the limit gives (saying the most it gives).
+bool gaugeForContactForce(const FingerModel& model, const std::function<ContactState(double)>& contact_at,
+                          double force_n, double max_gauge_pa, double& gauge_pa, std::string& why);
 
 /// Applies the contact rule to a model. Holds no state of its own: safe beside the model's other const users.
 class ContactSolver {

@@ -21,6 +21,7 @@
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/FingerNodeConfig.h"
 #include "pneumatic_finger/GraspObject.h"
+#include "pneumatic_finger/PressureForContactForce.h"
 #include "pneumatic_finger/PressureForTipAngle.h"
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
@@ -40,7 +41,8 @@ class FingerNode {
 
  private:
   void onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg);
-  bool onInverse(PressureForTipAngle::Request& req, PressureForTipAngle::Response& res);
+  bool onInverse(PressureForTipAngle::Request& req, PressureForTipAngle::Response& res);  // finger_services.cpp
+  bool onContactForce(PressureForContactForce::Request& req, PressureForContactForce::Response& res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
   void onReconfigure(FingerNodeConfig& config, uint32_t level);
   /// The live values as the node has them (chamber 1's for per-chamber keys).
@@ -83,7 +85,7 @@ class FingerNode {
   /// The held joints' moments and the contact forces into finger_state and joint_states.effort (only in contact).
   void writeForces(double gauge_pa, const ContactState* contact);
   void publishTipMarker(const TipUncertainty::At& bar);
-  ros::ServiceServer inverse_srv_;
+  ros::ServiceServer inverse_srv_, force_srv_;
   // Made only with publish_tf: without it the node does not even advertise /tf and /tf_static.
   std::unique_ptr<tf2_ros::TransformBroadcaster> tf_;
   std::unique_ptr<tf2_ros::StaticTransformBroadcaster> static_tf_;

@@ -1,0 +1,23 @@
+#include "pneumatic_finger/cell/grasp_hold.hpp"
+
+#include <sstream>
+
+namespace pneumatic_finger {
+
+HoldVerdict judgeHold(int finger_count, double finger_force_n, double mass_kg, double friction_coefficient,
+                      double margin) {
+  HoldVerdict v;
+  const double normal_n = finger_count * finger_force_n;
+  v.friction_n = friction_coefficient * normal_n;
+  v.needed_n = margin * mass_kg * kStandardGravity;
+  v.holds = v.friction_n >= v.needed_n;  // NaN holds nothing
+  std::ostringstream s;
+  s.precision(3);
+  s << "friction " << friction_coefficient << " x " << finger_count << " fingers x " << finger_force_n << " N = "
+    << v.friction_n << " N " << (v.holds ? "holds" : "is less than") << " " << margin << " x its weight "
+    << mass_kg * kStandardGravity << " N (" << mass_kg << " kg) = " << v.needed_n << " N";
+  v.message = s.str();
+  return v;
+}
+
+}  // namespace pneumatic_finger
