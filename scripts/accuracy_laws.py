@@ -94,9 +94,7 @@ def fit(data_path, s, law, keys, start, loo):
 
 
 def model_of(r, column, key):
-    if column == "avg":
-        return [row["model_avg_rad"] for row in r[key]]
-    return [row["model_tip_angle_rad"] for row in r[key]]
+    return list(r[key]["model_avg_rad" if column == "avg" else "model_tip_angle_rad"])
 
 
 def study(s, tmp):

@@ -215,11 +215,13 @@ TEST(CalibrateCli, PrintsTableTwoAndWritesTheParameterFile) {
   const CliRun r = runShell(std::string(FINGER_CALIBRATE_EXE) + " --output " + out_file);
   ASSERT_EQ(r.status, 0) << r.err;
   EXPECT_NE(r.out.find("# compared: joints; objective: minimax"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("joint_1  joint_2  joint_3  joint_4  joint_5  joint_6  joint_7   avg_2..7  tip_angle   tip_mm"),
+  // In the data's units: Pa, rad and m.
+  EXPECT_NE(r.out.find("gauge_pa  joint_1  joint_2  joint_3  joint_4  joint_5  joint_6  joint_7  avg_2..7 tip_angle    tip_m"),
             std::string::npos) << r.out;
   EXPECT_NE(r.out.find("# leave-one-out error"), std::string::npos);
   // The chambers' fit on the paper's own measure is unchanged by joint 1's parameter (fitted after it, to joint 1).
-  EXPECT_NE(r.out.find("joints 2..7 average 0.532 deg (the paper: 0.647 deg)"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("joints 2..7 average 0.00928543 rad (0.532 deg) (the paper's own model on these data: 0.647 deg)"),
+            std::string::npos) << r.out;
   // The written file is the shipped one, byte for byte: config/finger.yaml is reproducible.
   EXPECT_EQ(readFile(out_file), readFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml"));
 }
@@ -251,7 +253,7 @@ TEST(CalibrateCli, WallLawAutoKeepsTheBetterPredictionAndWritesIt) {
   EXPECT_NE(r.out.find("it starts from its uniform wall, b = L/2"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("<- chosen"), std::string::npos) << r.out;
   EXPECT_LT(r.out.find("#   paper"), r.out.find("#   membrane"));
-  EXPECT_NE(r.out.find("deg  <- chosen"), std::string::npos);
+  EXPECT_NE(r.out.find("deg)  <- chosen"), std::string::npos);
   EXPECT_GT(r.out.find("<- chosen"), r.out.find("#   membrane")) << "the membrane law predicts the ribbed segment better";
   EXPECT_NE(readFile(out_file).find("\nwall_law: membrane\n"), std::string::npos);
   const CliRun bad = runShell(std::string(FINGER_CALIBRATE_EXE) + " --wall-law balloon");

@@ -36,19 +36,55 @@ def default_data():
     return _share("data", "sierra2022_table1.csv")
 
 
+def _keys(keys):
+    # "a,b" as finger_calibrate --fit takes it, or a sequence of names.
+    if keys is None:
+        return []
+    if isinstance(keys, str):
+        return [k.strip() for k in keys.split(",") if k.strip()]
+    return [str(k) for k in keys]
+
+
+def _data(data):
+    # A CSV path, or a mapping of column names to numbers (a dict of arrays or lists, a pandas DataFrame).
+    if data is None:
+        return default_data(), [], []
+    if isinstance(data, (str, os.PathLike)):
+        return os.fspath(data), [], []
+    if hasattr(data, "keys"):
+        import numpy
+        names = [str(k) for k in data.keys()]
+        columns = []
+        for name in names:
+            values = numpy.asarray(data[name], dtype=float)
+            if values.ndim > 1:
+                raise ValueError("data: column %s must be one number per row, got shape %s" % (name, values.shape))
+            columns.append(values.ravel().tolist())
+        return None, names, columns
+    raise ValueError("data must be a CSV path or a mapping of column names to numbers (gauge_pa and any of "
+                     "joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m), got %s" % type(data).__name__)
+
+
 def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=None, average_column="",
-              compare=None, leave_one_out=False):
-    """finger_calibrate from Python: fits one to three keys to what a CSV measured (gauge_pa and any of
-    joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m; None: the package's data). compare: "joints",
-    "average", "joint_1", "tip_angle" or "tip_position" (None: what the file has, as the tool decides); keys None: the
-    tool's default for it. Returns a dict: fitted (key -> value), compared, objective_value, residuals (per row:
-    gauge_pa, measured/model joints, joints 2..N average, joint 1, tip angle and tip position), model_evaluations,
-    uncertainty (key -> one standard deviation, from the fit's curvature), correlation (keys x keys), warnings (keys
-    that trade off, or sit on their search range's end), and with leave_one_out=True the same rows as each is predicted by a fit to the others (finger_calibrate's
-    leave-one-out table; None otherwise)."""
-    return _calibrate(data if data is not None else default_data(), list(keys or []), objective,
+              compare=None, leave_one_out=False, wall_law=None):
+    """finger_calibrate from Python: the same defaults, data check, fit and leave-one-out.
+
+    data: a CSV path, or a mapping of column names to arrays: gauge_pa and any of joint_1_rad..joint_N_rad,
+    tip_angle_rad, tip_x_m,tip_y_m (None: the package's data). keys: one to three keys, a list or "a,b" (None: the
+    tool's default). compare: "joints", "average", "joint_1", "tip_angle" or "tip_position" (None: what the data
+    has). wall_law: "auto" (fit both laws, keep the better leave-one-out prediction), "paper" or "membrane" (None:
+    the parameter file's).
+
+    Returns a dict: fitted (key -> value), wall_law, compared, objective_value, residuals (a dict of arrays, a row
+    per measurement: gauge_pa (R,), measured_/model_joint_rad (R, N), measured_/model_avg_rad, _joint1_rad,
+    _tip_angle_rad (R,), measured_/model_tip_m (R, 2); NaN where nothing was measured), model_evaluations,
+    uncertainty (key -> one standard deviation), correlation (keys x keys array), warnings (columns not read, keys
+    that trade off or sit on their search range's end), and leave_one_out: with leave_one_out=True (or
+    wall_law="auto") the residuals of each row predicted by a fit to the others, else None."""
+    path, names, columns = _data(data)
+    return _calibrate(path, names, columns, _keys(keys), objective,
                       config if config is not None else default_config(), dict(overrides or {}), average_column,
-                      compare or "", bool(leave_one_out))
+                      compare or "", wall_law or "", bool(leave_one_out) or wall_law == "auto")
 
 
 class FingerModel(_FingerModel):

@@ -179,7 +179,12 @@ namespace {
 // The keys are fittable, each once, and the data has what @p quantity compares. @throws ParameterError naming it.
 void checkKeysAndData(const FingerParameters& base, const std::vector<std::string>& keys,
                       const std::vector<Measurement>& data, CalibrationQuantity quantity) {
-  if (keys.empty() || keys.size() > 3) throw ParameterError("calibration fits one to three parameters");
+  if (keys.empty() || keys.size() > 3) {
+    std::string given;
+    for (const std::string& k : keys) given += (given.empty() ? "" : ", ") + k;
+    throw ParameterError("calibration fits one to three parameters, got " + std::to_string(keys.size()) +
+                         (given.empty() ? "" : " (" + given + ")"));
+  }
   for (const auto& k : keys) {
     if (!isFittableKey(k)) {
       std::string fittable;
@@ -210,6 +215,7 @@ void checkKeysAndData(const FingerParameters& base, const std::vector<std::strin
   if (quantity == CalibrationQuantity::kOuterAverage && base.chamber_count < 2) {
     throw ParameterError("the average compares joints 2..N: chamber_count must be >= 2");
   }
+  checkMeasurementsPlausible(base, data);
 }
 
 // What the data cannot determine is refused, not fitted to an arbitrary value. The chamber keys shape theta(P), which

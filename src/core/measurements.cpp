@@ -2,6 +2,8 @@
 // (calibration.hpp, Measurement), refused with the file, the line and the column named when malformed.
 #include "pneumatic_finger/core/calibration.hpp"
 
+#include "pneumatic_finger/core/units.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <fstream>
@@ -35,15 +37,65 @@ std::vector<std::string> splitCsv(const std::string& line) {
 
 std::string where(const std::string& origin, int line) { return origin + ":" + std::to_string(line) + ": "; }
 
+// A column name calibration reads (the average column aside).
+bool isMeasuredColumn(const std::string& name) {
+  if (name == "gauge_pa" || name == "tip_angle_rad" || name == "bend_angle_rad" || name == "tip_x_m" ||
+      name == "tip_y_m") {
+    return true;
+  }
+  const std::string suffix = "_rad";
+  return name.rfind("joint_", 0) == 0 && name.size() > 10 && name.compare(name.size() - 4, 4, suffix) == 0 &&
+         name.find_first_not_of("0123456789", 6) == name.size() - 4;
+}
+
 }  // namespace
 
 namespace {
 
-// Where each measured quantity stands in a measurement CSV (-1: absent).
+// Where each measured quantity stands in a measurement CSV (-1: absent), and the columns calibration does not read.
 struct CsvColumns {
   int gauge = -1, average = -1, tip_angle = -1, tip_x = -1, tip_y = -1;
   std::vector<int> joints;
+  std::vector<std::string> unused;
 };
+
+// What calibration reads, for messages about a column it does not.
+constexpr const char* kKnownColumns =
+    "gauge_pa, joint_1_rad..joint_N_rad, tip_angle_rad (or bend_angle_rad), tip_x_m,tip_y_m";
+
+// A column calibration does not read that looks like one of ours under another unit ("tip_x_mm" for tip_x_m,
+// "tip_angle_deg" for tip_angle_rad, "joint_2_deg" for joint_2_rad): what it may have meant, or empty.
+std::string meantColumn(const std::string& column) {
+  const auto cut = column.rfind('_');
+  const std::string stem = cut == std::string::npos ? column : column.substr(0, cut);
+  for (const char* known : {"gauge_pa", "tip_angle_rad", "bend_angle_rad", "tip_x_m", "tip_y_m"}) {
+    const std::string k = known;
+    if (stem == k.substr(0, k.rfind('_'))) return k;
+  }
+  const bool joint = stem.rfind("joint_", 0) == 0 && stem.size() > 6 &&
+                     stem.find_first_not_of("0123456789", 6) == std::string::npos;
+  return joint ? stem + "_rad" : std::string();
+}
+
+// The columns calibration does not read, named: each that looks like one of ours under another unit with what it
+// may have meant, the others in one line. Extra columns are common (a source's own units, notes), so they are
+// named, not refused.
+std::vector<std::string> unusedColumnNotes(const std::vector<std::string>& unused) {
+  std::vector<std::string> notes;
+  std::string others;
+  for (const std::string& column : unused) {
+    const std::string meant = meantColumn(column);
+    if (!meant.empty()) {
+      notes.push_back("column '" + column + "' is not read: did you mean '" + meant + "'? (SI units: Pa, rad, m)");
+    } else {
+      others += (others.empty() ? "" : ", ") + column;
+    }
+  }
+  if (!others.empty()) {
+    notes.push_back("columns not read: " + others + " (calibration reads " + kKnownColumns + ")");
+  }
+  return notes;
+}
 
 // The header's columns. @throws ParameterError naming the line and what the header lacks.
 CsvColumns readHeader(const std::vector<std::string>& header, const std::string& average_column,
@@ -51,6 +103,7 @@ CsvColumns readHeader(const std::vector<std::string>& header, const std::string&
   CsvColumns c;
   for (std::size_t i = 0; i < header.size(); ++i) {
     const int k = static_cast<int>(i);
+    if (!isMeasuredColumn(header[i]) && header[i] != average_column) c.unused.push_back(header[i]);
     if (header[i] == "gauge_pa") c.gauge = k;
     // A segment's bend angle (the angle between its base and its tip, as bending tests report it) is the tip's
     // direction Theta_N: the same number under another name.
@@ -78,8 +131,10 @@ CsvColumns readHeader(const std::vector<std::string>& header, const std::string&
                          (c.tip_x < 0 ? "tip_x_m" : "tip_y_m") + "; a tip position needs both");
   }
   if (c.joints.empty() && c.tip_angle < 0 && c.tip_x < 0) {
+    std::string notes;
+    for (const std::string& note : unusedColumnNotes(c.unused)) notes += "; " + note;
     throw ParameterError(at + "header has nothing measured: give joint_1_rad, joint_2_rad, ... (joint angles), "
-                         "tip_angle_rad, or tip_x_m,tip_y_m (the tip in the finger's frame)");
+                         "tip_angle_rad, or tip_x_m,tip_y_m (the tip in the finger's frame)" + notes);
   }
   if (c.average >= 0 && c.joints.empty()) {
     throw ParameterError(at + "column '" + average_column +
@@ -88,23 +143,9 @@ CsvColumns readHeader(const std::vector<std::string>& header, const std::string&
   return c;
 }
 
-// One data row. @throws ParameterError naming the line, the column and the field that is not a finite number.
-Measurement readRow(const std::vector<std::string>& fields, const std::vector<std::string>& header,
-                    const CsvColumns& c, int line, const std::string& at) {
-  if (fields.size() != header.size()) {
-    throw ParameterError(at + "has " + std::to_string(fields.size()) + " fields, the header " +
-                         std::to_string(header.size()));
-  }
-  auto number_at = [&](int column) {
-    const std::string& f = fields[static_cast<std::size_t>(column)];
-    char* end = nullptr;
-    const double v = std::strtod(f.c_str(), &end);
-    if (f.empty() || *end != '\0' || !std::isfinite(v)) {
-      throw ParameterError(at + "'" + f + "' in column " + header[static_cast<std::size_t>(column)] +
-                           " is not a finite number");
-    }
-    return v;
-  };
+// One data row from its numbers: @p number_at(column) gives the value in a column, or throws naming it.
+Measurement measurementFrom(const std::function<double(int)>& number_at, const CsvColumns& c, int line,
+                            const std::string& at) {
   Measurement m;
   m.line = line;
   m.gauge_pa = number_at(c.gauge);
@@ -119,16 +160,50 @@ Measurement readRow(const std::vector<std::string>& fields, const std::vector<st
   return m;
 }
 
+// One CSV data row. @throws ParameterError naming the line, the column and the field that is not a finite number.
+Measurement readRow(const std::vector<std::string>& fields, const std::vector<std::string>& header,
+                    const CsvColumns& c, int line, const std::string& at) {
+  if (fields.size() != header.size()) {
+    throw ParameterError(at + "has " + std::to_string(fields.size()) + " fields, the header " +
+                         std::to_string(header.size()));
+  }
+  return measurementFrom(
+      [&](int column) {
+        const std::string& f = fields[static_cast<std::size_t>(column)];
+        char* end = nullptr;
+        const double v = std::strtod(f.c_str(), &end);
+        if (f.empty() || *end != '\0' || !std::isfinite(v)) {
+          throw ParameterError(at + "'" + f + "' in column " + header[static_cast<std::size_t>(column)] +
+                               " is not a finite number");
+        }
+        return v;
+      },
+      c, line, at);
+}
+
+void requireRows(const MeasurementSet& set, std::size_t min_rows, const std::string& at) {
+  if (set.rows.size() < min_rows) {
+    throw ParameterError(at + "only " + std::to_string(set.rows.size()) + " data rows; at least " +
+                         std::to_string(min_rows) + " are needed");
+  }
+}
+
+MeasurementSet withNotes(const CsvColumns& columns) {
+  MeasurementSet set;
+  set.notes = unusedColumnNotes(columns.unused);
+  return set;
+}
+
 }  // namespace
 
-std::vector<Measurement> parseMeasurementsCsv(const std::string& text, const std::string& origin,
-                                              std::size_t min_rows, const std::string& average_column) {
+MeasurementSet parseMeasurementSet(const std::string& text, const std::string& origin, std::size_t min_rows,
+                                   const std::string& average_column) {
   std::stringstream in(text);
   std::string line;
   int number = 0;
   std::vector<std::string> header;
   CsvColumns columns;
-  std::vector<Measurement> rows;
+  MeasurementSet set;
   while (std::getline(in, line)) {
     ++number;
     const auto first = line.find_first_not_of(" \t\r");
@@ -137,25 +212,104 @@ std::vector<Measurement> parseMeasurementsCsv(const std::string& text, const std
     if (header.empty()) {
       header = fields;
       columns = readHeader(header, average_column, where(origin, number));
+      set = withNotes(columns);
     } else {
-      rows.push_back(readRow(fields, header, columns, number, where(origin, number)));
+      set.rows.push_back(readRow(fields, header, columns, number, where(origin, number)));
     }
   }
   if (header.empty()) throw ParameterError(origin + ": no header line");
-  if (rows.size() < min_rows) {
-    throw ParameterError(where(origin, number) + "only " + std::to_string(rows.size()) + " data rows; at least " +
-                         std::to_string(min_rows) + " are needed");
-  }
-  return rows;
+  requireRows(set, min_rows, where(origin, number));
+  return set;
 }
 
-std::vector<Measurement> readMeasurementsCsv(const std::string& path, std::size_t min_rows,
-                                             const std::string& average_column) {
+MeasurementSet readMeasurementSet(const std::string& path, std::size_t min_rows, const std::string& average_column) {
   std::ifstream in(path);
   if (!in) throw ParameterError("cannot read measurement file '" + path + "'");
   std::stringstream text;
   text << in.rdbuf();
-  return parseMeasurementsCsv(text.str(), path, min_rows, average_column);
+  return parseMeasurementSet(text.str(), path, min_rows, average_column);
+}
+
+MeasurementSet measurementSetFromColumns(const std::vector<std::string>& names,
+                                         const std::vector<std::vector<double>>& columns, const std::string& origin,
+                                         std::size_t min_rows, const std::string& average_column) {
+  if (names.size() != columns.size()) throw ParameterError(origin + ": " + std::to_string(names.size()) +
+                                                           " column names for " + std::to_string(columns.size()) +
+                                                           " columns");
+  const CsvColumns c = readHeader(names, average_column, origin + ": ");
+  const std::size_t rows = columns.empty() ? 0 : columns.front().size();
+  for (std::size_t k = 0; k < columns.size(); ++k) {
+    if (columns[k].size() != rows) {
+      throw ParameterError(origin + ": column " + names[k] + " has " + std::to_string(columns[k].size()) +
+                           " values, column " + names[0] + " " + std::to_string(rows));
+    }
+  }
+  MeasurementSet set = withNotes(c);
+  for (std::size_t i = 0; i < rows; ++i) {
+    // Rows are named as a file's lines are, from 1 (a table has no header line).
+    const int row = static_cast<int>(i) + 1;
+    const std::string at = origin + ": row " + std::to_string(row) + ": ";
+    set.rows.push_back(measurementFrom(
+        [&](int column) {
+          const double v = columns[static_cast<std::size_t>(column)][i];
+          if (!std::isfinite(v)) {
+            throw ParameterError(at + formatExact(v) + " in column " + names[static_cast<std::size_t>(column)] +
+                                 " is not a finite number");
+          }
+          return v;
+        },
+        c, row, at));
+  }
+  requireRows(set, min_rows, origin + ": ");
+  return set;
+}
+
+std::vector<Measurement> parseMeasurementsCsv(const std::string& text, const std::string& origin,
+                                              std::size_t min_rows, const std::string& average_column) {
+  return parseMeasurementSet(text, origin, min_rows, average_column).rows;
+}
+
+std::vector<Measurement> readMeasurementsCsv(const std::string& path, std::size_t min_rows,
+                                             const std::string& average_column) {
+  return readMeasurementSet(path, min_rows, average_column).rows;
+}
+
+
+namespace {
+
+
+// An angle beyond what the finger can turn: refused, with the degrees hint (a value in degrees read as radians is
+// 57 times too large, so a bend of a few degrees already passes a full turn).
+void checkAngle(double value_rad, double bound_rad, const char* bound_name, const std::string& column, int line) {
+  if (std::fabs(value_rad) <= bound_rad) return;
+  throw ParameterError("line " + std::to_string(line) + ": " + column + " = " + formatMessage(value_rad) +
+                       " rad is beyond " + bound_name + ", more than this finger can bend; were the angles in "
+                       "degrees? (radians = degrees x pi/180)");
+}
+
+}  // namespace
+
+void checkMeasurementsPlausible(const FingerParameters& parameters, const std::vector<Measurement>& data) {
+  const FingerState rest = restState(parameters);
+  const double length_m = rest.tip().norm();  // the straight finger's reach: no bent tip reaches farther
+  for (const Measurement& m : data) {
+    for (std::size_t k = 0; k < m.joint_rad.size(); ++k) {
+      checkAngle(m.joint_rad[k], kPi, "pi (half a turn)", "joint_" + std::to_string(k + 1) + "_rad", m.line);
+    }
+    if (m.hasTipAngle()) checkAngle(m.tip_angle_rad, 2 * kPi, "2 pi (a full turn)", "tip_angle_rad", m.line);
+    if (!std::isnan(m.given_average_rad)) checkAngle(m.given_average_rad, kPi, "pi (half a turn)", "the average", m.line);
+    if (m.hasTipPosition()) {
+      const double reach_m = std::hypot(m.tip_x_m, m.tip_y_m);
+      // 1e-9 m of slack: a tip measured at the straight finger's own end, written with a few digits, reads back a
+      // hair past it.
+      if (reach_m > length_m * (1 + 1e-9) + 1e-9) {
+        throw ParameterError("line " + std::to_string(m.line) + ": the tip (tip_x_m, tip_y_m) = (" +
+                             formatMessage(m.tip_x_m) + ", " + formatMessage(m.tip_y_m) + ") m lies " +
+                             formatMessage(reach_m) + " m from the mount, farther than the finger is long (" +
+                             formatMessage(length_m) + " m); were the positions in mm? (m = mm / 1000)");
+      }
+    }
+  }
 }
 
 }  // namespace pneumatic_finger

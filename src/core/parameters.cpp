@@ -158,6 +158,13 @@ std::string formatShortest(double value) {
   return buffer;
 }
 
+std::string formatMessage(double value) {
+  if (std::isnan(value)) return "nan";
+  char buffer[40];
+  std::snprintf(buffer, sizeof(buffer), "%.6g", value);
+  return buffer;
+}
+
 std::string describeRange(const ParameterSpec& spec) {
   std::ostringstream s;
   if (spec.shape == ParameterShape::kChoice) {

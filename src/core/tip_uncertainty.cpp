@@ -47,15 +47,20 @@ TipUncertainty TipUncertainty::fromLists(const std::vector<double>& gauge_pa, co
   for (std::size_t i = 0; i < gauge_pa.size(); ++i) {
     const std::string entry = " (entry " + std::to_string(i + 1) + ")";
     if (!std::isfinite(gauge_pa[i]) || gauge_pa[i] <= 0.0 || (i > 0 && gauge_pa[i] <= gauge_pa[i - 1])) {
-      throw ParameterError(where + "gauge_pa = " + formatExact(gauge_pa[i]) + entry +
+      throw ParameterError(where + "gauge_pa = " + formatMessage(gauge_pa[i]) + entry +
                            " must be finite, > 0 and ascending");
     }
-    if (!(tip_angle_rad[i] >= 0.0) || std::isinf(tip_angle_rad[i])) {
-      throw ParameterError(where + "tip_angle_rad = " + formatExact(tip_angle_rad[i]) + entry +
-                           " must be a finite number >= 0");
+    // NaN: not measured. Tip positions from a camera give no angle; a bar needs at least one of the two.
+    if (tip_angle_rad[i] < 0.0 || std::isinf(tip_angle_rad[i])) {
+      throw ParameterError(where + "tip_angle_rad = " + formatMessage(tip_angle_rad[i]) + entry +
+                           " must be >= 0 and finite (or .nan: not measured)");
+    }
+    if (std::isnan(tip_angle_rad[i]) && std::isnan(tip_position_m[i])) {
+      throw ParameterError(where + "entry " + std::to_string(i + 1) +
+                           " has neither tip_angle_rad nor tip_position_m: give at least one");
     }
     if (tip_position_m[i] < 0.0 || std::isinf(tip_position_m[i])) {
-      throw ParameterError(where + "tip_position_m = " + formatExact(tip_position_m[i]) + entry +
+      throw ParameterError(where + "tip_position_m = " + formatMessage(tip_position_m[i]) + entry +
                            " must be >= 0 and finite (or .nan: not measured)");
     }
   }

@@ -18,6 +18,8 @@
 #include "pneumatic_finger/core/design_sweep.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
+#include "calibrate_module.hpp"
+#include "python_parameters.hpp"
 #include "output_arrays.hpp"
 
 namespace py = pybind11;
@@ -46,37 +48,6 @@ std::uint8_t contactStatusCode(pf::ContactState::Status status) {
                                         : 4;
 }
 
-// Python's value of an override: a number, or a list of numbers (one per chamber).
-pf::RawParameterValue rawValue(const std::string& key, const py::handle& value) {
-  pf::RawParameterValue raw;
-  try {
-    const pf::ParameterSpec* spec = pf::findParameterSpec(key);
-    if (spec != nullptr && spec->shape == pf::ParameterShape::kChoice && py::isinstance<py::str>(value)) {
-      raw.values.push_back(pf::parseParameterText(*spec, value.cast<std::string>()));
-    } else if (py::isinstance<py::float_>(value) || py::isinstance<py::int_>(value)) {
-      raw.values.push_back(value.cast<double>());
-    } else {
-      raw.is_list = true;
-      for (const py::handle& v : value) raw.values.push_back(v.cast<double>());
-    }
-  } catch (const py::cast_error&) {
-    throw pf::ParameterError("parameter '" + key + "' must be a number or a list of numbers");
-  } catch (const py::type_error&) {
-    throw pf::ParameterError("parameter '" + key + "' must be a number or a list of numbers");
-  }
-  return raw;
-}
-
-// A parameter file with Python overrides on top: the raw map every reader validates the same way.
-pf::RawParameterMap loadRaw(const std::string& config, const py::dict& overrides) {
-  pf::RawParameterMap raw;
-  if (!config.empty()) pf::loadRawParametersFromYamlFile(config, raw);
-  for (const auto& item : overrides) {
-    const std::string key = py::str(item.first);
-    raw[key] = rawValue(key, item.second);
-  }
-  return raw;
-}
 
 // The pressures of a call: a number (scalar: the results drop the pressure axis) or a 1-D sequence.
 Array pressures(const py::object& gauge_pa, bool& scalar) {
@@ -303,79 +274,6 @@ class PyFingerModel {
   std::unique_ptr<const pf::FingerModel> model_;
 };
 
-// The calibration of finger_calibrate: fit keys of a parameter file to measured joint angles, tip angles or tip
-// positions; the same defaults (what to compare, which keys) as the tool.
-// Residual rows as dicts (measured and model, per row).
-py::list residualRows(const std::vector<pf::Residual>& rows) {
-  py::list out;
-  for (const pf::Residual& r : rows) {
-    py::dict row;
-    row["gauge_pa"] = r.gauge_pa;
-    row["measured_avg_rad"] = r.measured_avg_rad;
-    row["model_avg_rad"] = r.model_avg_rad;
-    row["measured_joint1_rad"] = r.measured_joint1_rad;
-    row["model_joint1_rad"] = r.model_joint1_rad;
-    row["measured_joint_rad"] = r.measured_joint_rad;
-    row["model_joint_rad"] = r.model_joint_rad;
-    row["measured_tip_angle_rad"] = r.measured_tip_angle_rad;
-    row["model_tip_angle_rad"] = r.model_tip_angle_rad;
-    row["measured_tip_m"] = py::make_tuple(r.measured_tip_x_m, r.measured_tip_y_m);
-    row["model_tip_m"] = py::make_tuple(r.model_tip_x_m, r.model_tip_y_m);
-    out.append(row);
-  }
-  return out;
-}
-
-py::dict calibrate(const std::string& data, const std::vector<std::string>& keys, const std::string& objective,
-                   const std::string& config, const py::dict& overrides, const std::string& average_column,
-                   const std::string& compare, bool with_leave_one_out) {
-  const pf::FingerParameters base = pf::FingerParameters::fromRaw(loadRaw(config, overrides));
-  const pf::CalibrationObjective goal = pf::parseObjective(objective);
-  const std::vector<pf::Measurement> rows = pf::readMeasurementsCsv(data, 1, average_column);
-  const pf::CalibrationQuantity quantity = !compare.empty()          ? pf::parseQuantity(compare)
-                                           : !average_column.empty() ? pf::CalibrationQuantity::kOuterAverage
-                                                                     : pf::defaultQuantity(rows);
-  const std::vector<std::string> fit_keys = keys.empty() ? pf::defaultFitKeys(quantity, base.wall_law) : keys;
-  pf::CalibrationResult fit;
-  {
-    py::gil_scoped_release release;
-    fit = pf::calibrate(base, fit_keys, rows, goal, quantity);
-  }
-  py::dict fitted;
-  for (std::size_t i = 0; i < fit.keys.size(); ++i) fitted[py::str(fit.keys[i])] = fit.values[i];
-  py::list residuals = residualRows(fit.residuals);
-  py::object leave_one_out = py::none();
-  if (with_leave_one_out) {
-    std::vector<pf::Residual> loo;
-    {
-      py::gil_scoped_release release;
-      loo = pf::leaveOneOut(base, fit_keys, rows, goal, quantity);
-    }
-    leave_one_out = residualRows(loo);
-  }
-  py::dict d;
-  d["fitted"] = fitted;
-  d["compared"] = pf::quantityName(quantity);
-  d["objective_value"] = fit.objective_value;
-  d["residuals"] = residuals;
-  d["leave_one_out"] = leave_one_out;
-  d["model_evaluations"] = fit.model_evaluations;
-  // What the data can tell, as finger_calibrate prints it: one standard deviation per key, the correlations
-  // (keys x keys) and the warnings.
-  py::dict uncertainty;
-  for (std::size_t i = 0; i < fit.keys.size(); ++i) uncertainty[py::str(fit.keys[i])] = fit.uncertainty[i];
-  d["uncertainty"] = uncertainty;
-  py::list correlation;
-  for (std::size_t a = 0; a < fit.keys.size(); ++a) {
-    py::list row;
-    for (std::size_t b = 0; b < fit.keys.size(); ++b) row.append(fit.correlation[a * fit.keys.size() + b]);
-    correlation.append(row);
-  }
-  d["correlation"] = correlation;
-  d["warnings"] = py::cast(fit.warnings);
-  return d;
-}
-
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
@@ -390,11 +288,7 @@ PYBIND11_MODULE(_core, m) {
   });
   m.attr("STATUS") = py::tuple(py::cast(std::vector<std::string>(kEvaluationStatus.begin(), kEvaluationStatus.end())));
   m.attr("CONTACT_STATUS") = py::tuple(py::cast(std::vector<std::string>(kContactStatus.begin(), kContactStatus.end())));
-  m.def("calibrate", &calibrate, py::arg("data"), py::arg("keys"), py::arg("objective"), py::arg("config"),
-        py::arg("overrides") = py::dict(), py::arg("average_column") = "", py::arg("compare") = "",
-        py::arg("leave_one_out") = false,
-        "Fits keys of a parameter file to measured joint angles, tip angles or tip positions, as finger_calibrate "
-        "does; with leave_one_out, also each row as a fit to the others predicts it");
+  defineCalibrate(m);
   py::class_<PyFingerModel>(m, "FingerModel")
       .def(py::init<const std::string&, const py::dict&, const std::string&>(), py::arg("config"),
            py::arg("overrides") = py::dict(), py::arg("solver") = "robust")

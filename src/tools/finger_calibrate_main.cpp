@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "pneumatic_finger/core/calibration.hpp"
+#include "pneumatic_finger/core/calibration_run.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
 #include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
@@ -37,60 +37,63 @@ std::string pad(const std::string& text, int width) {
 }
 
 // A table cell: the value, or "-" where the data has nothing to compare.
-std::string cell(double v, double scale, int width) {
+std::string cell(double v, const char* format, int width) {
   char b[64];
   if (std::isnan(v)) std::snprintf(b, sizeof b, "%*s", width, "-");
-  else std::snprintf(b, sizeof b, "%*.3f", width, v * scale);
+  else std::snprintf(b, sizeof b, format, width, v);
   return b;
 }
 
-// One table of errors (model - measured): every joint, the joints 2..N average, the tip angle (deg), the tip
-// position (mm). Also returns the largest |error| of each kind in @p worst (joint, average, tip angle, tip mm).
+// One table of errors (model - measured), in the data's own units: every joint, the joints 2..N average and the tip
+// angle (rad), the tip position (m). Also returns the largest |error| of each kind in @p worst (joint, average, tip
+// angle, tip position).
 std::string errorTable(const std::vector<pf::Residual>& rows, int n, std::array<double, 4>& worst) {
   std::ostringstream t;
-  t << "# pressure_kgcm2";
+  t << "# " << pad("gauge_pa", 10);
   for (int k = 1; k <= n; ++k) t << pad("joint_" + std::to_string(k), 9);
-  t << pad("avg_2.." + std::to_string(n), 11) << pad("tip_angle", 11) << pad("tip_mm", 9) << "\n";
+  t << pad("avg_2.." + std::to_string(n), 10) << pad("tip_angle", 10) << pad("tip_m", 9) << "\n";
   worst = {0, 0, 0, 0};
   auto keep = [](double& w, double e) {
     if (!std::isnan(e)) w = std::max(w, std::fabs(e));
   };
   for (const pf::Residual& r : rows) {
-    t << "# " << fmt("%14.3f", r.gauge_pa / pf::kPaPerKgfPerCm2);
+    t << "# " << pad(pf::formatMessage(r.gauge_pa), 10);
     for (int k = 0; k < n; ++k) {
       const auto i = static_cast<std::size_t>(k);
       const double e = r.measured_joint_rad.empty() ? NAN : r.model_joint_rad[i] - r.measured_joint_rad[i];
       keep(worst[0], e);
-      t << cell(e, kDeg, 9);
+      t << cell(e, "%*.4f", 9);
     }
     keep(worst[1], r.error_rad());
     keep(worst[2], r.tip_angle_error_rad());
     keep(worst[3], r.tip_position_error_m());
-    t << cell(r.error_rad(), kDeg, 11) << cell(r.tip_angle_error_rad(), kDeg, 11)
-      << cell(r.tip_position_error_m(), 1e3, 9) << "\n";
+    t << cell(r.error_rad(), "%*.4f", 10) << cell(r.tip_angle_error_rad(), "%*.4f", 10)
+      << cell(r.tip_position_error_m(), "%*.5f", 9) << "\n";
   }
   return t.str();
 }
 
+// An angle in rad with its degrees beside it, a length in m with its mm: what a reader of the report compares.
+std::string angle(double rad) { return pf::formatMessage(rad) + " rad (" + fmt("%.3f", rad * kDeg) + " deg)"; }
+std::string length(double m) { return pf::formatMessage(m) + " m (" + fmt("%.3f", m * 1e3) + " mm)"; }
+
 std::string largest(const std::array<double, 4>& w, int n, bool paper) {
-  std::ostringstream t;
-  auto put = [&t](const char* what, double v, double scale, const char* unit) {
-    if (v > 0) t << " " << what << " " << fmt("%.3f", v * scale) << " " << unit << ",";
-  };
-  put("joints", w[0], kDeg, "deg");
+  std::vector<std::string> parts;
+  if (w[0] > 0) parts.push_back("joints " + angle(w[0]));
   if (w[1] > 0) {
-    t << " joints 2.." << n << " average " << fmt("%.3f", w[1] * kDeg) << " deg" << (paper ? " (the paper: 0.647 deg)" : "")
-      << ",";
+    parts.push_back("joints 2.." + std::to_string(n) + " average " + angle(w[1]) +
+                    (paper ? " (the paper's own model on these data: 0.647 deg)" : ""));
   }
-  put("tip angle", w[2], kDeg, "deg");
-  put("tip position", w[3], 1e3, "mm");
-  std::string s = t.str();
-  if (!s.empty()) s.pop_back();
+  if (w[2] > 0) parts.push_back("tip angle " + angle(w[2]));
+  if (w[3] > 0) parts.push_back("tip position " + length(w[3]));
+  std::string s;
+  for (const std::string& p : parts) s += (s.empty() ? " " : ", ") + p;
   return s;
 }
 
-// Each key's standard deviation and the keys' correlations (calibrationUncertainty), and the warnings.
-std::string uncertaintyLines(const pf::CalibrationResult& fit) {
+// Each key's standard deviation and the keys' correlations (calibrationUncertainty), and every warning.
+std::string uncertaintyLines(const pf::CalibrationRun& run) {
+  const pf::CalibrationResult& fit = run.best().fit;
   std::ostringstream t;
   t << "\n# uncertainty (one standard deviation, from the fit's curvature):";
   const std::size_t k = fit.keys.size();
@@ -106,46 +109,52 @@ std::string uncertaintyLines(const pf::CalibrationResult& fit) {
       }
     }
   }
-  for (const std::string& w : fit.warnings) t << "\n# warning: " << w;
+  for (const std::string& w : run.warnings) t << "\n# warning: " << w;
   return t.str();
 }
 
+// The error bar's line: at each calibrated pressure, the tip angle's and the tip position's bar.
+std::string errorBarLine(const pf::TipUncertainty& bar) {
+  std::string line = "# error bar written to the parameter file (tip_uncertainty: the larger of fit and "
+                     "leave-one-out):";
+  for (std::size_t i = 0; i < bar.gauge_pa.size(); ++i) {
+    line += " at " + pf::formatMessage(bar.gauge_pa[i]) + " Pa";
+    if (!std::isnan(bar.tip_angle_rad[i])) line += " " + pf::formatMessage(bar.tip_angle_rad[i]) + " rad";
+    if (!std::isnan(bar.tip_position_m[i])) line += " " + pf::formatMessage(bar.tip_position_m[i]) + " m";
+    line += i + 1 < bar.gauge_pa.size() ? ";" : "";
+  }
+  return line + "\n";
+}
+
 // The report: what was fitted to what, the error of the fit and of leave-one-out per row, and the error bar.
-std::string report(const std::string& data_name, std::size_t rows, pf::CalibrationQuantity quantity,
-                   const std::string& average_column, const std::string& objective_name,
-                   const pf::CalibrationResult& fit, const std::vector<pf::Residual>& loo, const pf::TipUncertainty& bar,
-                   int n) {
+// @p paper_data: the package's Table 1, beside which the paper's own model's error is worth printing.
+std::string report(const std::string& data_name, bool paper_data, std::size_t rows, const std::string& average_column,
+                   const pf::CalibrationRun& run, int n) {
+  const pf::CalibrationResult& fit = run.best().fit;
   std::ostringstream table;
   table << "# data: " << data_name << " ("
-        << rows << " rows)\n# compared: " << pf::quantityName(quantity)
-        << (quantity == pf::CalibrationQuantity::kOuterAverage
+        << rows << " rows)\n# compared: " << pf::quantityName(run.quantity)
+        << (run.quantity == pf::CalibrationQuantity::kOuterAverage
                 ? std::string(" (joints 2..") + std::to_string(n) + ", " +
                       (average_column.empty() ? "mean of the measured joints" : "column " + average_column) + ")"
                 : "")
-        << "; objective: " << objective_name << "; error = model - measured\n# fitted:";
+        << "; objective: " << pf::objectiveName(run.objective) << "; error = model - measured\n# fitted:";
   for (std::size_t i = 0; i < fit.keys.size(); ++i) table << " " << fit.keys[i] << " = " << pf::formatExact(fit.values[i]);
-  table << uncertaintyLines(fit);
+  table << uncertaintyLines(run);
   std::array<double, 4> worst{}, worst_loo{};
   const std::string fit_table = errorTable(fit.residuals, n, worst);
-  const std::string loo_table = errorTable(loo, n, worst_loo);
-  table << "\n#\n# error of the fit (deg; tip_mm in mm)\n" << fit_table
+  const std::string loo_table = errorTable(run.best().leave_one_out, n, worst_loo);
+  table << "\n#\n# error of the fit (angles in rad, tip_m in m)\n" << fit_table
         << "# leave-one-out error: each row predicted by a fit to the others\n" << loo_table
-        << "#\n# largest |error|:" << largest(worst, n, true) << "\n# largest leave-one-out |error|:"
-        << largest(worst_loo, n, false) << "\n";
-  table << "# error bar written to the parameter file (tip_uncertainty: the larger of fit and leave-one-out):";
-  for (std::size_t i = 0; i < bar.gauge_pa.size(); ++i) {
-    table << " " << fmt("%.3f", bar.gauge_pa[i] / pf::kPaPerKgfPerCm2) << " kg/cm2 " << fmt("%.2f", bar.tip_angle_rad[i] * kDeg)
-          << " deg";
-    if (!std::isnan(bar.tip_position_m[i])) table << " " << fmt("%.1f", bar.tip_position_m[i] * 1e3) << " mm";
-    table << (i + 1 < bar.gauge_pa.size() ? ";" : "\n");
-  }
+        << "#\n# largest |error|:" << largest(worst, n, paper_data) << "\n# largest leave-one-out |error|:"
+        << largest(worst_loo, n, false) << "\n" << errorBarLine(run.tip_uncertainty);
   return table.str();
 }
 
-// The largest and the root-mean-square |term| of @p rows, in deg (mm for the tip position); "no shape" where a row
+// The largest and the root-mean-square |term| of @p rows, in rad (m for the tip position); "no shape" where a row
 // has none (beyond the limit point).
 std::string errorSummary(const std::vector<pf::Residual>& rows, pf::CalibrationQuantity quantity) {
-  const bool mm = quantity == pf::CalibrationQuantity::kTipPosition;
+  const bool metres = quantity == pf::CalibrationQuantity::kTipPosition;
   double worst = 0.0, sum_sq = 0.0;
   int count = 0;
   for (const pf::Residual& r : rows) {
@@ -156,24 +165,21 @@ std::string errorSummary(const std::vector<pf::Residual>& rows, pf::CalibrationQ
       ++count;
     }
   }
-  const double scale = mm ? 1e3 : kDeg;
-  const char* unit = mm ? " mm" : " deg";
-  return "largest " + fmt("%.3f", worst * scale) + unit + ", rms " +
-         fmt("%.3f", std::sqrt(sum_sq / std::max(count, 1)) * scale) + unit;
+  const double rms = std::sqrt(sum_sq / std::max(count, 1));
+  return metres ? "largest " + length(worst) + ", rms " + length(rms) : "largest " + angle(worst) + ", rms " + angle(rms);
 }
 
 // --wall-law with more than one law: each law's keys, fit and leave-one-out side by side, and the choice.
-std::string lawComparison(const std::vector<pf::WallLawFit>& fits, std::size_t chosen,
-                          pf::CalibrationQuantity quantity) {
+std::string lawComparison(const pf::CalibrationRun& run) {
   std::ostringstream t;
-  t << "# wall laws compared (" << pf::quantityName(quantity) << "; the law with the smaller leave-one-out error is "
-    << "kept):\n";
-  for (std::size_t i = 0; i < fits.size(); ++i) {
-    const pf::WallLawFit& f = fits[i];
+  t << "# wall laws compared (" << pf::quantityName(run.quantity)
+    << "; the law with the smaller leave-one-out error is kept):\n";
+  for (std::size_t i = 0; i < run.fits.size(); ++i) {
+    const pf::WallLawFit& f = run.fits[i];
     t << "#   " << pf::wallLawName(f.law) << ": " << f.fit.keys.size() << " fitted (";
     for (std::size_t k = 0; k < f.fit.keys.size(); ++k) t << (k ? ", " : "") << f.fit.keys[k];
-    t << "); fit " << errorSummary(f.fit.residuals, quantity) << "; leave-one-out "
-      << errorSummary(f.leave_one_out, quantity) << (i == chosen ? "  <- chosen" : "") << "\n";
+    t << "); fit " << errorSummary(f.fit.residuals, run.quantity) << "; leave-one-out "
+      << errorSummary(f.leave_one_out, run.quantity) << (i == run.chosen ? "  <- chosen" : "") << "\n";
     if (!f.note.empty()) t << "#     (" << pf::wallLawName(f.law) << ": " << f.note << ")\n";
   }
   return t.str() + "#\n";
@@ -208,38 +214,34 @@ int main(int argc, char** argv) {
   return pf::runTool("finger_calibrate", app, argc, argv, [&] {
     const bool default_data = data_path.empty();
     if (default_data) data_path = pf::packageShareDirectory() + "/data/sierra2022_table1.csv";
-    const pf::CalibrationObjective objective = pf::parseObjective(objective_name);
-    const pf::FingerParameters base = parameters.load();
-    const std::vector<pf::Measurement> data = pf::readMeasurementsCsv(data_path, 1, average_column);
-    const pf::CalibrationQuantity quantity = !compare.empty()          ? pf::parseQuantity(compare)
-                                             : !average_column.empty() ? pf::CalibrationQuantity::kOuterAverage
-                                                                       : pf::defaultQuantity(data);
-    const std::vector<pf::WallLaw> laws =
-        wall_law.empty() ? std::vector<pf::WallLaw>{base.wall_law} : pf::parseWallLawChoice(wall_law);
-    std::vector<pf::WallLawFit> fits;
+    pf::CalibrationRequest request;
+    request.wall_law = wall_law;
+    request.keys = pf::splitFields(fit_keys);
+    request.objective = objective_name;
+    request.compare = compare;
+    request.average_column = average_column;
+    const pf::FingerParameters base = pf::calibrationBase(parameters.loadRaw(), wall_law);
+    const pf::MeasurementSet data = pf::readMeasurementSet(data_path, 1, average_column);
+    pf::CalibrationRun run;
     try {
-      fits = pf::calibrateWallLaws(base, laws, fit_keys.empty() ? std::vector<std::string>{} : pf::splitFields(fit_keys),
-                                   data, objective, quantity);
+      run = pf::runCalibration(base, data, request);
     } catch (const pf::ParameterError& e) {
       throw pf::ParameterError(data_path + ": " + e.what());
     }
-    const std::size_t chosen = pf::chosenWallLaw(fits);
-    const pf::CalibrationResult& fit = fits[chosen].fit;
-    const std::vector<pf::Residual>& loo = fits[chosen].leave_one_out;
-    const pf::TipUncertainty bar = pf::tipUncertainty(fit.residuals, loo);
-    const std::string table =
-        (fits.size() > 1 ? lawComparison(fits, chosen, quantity) : std::string()) +
-        report(default_data ? "the package's data/sierra2022_table1.csv" : data_path, data.size(), quantity,
-               average_column, objective_name, fit, loo, bar, base.chamber_count);
+    const std::string table = (run.fits.size() > 1 ? lawComparison(run) : std::string()) +
+                              report(default_data ? "the package's data/sierra2022_table1.csv" : data_path,
+                                     default_data, data.rows.size(), average_column, run, base.chamber_count);
     std::cout << table;
     if (!output.empty()) {
       std::ofstream out(output);
       if (!out) throw pf::ParameterError("cannot write '" + output + "'");
-      out << "# The calibrated actuator: written by `finger_calibrate --output` (see docs/ACCURACY.md).\n"
-          << "# Every key's default in the code (parameters.cpp) equals this file; a test checks it.\n"
+      // What this file is, and nothing it is not: the base parameters with the fitted keys replaced, and the fit's
+      // report as comments (docs/CALIBRATE.md reads it line by line).
+      out << "# A calibrated actuator, written by `finger_calibrate --output`: the base parameters with the fitted\n"
+          << "# keys replaced, and the fit's report (docs/CALIBRATE.md). Load it with finger.launch config:=FILE.\n"
           << table << "\n"
-          << pf::parametersToYaml(fit.parameters) << "\n"
-          << pf::tipUncertaintyToYaml(bar);
+          << pf::parametersToYaml(run.best().fit.parameters) << "\n"
+          << pf::tipUncertaintyToYaml(run.tip_uncertainty);
     }
     return 0;
   });

@@ -41,12 +41,14 @@ void ParameterOptions::addTo(CLI::App& app) {
       ->allow_extra_args(false);
 }
 
-FingerParameters ParameterOptions::load() const {
+RawParameterMap ParameterOptions::loadRaw() const {
   RawParameterMap raw;
   loadRawParametersFromYamlFile(config.empty() ? defaultParameterFile() : config, raw);
   for (const auto& a : assignments) parseParameterAssignment(a, raw);
-  return FingerParameters::fromRaw(raw);
+  return raw;
 }
+
+FingerParameters ParameterOptions::load() const { return FingerParameters::fromRaw(loadRaw()); }
 
 int runTool(const char* tool, CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
   try {

@@ -50,6 +50,31 @@ std::vector<Measurement> readMeasurementsCsv(const std::string& path, std::size_
 std::vector<Measurement> parseMeasurementsCsv(const std::string& text, const std::string& origin,
                                               std::size_t min_rows, const std::string& average_column = "");
 
+/// A measurement file's rows, and notes on what it holds that calibration does not read: each such column named,
+/// with the column it may have meant ("tip_x_mm": did you mean tip_x_m?). The report prints them as warnings.
+struct MeasurementSet {
+  std::vector<Measurement> rows;
+  std::vector<std::string> notes;
+};
+
+/// readMeasurementsCsv and parseMeasurementsCsv with the notes.
+MeasurementSet readMeasurementSet(const std::string& path, std::size_t min_rows, const std::string& average_column = "");
+MeasurementSet parseMeasurementSet(const std::string& text, const std::string& origin, std::size_t min_rows,
+                                   const std::string& average_column = "");
+
+/// The same from columns (Python's dict of arrays): @p names as a file's header, @p columns[k] the values under
+/// names[k], every column as long. Rows are numbered from 1 in messages. @throws ParameterError as the CSV reader,
+/// naming the row instead of the line, and for columns of unequal length
+MeasurementSet measurementSetFromColumns(const std::vector<std::string>& names,
+                                         const std::vector<std::vector<double>>& columns, const std::string& origin,
+                                         std::size_t min_rows, const std::string& average_column = "");
+
+/// What a finger can do, checked before anything is fitted to a measurement (calibrate() calls it): no joint beyond
+/// pi rad (each of its two walls turns at most pi/2), no tip angle beyond 2 pi (a full turn), no tip farther from the
+/// mount than the finger is long (@p parameters' rest length). Data in degrees, or in mm, fails it by far.
+/// @throws ParameterError naming the line, the column, the value, the bound and the likely unit mistake
+void checkMeasurementsPlausible(const FingerParameters& parameters, const std::vector<Measurement>& data);
+
 enum class CalibrationObjective {
   kMinimax,       ///< minimise the largest |model - measured| of the joints 2..N averages
   kLeastSquares,  ///< minimise the sum of squared errors of the same averages

@@ -115,6 +115,11 @@ std::string formatExact(double value);  // NaN as "nan", whatever its sign bit
 /// parameter files are written.
 std::string formatShortest(double value);
 
+/// The one number format of messages (errors, warnings, logs, reports): six significant digits, fewer where the
+/// value reads back exactly with fewer ("91503.6", "-0.1", "3.7e+08"), NaN as "nan". Data a program reads back (CSV
+/// rows, parameter files) uses formatExact or formatShortest instead.
+std::string formatMessage(double value);
+
 /// The one check of a number against its definition: finite, in range, whole for an integer key. Every reader of
 /// parameters (the YAML loader, --set, the ROS nodes' private handles, dynamic_reconfigure) calls it.
 /// @throws ParameterError naming the key, the value and the allowed range with its unit

@@ -13,14 +13,14 @@ namespace pneumatic_finger {
 /// pressure the fit has not seen gets), for the tip angle and for the tip position.
 struct TipUncertainty {
   std::vector<double> gauge_pa;        ///< the calibrated pressures (Pa), ascending, > 0
-  std::vector<double> tip_angle_rad;   ///< the tip angle's error bar at each (rad), >= 0
+  std::vector<double> tip_angle_rad;   ///< the tip angle's error bar at each (rad), >= 0; NaN: not measured
   std::vector<double> tip_position_m;  ///< the tip position's error bar at each (m), >= 0; NaN: not measured
 
   bool empty() const { return gauge_pa.empty(); }
 
   /// The bar at one pressure.
   struct At {
-    double tip_angle_rad;   ///< NaN when empty
+    double tip_angle_rad;   ///< NaN when empty or not measured
     double tip_position_m;  ///< NaN when empty or not measured
     bool extrapolated;      ///< the pressure lies above the last calibrated one: the bar is a guess
   };
@@ -33,7 +33,7 @@ struct TipUncertainty {
 
   /// Builds one from its three lists, as read from a parameter file or rosparam.
   /// @throws ParameterError naming @p origin: lists of different lengths, a pressure not finite, not > 0 or not
-  ///         ascending, a negative or infinite bar, a NaN angle bar
+  ///         ascending, a negative or infinite bar, an entry with neither bar (both NaN)
   static TipUncertainty fromLists(const std::vector<double>& gauge_pa, const std::vector<double>& tip_angle_rad,
                                   const std::vector<double>& tip_position_m, const std::string& origin);
 };

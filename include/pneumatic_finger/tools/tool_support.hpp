@@ -30,6 +30,10 @@ struct ParameterOptions {
   /// Loads the config (or the default file), applies the assignments on top, validates.
   /// @throws ParameterError naming what was wrong
   FingerParameters load() const;
+
+  /// The same keys before validation (calibrationBase validates them under the law it fits).
+  /// @throws ParameterError naming the file or the assignment
+  RawParameterMap loadRaw() const;
 };
 
 /// Parses the command line with @p app and runs @p body. The convention of every tool: --help prints the usage and

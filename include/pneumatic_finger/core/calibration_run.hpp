@@ -1,0 +1,50 @@
+// One calibration as finger_calibrate and Python's pf.calibrate run it: the same defaults (what to compare, which
+// keys, which wall laws), the same data check, the same leave-one-out and error bar, so that the two interfaces
+// cannot answer one data set differently.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/core/calibration.hpp"
+#include "pneumatic_finger/core/parameters.hpp"
+#include "pneumatic_finger/core/tip_uncertainty.hpp"
+
+namespace pneumatic_finger {
+
+/// What to fit; every field empty takes the tool's default.
+struct CalibrationRequest {
+  std::string wall_law;        ///< "auto", "paper" or "membrane"; empty: the parameters' wall_law
+  std::vector<std::string> keys;  ///< one to three fittable keys; empty: each law's defaultFitKeys
+  std::string objective = "minimax";
+  std::string compare;         ///< a quantityName; empty: average with an average column, else defaultQuantity
+  std::string average_column;  ///< the column that gives the joints 2..N average (e.g. paper_avg_rad), or empty
+  bool leave_one_out = true;   ///< predict each row by a fit to the others (always, when laws are compared)
+};
+
+/// A calibration's answer: each law's fit (one unless wall_law is "auto"), the chosen one, and what the data said.
+struct CalibrationRun {
+  CalibrationQuantity quantity = CalibrationQuantity::kEveryJoint;
+  CalibrationObjective objective = CalibrationObjective::kMinimax;
+  std::vector<WallLawFit> fits;
+  std::size_t chosen = 0;
+  /// The error bar (tipUncertainty of the chosen fit and its leave-one-out); empty without leave-one-out.
+  TipUncertainty tip_uncertainty;
+  /// Every warning, the data's first (columns not read), then the fit's (keys that trade off, keys on a bound).
+  std::vector<std::string> warnings;
+
+  const WallLawFit& best() const { return fits.at(chosen); }
+};
+
+/// The base parameters of a calibration from the file's raw keys: where @p wall_law asks for the membrane law (or
+/// "auto"), the keys are validated under it whatever law the file names (each law's fit sets its own), so that a wall the membrane law allows
+/// (wall_critical_height_m above chamber_height_m) is not refused before the law is chosen.
+/// @throws ParameterError as FingerParameters::fromRaw
+FingerParameters calibrationBase(RawParameterMap raw, const std::string& wall_law);
+
+/// Runs @p request on @p data from @p base. @throws ParameterError naming what was wrong (calibrate,
+/// checkMeasurementsPlausible, an unknown objective, quantity or law)
+CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet& data,
+                              const CalibrationRequest& request);
+
+}  // namespace pneumatic_finger

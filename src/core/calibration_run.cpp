@@ -1,0 +1,63 @@
+// One calibration, as finger_calibrate and pf.calibrate run it (calibration_run.hpp).
+#include "pneumatic_finger/core/calibration_run.hpp"
+
+#include <string>
+#include <vector>
+
+namespace pneumatic_finger {
+
+FingerParameters calibrationBase(RawParameterMap raw, const std::string& wall_law) {
+  const bool membrane_considered = wall_law == "auto" || wall_law == wallLawName(WallLaw::kMembrane);
+  // Each law's fit sets its own wall_law (calibrateWallLaws), so the file's is only the validation's.
+  if (membrane_considered) {
+    const ParameterSpec& spec = *findParameterSpec("wall_law");
+    RawParameterValue law;
+    law.values.push_back(parseParameterText(spec, wallLawName(WallLaw::kMembrane)));
+    raw["wall_law"] = law;
+  }
+  return FingerParameters::fromRaw(raw);
+}
+
+namespace {
+
+CalibrationQuantity quantityFor(const CalibrationRequest& request, const std::vector<Measurement>& rows) {
+  if (!request.compare.empty()) return parseQuantity(request.compare);
+  if (!request.average_column.empty()) return CalibrationQuantity::kOuterAverage;
+  return defaultQuantity(rows);
+}
+
+// One law without leave-one-out: the fit alone (Python's quick fit).
+WallLawFit fitOnly(const FingerParameters& base, const std::vector<std::string>& keys, const MeasurementSet& data,
+                   CalibrationObjective objective, CalibrationQuantity quantity) {
+  WallLawFit f;
+  f.law = base.wall_law;
+  f.fit = calibrate(base, keys.empty() ? defaultFitKeys(quantity, base.wall_law) : keys, data.rows, objective,
+                    quantity);
+  return f;
+}
+
+}  // namespace
+
+CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet& data,
+                              const CalibrationRequest& request) {
+  CalibrationRun run;
+  run.objective = parseObjective(request.objective);
+  run.quantity = quantityFor(request, data.rows);
+  checkMeasurementsPlausible(base, data.rows);  // before any law's fit, so that its message names no law
+  const std::vector<WallLaw> laws =
+      request.wall_law.empty() ? std::vector<WallLaw>{base.wall_law} : parseWallLawChoice(request.wall_law);
+  if (laws.size() == 1 && !request.leave_one_out) {
+    FingerParameters one = base;
+    one.wall_law = laws[0];
+    run.fits.push_back(fitOnly(one, request.keys, data, run.objective, run.quantity));
+  } else {
+    run.fits = calibrateWallLaws(base, laws, request.keys, data.rows, run.objective, run.quantity);
+    run.chosen = chosenWallLaw(run.fits);
+    run.tip_uncertainty = tipUncertainty(run.best().fit.residuals, run.best().leave_one_out);
+  }
+  run.warnings = data.notes;
+  for (const std::string& w : run.best().fit.warnings) run.warnings.push_back(w);
+  return run;
+}
+
+}  // namespace pneumatic_finger

@@ -1,0 +1,134 @@
+// pf.calibrate (calibrate_module.hpp): the data as a file or as columns, the request as finger_calibrate's options,
+// the answer as numpy arrays, one per quantity, with a row per measurement.
+#include "calibrate_module.hpp"
+
+#include <pybind11/numpy.h>
+#include <pybind11/stl.h>
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/core/calibration_run.hpp"
+#include "python_parameters.hpp"
+
+namespace pneumatic_finger_python {
+
+namespace {
+
+using Array = py::array_t<double>;
+
+// A (rows, width) array filled by @p value(row, k).
+template <typename F>
+Array table(std::size_t rows, std::size_t width, F&& value) {
+  Array a(std::vector<py::ssize_t>{static_cast<py::ssize_t>(rows), static_cast<py::ssize_t>(width)});
+  auto w = a.mutable_unchecked<2>();
+  for (std::size_t i = 0; i < rows; ++i) {
+    for (std::size_t k = 0; k < width; ++k) w(i, k) = value(i, k);
+  }
+  return a;
+}
+
+// A (rows,) array filled by @p value(row).
+template <typename F>
+Array column(std::size_t rows, F&& value) {
+  Array a(static_cast<py::ssize_t>(rows));
+  for (std::size_t i = 0; i < rows; ++i) a.mutable_data()[i] = value(i);
+  return a;
+}
+
+// Residual rows as one array per quantity: (R,) or (R, N) or (R, 2); NaN where the data measured nothing.
+py::dict residualArrays(const std::vector<pf::Residual>& rows, std::size_t n) {
+  const std::size_t r = rows.size();
+  auto joints = [&](bool measured) {
+    return table(r, n, [&](std::size_t i, std::size_t k) {
+      const std::vector<double>& q = measured ? rows[i].measured_joint_rad : rows[i].model_joint_rad;
+      return k < q.size() ? q[k] : NAN;
+    });
+  };
+  py::dict d;
+  d["gauge_pa"] = column(r, [&](std::size_t i) { return rows[i].gauge_pa; });
+  d["measured_joint_rad"] = joints(true);
+  d["model_joint_rad"] = joints(false);
+  d["measured_avg_rad"] = column(r, [&](std::size_t i) { return rows[i].measured_avg_rad; });
+  d["model_avg_rad"] = column(r, [&](std::size_t i) { return rows[i].model_avg_rad; });
+  d["measured_joint1_rad"] = column(r, [&](std::size_t i) { return rows[i].measured_joint1_rad; });
+  d["model_joint1_rad"] = column(r, [&](std::size_t i) { return rows[i].model_joint1_rad; });
+  d["measured_tip_angle_rad"] = column(r, [&](std::size_t i) { return rows[i].measured_tip_angle_rad; });
+  d["model_tip_angle_rad"] = column(r, [&](std::size_t i) { return rows[i].model_tip_angle_rad; });
+  d["measured_tip_m"] = table(r, 2, [&](std::size_t i, std::size_t k) {
+    return k == 0 ? rows[i].measured_tip_x_m : rows[i].measured_tip_y_m;
+  });
+  d["model_tip_m"] = table(r, 2, [&](std::size_t i, std::size_t k) {
+    return k == 0 ? rows[i].model_tip_x_m : rows[i].model_tip_y_m;
+  });
+  return d;
+}
+
+// The data: a CSV path, or names and columns (pneumatic_finger.core turns a dict of arrays into them).
+pf::MeasurementSet measurements(const py::object& path, const std::vector<std::string>& names,
+                                const std::vector<std::vector<double>>& columns, const std::string& average_column) {
+  if (!path.is_none()) return pf::readMeasurementSet(path.cast<std::string>(), 1, average_column);
+  return pf::measurementSetFromColumns(names, columns, "data", 1, average_column);
+}
+
+py::dict uncertaintyOf(const pf::CalibrationResult& fit) {
+  py::dict uncertainty;
+  for (std::size_t i = 0; i < fit.keys.size(); ++i) uncertainty[py::str(fit.keys[i])] = fit.uncertainty[i];
+  return uncertainty;
+}
+
+py::dict calibrate(const py::object& path, const std::vector<std::string>& names,
+                   const std::vector<std::vector<double>>& columns, const pf::CalibrationRequest& request,
+                   const std::string& config, const py::dict& overrides) {
+  const pf::FingerParameters base = pf::calibrationBase(loadRaw(config, overrides), request.wall_law);
+  const pf::MeasurementSet data = measurements(path, names, columns, request.average_column);
+  pf::CalibrationRun run;
+  {
+    py::gil_scoped_release release;
+    run = pf::runCalibration(base, data, request);
+  }
+  const pf::WallLawFit& best = run.best();
+  const auto n = static_cast<std::size_t>(base.chamber_count);
+  py::dict fitted;
+  for (std::size_t i = 0; i < best.fit.keys.size(); ++i) fitted[py::str(best.fit.keys[i])] = best.fit.values[i];
+  py::dict d;
+  d["fitted"] = fitted;
+  d["wall_law"] = pf::wallLawName(best.law);
+  d["compared"] = pf::quantityName(run.quantity);
+  d["objective_value"] = best.fit.objective_value;
+  d["residuals"] = residualArrays(best.fit.residuals, n);
+  d["leave_one_out"] = request.leave_one_out ? py::object(residualArrays(best.leave_one_out, n)) : py::none();
+  d["model_evaluations"] = best.fit.model_evaluations;
+  d["uncertainty"] = uncertaintyOf(best.fit);
+  const std::size_t k = best.fit.keys.size();
+  d["correlation"] = table(k, k, [&](std::size_t a, std::size_t b) { return best.fit.correlation[a * k + b]; });
+  d["warnings"] = py::cast(run.warnings);
+  return d;
+}
+
+}  // namespace
+
+void defineCalibrate(py::module_& m) {
+  m.def(
+      "calibrate",
+      [](const py::object& path, const std::vector<std::string>& names, const std::vector<std::vector<double>>& columns,
+         const std::vector<std::string>& keys, const std::string& objective, const std::string& config,
+         const py::dict& overrides, const std::string& average_column, const std::string& compare,
+         const std::string& wall_law, bool leave_one_out) {
+        pf::CalibrationRequest request;
+        request.keys = keys;
+        request.objective = objective;
+        request.average_column = average_column;
+        request.compare = compare;
+        request.wall_law = wall_law;
+        request.leave_one_out = leave_one_out;
+        return calibrate(path, names, columns, request, config, overrides);
+      },
+      py::arg("path"), py::arg("names"), py::arg("columns"), py::arg("keys"), py::arg("objective"),
+      py::arg("config"), py::arg("overrides"), py::arg("average_column"), py::arg("compare"), py::arg("wall_law"),
+      py::arg("leave_one_out"),
+      "finger_calibrate's calibration (use pneumatic_finger.core.calibrate): a CSV path, or names and columns");
+}
+
+}  // namespace pneumatic_finger_python

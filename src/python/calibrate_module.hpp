@@ -1,0 +1,12 @@
+// pf.calibrate: the calibration finger_calibrate runs (core/calibration_run.hpp), on a CSV path or on columns of
+// numbers. Internal header of the Python module (src/python).
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+namespace pneumatic_finger_python {
+
+/// Defines _core.calibrate in @p m.
+void defineCalibrate(pybind11::module_& m);
+
+}  // namespace pneumatic_finger_python

@@ -1,0 +1,126 @@
+"""A newcomer's first hour: what a new user met, each as it failed before its fix, through the CLI and Python alike.
+
+Run by `make run_tests` (CMakeLists.txt passes the package's executables in PNEUMATIC_FINGER_BIN).
+"""
+import os
+import pathlib
+import subprocess
+
+import numpy
+import pytest
+
+import pneumatic_finger.core as pf
+
+BIN = pathlib.Path(os.environ.get("PNEUMATIC_FINGER_BIN", "devel/lib/pneumatic_finger"))
+PRESSURES = [50000.0, 100000.0, 150000.0, 200000.0]
+TRUTH = {"shear_modulus_pa": 3.7e8, "chamber_gap_m": 8.5e-5}
+
+
+def tool(name, *args):
+    return subprocess.run([str(BIN / name), *args], capture_output=True, text=True)
+
+
+@pytest.fixture
+def tips_csv(tmp_path):
+    # What a camera gives: the tip at four pressures, here from finger_model at known parameters.
+    rows = ["gauge_pa,tip_x_m,tip_y_m"]
+    for p in PRESSURES:
+        out = tool("finger_model", "--gauge-pa", repr(p), "--set", "shear_modulus_pa=3.7e8",
+                   "--set", "chamber_gap_m=8.5e-5")
+        assert out.returncode == 0, out.stderr
+        row = out.stdout.splitlines()[1].split(",")
+        rows.append(",".join([row[0], row[-2], row[-1]]))
+    path = tmp_path / "tips.csv"
+    path.write_text("\n".join(rows) + "\n")
+    return path
+
+
+def test_tip_positions_calibrate_in_the_cli_as_in_python(tips_csv, tmp_path):
+    out_file = tmp_path / "calibrated.yaml"
+    done = tool("finger_calibrate", "--data", str(tips_csv), "--output", str(out_file))
+    assert done.returncode == 0, done.stderr
+    line = done.stdout.split("# fitted: ")[1].splitlines()[0].split()
+    fitted = {line[i]: float(line[i + 2]) for i in range(0, len(line), 3)}
+    python = pf.calibrate(data=str(tips_csv))["fitted"]
+    assert fitted == python
+    assert fitted["shear_modulus_pa"] == pytest.approx(3.7e8, rel=1e-6)
+    # The written file loads, with the tip position's bar and no angle's.
+    model = pf.FingerModel(config=str(out_file))
+    assert model.parameters["chamber_gap_m"] == pytest.approx(8.5e-5, rel=1e-6)
+    assert "tip_angle_rad: [.nan, .nan, .nan, .nan]" in out_file.read_text()
+
+
+def test_the_written_file_claims_only_what_it_is(tips_csv, tmp_path):
+    out_file = tmp_path / "calibrated.yaml"
+    assert tool("finger_calibrate", "--data", str(tips_csv), "--output", str(out_file)).returncode == 0
+    text = out_file.read_text()
+    assert "parameters.cpp" not in text and "a test checks it" not in text
+    assert "the paper's own model" not in text  # its error belongs to the paper's data only
+    # The report in the data's units: Pa and rad (m), not kg/cm2 and degrees.
+    assert "kg/cm" not in text and "pressure_kgcm2" not in text
+    assert "#   gauge_pa" in text and "tip_m" in text
+
+
+@pytest.mark.parametrize("interface", ["cli", "python"])
+def test_degrees_in_a_radian_column_are_refused(tmp_path, interface):
+    path = tmp_path / "deg.csv"
+    path.write_text("gauge_pa,tip_angle_rad\n50000,16\n100000,33\n150000,51\n200000,69\n")
+    words = "tip_angle_rad = 16 rad is beyond 2 pi (a full turn), more than this finger can bend; were the angles in degrees?"
+    if interface == "cli":
+        done = tool("finger_calibrate", "--data", str(path))
+        assert done.returncode == 2 and words in done.stderr, done.stderr
+        assert done.stdout == ""
+    else:
+        with pytest.raises(ValueError, match="were the angles in degrees"):
+            pf.calibrate(data=str(path))
+        with pytest.raises(ValueError, match="were the angles in degrees"):
+            pf.calibrate(data={"gauge_pa": PRESSURES, "tip_angle_rad": [16, 33, 51, 69]})
+
+
+def test_an_unknown_column_is_named(tips_csv, tmp_path):
+    path = tmp_path / "mm.csv"
+    path.write_text(tips_csv.read_text().replace("tip_x_m,tip_y_m", "tip_x_mm,tip_y_mm"))
+    done = tool("finger_calibrate", "--data", str(path))
+    assert done.returncode == 2
+    assert "column 'tip_x_mm' is not read: did you mean 'tip_x_m'?" in done.stderr, done.stderr
+    extra = tmp_path / "extra.csv"
+    lines = tips_csv.read_text().splitlines()
+    extra.write_text("\n".join([lines[0] + ",tip_x_mm"] + [l + ",1" for l in lines[1:]]) + "\n")
+    done = tool("finger_calibrate", "--data", str(extra))
+    assert done.returncode == 0
+    assert "# warning: column 'tip_x_mm' is not read: did you mean 'tip_x_m'?" in done.stdout
+    assert any("tip_x_mm" in w for w in pf.calibrate(data=str(extra))["warnings"])
+
+
+def test_calibrate_takes_columns_and_answers_in_arrays(tips_csv):
+    table = numpy.loadtxt(tips_csv, delimiter=",", skiprows=1)
+    from_file = pf.calibrate(data=str(tips_csv), keys="shear_modulus_pa")
+    from_dict = pf.calibrate(data={"gauge_pa": table[:, 0], "tip_x_m": table[:, 1], "tip_y_m": table[:, 2]},
+                             keys="shear_modulus_pa")
+    assert list(from_file["fitted"]) == ["shear_modulus_pa"]
+    assert from_dict["fitted"] == from_file["fitted"]
+    r = from_dict["residuals"]
+    assert isinstance(r["gauge_pa"], numpy.ndarray) and r["gauge_pa"].tolist() == PRESSURES
+    assert r["model_tip_m"].shape == (4, 2) and r["model_joint_rad"].shape == (4, 7)
+    assert numpy.isnan(r["measured_joint_rad"]).all()  # not measured
+    assert from_dict["correlation"].shape == (1, 1)
+    with pytest.raises(ValueError, match="data must be a CSV path or a mapping"):
+        pf.calibrate(data=[1, 2, 3])
+
+
+def test_wall_law_auto_takes_a_wall_only_the_membrane_law_allows(tmp_path):
+    # A wall taller than its chamber, five tip angles: refused before, because the paper law was checked first.
+    path = tmp_path / "bend.csv"
+    path.write_text("gauge_pa,tip_angle_rad\n" + "".join("%g,%g\n" % (p, a) for p, a in
+                                                         [(2e4, 0.05), (4e4, 0.12), (6e4, 0.2), (8e4, 0.3),
+                                                          (1e5, 0.42), (1.2e5, 0.55)]))
+    done = tool("finger_calibrate", "--data", str(path), "--wall-law", "auto", "--fit",
+                "shear_modulus_pa,chamber_gap_m", "--set", "wall_critical_height_m=0.02")
+    assert done.returncode == 0, done.stderr
+    assert "it starts from its uniform wall, b = L/2" in done.stdout
+    fit = pf.calibrate(data=str(path), wall_law="auto", keys=["shear_modulus_pa", "chamber_gap_m"],
+                       overrides={"wall_critical_height_m": 0.02})
+    assert fit["wall_law"] in ("paper", "membrane") and fit["leave_one_out"] is not None
+    refused = tool("finger_calibrate", "--data", str(path), "--wall-law", "paper", "--set",
+                   "wall_critical_height_m=0.02")
+    assert refused.returncode == 2 and "wall_critical_height_m" in refused.stderr
