@@ -124,3 +124,41 @@ def test_wall_law_auto_takes_a_wall_only_the_membrane_law_allows(tmp_path):
     refused = tool("finger_calibrate", "--data", str(path), "--wall-law", "paper", "--set",
                    "wall_critical_height_m=0.02")
     assert refused.returncode == 2 and "wall_critical_height_m" in refused.stderr
+
+
+CLAMP_WORDS = "gauge pressure 4900000 Pa is above max_gauge_pa 294199.5 Pa, the top of the model's range: clamped to it"
+
+
+def test_one_pressure_above_the_range_gets_one_answer_everywhere():
+    # The CLI: the row at the top of the range, with the core's words (finger_node says them too: test_pressure_range).
+    above = tool("finger_model", "--gauge-pa", "4.9e6")
+    top = tool("finger_model", "--gauge-pa", "294199.5")
+    assert above.returncode == 0 and CLAMP_WORDS in above.stderr, above.stderr
+    assert above.stdout == top.stdout
+    # Python: the same state, the status the node publishes as STATUS_CLAMPED, and the same words.
+    model = pf.FingerModel()
+    with pytest.warns(RuntimeWarning, match=CLAMP_WORDS.replace("(", r"\(").replace(")", r"\)")):
+        state = model.evaluate(4.9e6)
+    assert pf.STATUS[state["status"]] == "clamped to max_gauge_pa"
+    assert state["tip_angle_rad"] == model.evaluate(294199.5)["tip_angle_rad"]
+    assert state["tip_angle_rad"] < 2.0  # not the 15 rad of an unclamped paper wall
+    row = top.stdout.splitlines()[1].split(",")
+    assert float(row[-2]) == state["backbone_m"][-1][0]
+    # An explicit range, the same in both.
+    lower = tool("finger_model", "--gauge-pa", "2e5", "--max-gauge-pa", "1.5e5")
+    assert "above max_gauge_pa 150000 Pa" in lower.stderr
+    with pytest.warns(RuntimeWarning, match="above max_gauge_pa 150000 Pa"):
+        assert pf.STATUS[pf.FingerModel(max_gauge_pa=1.5e5).evaluate(2e5)["status"]] == "clamped to max_gauge_pa"
+
+
+def test_python_is_numpy_shaped():
+    model = pf.FingerModel()
+    one = model.evaluate(1e5)
+    assert isinstance(one["status"], numpy.uint8)  # a code, as in an array; pf.STATUS names it
+    many = model.evaluate([1e5, 2e5])
+    assert many["status"].dtype == numpy.uint8 and pf.STATUS[one["status"]] == pf.STATUS[many["status"][0]]
+    angles = model.gauge_for_tip_angle(numpy.array([0.2, 0.5]))
+    assert angles.shape == (2,) and angles[0] == model.gauge_for_tip_angle(0.2)
+    with pytest.raises(ValueError, match=r"tip_angle_rad\[1\]"):
+        model.gauge_for_tip_angle([0.2, 50.0])
+    assert len(pf.STATUS) == 6 and pf.STATUS[5] == "clamped to max_gauge_pa"

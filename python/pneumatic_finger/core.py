@@ -6,11 +6,13 @@
     state["joint_angle_rad"]                      # (101, 7)
     tips = model.evaluate(p, outputs=["tip_angle_rad"])["tip_angle_rad"]   # computes and allocates only that
     model.evaluate(p, out={"tip_angle_rad": tips})                        # fills the caller's array
-    pf.STATUS[state["status"][0]]                  # 'ok': status is a uint8 array of codes
+    pf.STATUS[state["status"][0]]                  # 'ok': status is uint8 codes (one code for a scalar call)
 
-FingerModel(config=None, overrides={}, solver="robust"): config is a parameter file (YAML) with the keys of
-`finger_model --parameters`; None takes the package's config/finger.yaml. overrides sets keys on top of it (a number,
-or a list with one number per chamber). A bad file, key or value raises ValueError with the tools' message.
+FingerModel(config=None, overrides={}, solver="robust", max_gauge_pa=None): config is a parameter file (YAML) with
+the keys of `finger_model --parameters`; None takes the package's config/finger.yaml. overrides sets keys on top of it
+(a number, or a list with one number per chamber). max_gauge_pa is the top of the model's range (None: 3 kg/cm2, as
+finger_node): evaluate() clamps a pressure above it to it, with status "clamped to max_gauge_pa" and a
+RuntimeWarning. A bad file, key or value raises ValueError with the tools' message.
 """
 import os
 
@@ -90,5 +92,6 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
 class FingerModel(_FingerModel):
     __doc__ = _FingerModel.__doc__
 
-    def __init__(self, config=None, overrides=None, solver="robust"):
-        super().__init__(config if config is not None else default_config(), dict(overrides or {}), solver)
+    def __init__(self, config=None, overrides=None, solver="robust", max_gauge_pa=None):
+        super().__init__(config if config is not None else default_config(), dict(overrides or {}), solver,
+                         max_gauge_pa)

@@ -38,6 +38,7 @@ const char* evaluationStatusName(EvaluationStatus status) {
     case EvaluationStatus::kNotFinite: return "not finite";
     case EvaluationStatus::kSolverFailure: return "solver failure";
     case EvaluationStatus::kBeyondLimitPoint: return "beyond limit point";
+    case EvaluationStatus::kClamped: return "clamped to max_gauge_pa";
   }
   return "unknown";
 }

@@ -161,6 +161,16 @@ std::string formatShortest(double value) {
 std::string formatMessage(double value) {
   if (std::isnan(value)) return "nan";
   char buffer[40];
+  // A number a person wrote (294199.5, 0.1, 3.7e8) reads back exactly with a few digits: those. A computed one
+  // (91503.635757...) gets six.
+  for (int digits = 1; digits <= 8; ++digits) {
+    std::snprintf(buffer, sizeof(buffer), "%.*g", digits, value);
+    if (std::strtod(buffer, nullptr) != value) continue;
+    // Whole numbers below 1e7 in full (90000, not 9e+04): a pressure in Pa reads so.
+    const int exponent = value == 0 ? 0 : static_cast<int>(std::floor(std::log10(std::fabs(value))));
+    if (exponent >= digits && exponent < 7) std::snprintf(buffer, sizeof(buffer), "%.*g", exponent + 1, value);
+    return buffer;
+  }
   std::snprintf(buffer, sizeof(buffer), "%.6g", value);
   return buffer;
 }

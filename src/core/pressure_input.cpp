@@ -70,11 +70,11 @@ bool PressureInputPolicy::refuseValue(double absolute_pa, double receive_s, Inpu
   if (!std::isfinite(absolute_pa)) {
     ++counters_.refused_not_finite;
     d.verdict = InputVerdict::kRefusedNotFinite;
-    d.problem = "pressure " + formatExact(absolute_pa) + " Pa is not finite";
+    d.problem = "pressure " + formatMessage(absolute_pa) + " Pa is not finite";
   } else if (absolute_pa < 0) {
     ++counters_.refused_negative_absolute;
     d.verdict = InputVerdict::kRefusedNegativeAbsolute;
-    d.problem = "absolute pressure " + formatExact(absolute_pa) + " Pa is negative";
+    d.problem = "absolute pressure " + formatMessage(absolute_pa) + " Pa is negative";
   } else {
     return false;
   }
@@ -137,25 +137,26 @@ void PressureInputPolicy::accept(double absolute_pa, double stamp, bool replaced
   d.verdict = InputVerdict::kAccept;
   d.stamp_s = stamp;
   d.stamp_replaced = replaced;
-  double gauge = absolute_pa - settings_.atmospheric_pa;
+  const double gauge = absolute_pa - settings_.atmospheric_pa;
   last_gauge_pa_ = gauge;
-  d.out_of_range = gauge > settings_.validated_max_gauge_pa;
+  // The model's range, as every interface applies it (pressure_range.hpp): above it, a glitching regulator or a
+  // finger driven past its rating gets the finger at the top of the range, where the URDF's joint limits are.
+  const PressureRange range = this->range();
+  const RangeCheck check = checkGaugeRange(gauge, range);
+  d.out_of_range = check.above_validated;
   if (d.out_of_range) ++counters_.out_of_range;
-  // Above the model's range (a glitching regulator, or a finger driven past its rating): clamp to the top of the
-  // range, where the URDF's joint limits are, instead of curling the model toward pi/2 per wall.
-  if (gauge > settings_.max_gauge_pa) {
+  if (check.clamped) {
     ++counters_.clamped;
     d.clamped = true;
-    d.problem = "gauge pressure " + formatExact(gauge) + " Pa clamped to max_gauge_pa";
+    d.problem = clampedMessage(gauge, range);
     problem(d.problem, receive_s);
-    gauge = settings_.max_gauge_pa;
   }
-  d.gauge_pa = gauge;
+  d.gauge_pa = check.gauge_pa;
 }
 
 void PressureInputPolicy::noteVacuum(double gauge_pa, double now_s) {
   ++counters_.vacuum;
-  problem("gauge pressure " + formatExact(gauge_pa) + " Pa is a vacuum: straight finger published", now_s);
+  problem(vacuumMessage(gauge_pa) + " is published", now_s);
 }
 
 void PressureInputPolicy::noteSolverFailure(const std::string& what, double now_s) {
@@ -165,8 +166,8 @@ void PressureInputPolicy::noteSolverFailure(const std::string& what, double now_
 
 void PressureInputPolicy::noteBeyondLimitPoint(double gauge_pa, double limit_gauge_pa, double now_s) {
   ++counters_.beyond_limit_point;
-  problem("gauge pressure " + formatExact(gauge_pa) + " Pa is at or beyond the membrane wall's limit point " +
-              formatExact(limit_gauge_pa) + " Pa, where the pressure does not determine the shape; last state kept",
+  problem("gauge pressure " + formatMessage(gauge_pa) + " Pa is at or beyond the membrane wall's limit point " +
+              formatMessage(limit_gauge_pa) + " Pa, where the pressure does not determine the shape; last state kept",
           now_s);
 }
 
@@ -189,9 +190,7 @@ InputReport PressureInputPolicy::report(double now_s) {
     r.message = last_problem_;
   } else if (last_gauge_pa_ > settings_.validated_max_gauge_pa) {
     r.level = InputHealth::kWarn;
-    char b[96];
-    std::snprintf(b, sizeof b, "gauge pressure %.0f Pa above the validated range", last_gauge_pa_);
-    r.message = b;
+    r.message = aboveValidatedMessage(last_gauge_pa_, range());
   } else {
     r.level = InputHealth::kOk;
     r.message = "ok";

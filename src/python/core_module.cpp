@@ -6,6 +6,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <map>
@@ -17,6 +18,7 @@
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/design_sweep.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "calibrate_module.hpp"
 #include "python_parameters.hpp"
@@ -35,7 +37,8 @@ const std::vector<const char*> kEvaluationStatus = {
     pf::evaluationStatusName(pf::EvaluationStatus::kOk), pf::evaluationStatusName(pf::EvaluationStatus::kVacuum),
     pf::evaluationStatusName(pf::EvaluationStatus::kNotFinite),
     pf::evaluationStatusName(pf::EvaluationStatus::kSolverFailure),
-    pf::evaluationStatusName(pf::EvaluationStatus::kBeyondLimitPoint)};
+    pf::evaluationStatusName(pf::EvaluationStatus::kBeyondLimitPoint),
+    pf::evaluationStatusName(pf::EvaluationStatus::kClamped)};
 const std::vector<const char*> kContactStatus = {"free", "in contact", "overlaps at rest", "solver failure",
                                                  "beyond limit point"};
 
@@ -50,11 +53,15 @@ std::uint8_t contactStatusCode(pf::ContactState::Status status) {
 
 
 // The pressures of a call: a number (scalar: the results drop the pressure axis) or a 1-D sequence.
-Array pressures(const py::object& gauge_pa, bool& scalar) {
+// A number or a 1-D array of them (@p name says what, in the message: "gauge_pa" pressures in Pa by default).
+Array pressures(const py::object& gauge_pa, bool& scalar, const char* name = "gauge_pa") {
   scalar = !py::isinstance<py::array>(gauge_pa) && !py::isinstance<py::list>(gauge_pa) &&
            !py::isinstance<py::tuple>(gauge_pa);
   Array p = Array::ensure(gauge_pa);
-  if (!p || p.ndim() > 1) throw py::value_error("gauge_pa must be a number or a 1-D array of pressures (Pa)");
+  if (!p || p.ndim() > 1) {
+    throw py::value_error(std::string(name) + " must be a number or a 1-D array of them (" +
+                          (std::string(name) == "gauge_pa" ? "Pa" : "rad") + ")");
+  }
   return p;
 }
 
@@ -86,9 +93,17 @@ struct ContactRows {
 
 class PyFingerModel {
  public:
-  PyFingerModel(const std::string& config, const py::dict& overrides, const std::string& solver) {
+  PyFingerModel(const std::string& config, const py::dict& overrides, const std::string& solver,
+                const py::object& max_gauge_pa) {
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);
+    if (!max_gauge_pa.is_none()) {
+      range_.max_gauge_pa = max_gauge_pa.cast<double>();
+      if (!(range_.max_gauge_pa > 0) || std::isinf(range_.max_gauge_pa)) {
+        throw py::value_error("max_gauge_pa = " + pf::formatMessage(range_.max_gauge_pa) + " must be finite and > 0 (Pa)");
+      }
+      range_.validated_max_gauge_pa = std::min(range_.validated_max_gauge_pa, range_.max_gauge_pa);
+    }
     model_ = std::make_unique<pf::FingerModel>(pf::FingerParameters::fromRaw(loadRaw(config, overrides)), options);
   }
 
@@ -109,14 +124,34 @@ class PyFingerModel {
     rows.backbone_m = arrays.data<double>("backbone_m");
     rows.tip_angle_rad = arrays.data<double>("tip_angle_rad");
     rows.status = arrays.data<std::uint8_t>("status");
+    std::size_t clamped = 0;
     {
       // The loop runs in C++ without the GIL. The model is const; each call has its own workspace, so calls from
       // several Python threads run at once.
       py::gil_scoped_release release;
       pf::FingerWorkspace workspace(*model_);
-      model_->evaluateMany(p.data(), count, rows, workspace);
+      // The range rule of every interface (pressure_range.hpp); a copy only when some pressure is above the range.
+      std::vector<double> in_range;
+      const double* evaluated = p.data();
+      if (std::any_of(p.data(), p.data() + count, [this](double x) { return pf::checkGaugeRange(x, range_).clamped; })) {
+        in_range.resize(count);
+        clamped = pf::clampToRange(p.data(), in_range.data(), count, range_);
+        evaluated = in_range.data();
+      }
+      model_->evaluateMany(evaluated, count, rows, workspace);
+      if (clamped > 0 && rows.status) pf::markClamped(p.data(), rows.status, count, range_);
     }
-    return arrays.result(scalar, kEvaluationStatus);
+    if (clamped > 0) warnClamped(p.data(), count, clamped);
+    return arrays.result(scalar);
+  }
+
+  // The interfaces' words for a clamp, once per call, as a RuntimeWarning.
+  void warnClamped(const double* p, std::size_t count, std::size_t clamped) const {
+    const double* first =
+        std::find_if(p, p + count, [this](double x) { return pf::checkGaugeRange(x, range_).clamped; });
+    const std::string what = pf::clampedMessage(*first, range_) +
+                             (clamped > 1 ? " (and " + std::to_string(clamped - 1) + " more)" : std::string());
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, what.c_str(), 1) != 0) throw py::error_already_set();
   }
 
   // The blocked tip force (N) at a pressure or an array of them (docs/MODEL.md "Force"). A pressure that is not a
@@ -136,12 +171,21 @@ class PyFingerModel {
     return std::move(force);
   }
 
-  double gaugeForTipAngle(double tip_angle_rad, const py::object& max_gauge_pa) const {
-    const double limit = max_gauge_pa.is_none() ? pf::kModelMaxGaugePa : max_gauge_pa.cast<double>();
-    double gauge = 0.0;
-    std::string why;
-    if (!model_->gaugeForTipAngle(tip_angle_rad, limit, gauge, why)) throw py::value_error(why);
-    return gauge;
+  // The inverse at one tip angle or an array of them (numpy-shaped as evaluate). A tip angle no pressure up to the
+  // limit reaches is refused, by its index in an array.
+  py::object gaugeForTipAngle(const py::object& tip_angle_rad, const py::object& max_gauge_pa) const {
+    const double limit = max_gauge_pa.is_none() ? range_.max_gauge_pa : max_gauge_pa.cast<double>();
+    bool scalar = false;
+    const Array angles = pressures(tip_angle_rad, scalar, "tip_angle_rad");
+    Array gauge(angles.size());
+    for (py::ssize_t i = 0; i < angles.size(); ++i) {
+      std::string why;
+      if (!model_->gaugeForTipAngle(angles.data()[i], limit, gauge.mutable_data()[i], why)) {
+        throw py::value_error((scalar ? std::string() : "tip_angle_rad[" + std::to_string(i) + "]: ") + why);
+      }
+    }
+    if (scalar) return py::float_(gauge.data()[0]);
+    return std::move(gauge);
   }
 
   // The finger closing on a disk of the finger's plane (docs/GRASP.md), at one pressure or an array of them; one
@@ -175,7 +219,7 @@ class PyFingerModel {
       py::gil_scoped_release release;
       solveContacts(p.data(), count, obstacles, rows);
     }
-    return arrays.result(scalar, kContactStatus);
+    return arrays.result(scalar);
   }
 
   py::dict parameters() const {
@@ -212,13 +256,14 @@ class PyFingerModel {
       refused = pf::sweepDesigns(model_->parameters(), model_->options(), keys, v.data(),
                                  static_cast<std::size_t>(v.shape(0)), gauge_pa, rows);
     }
-    py::dict d = arrays.result(false, kEvaluationStatus);
+    py::dict d = arrays.result(false);
     py::list refusals;
     for (const pf::DesignRefusal& r : refused) refusals.append(py::make_tuple(r.design, r.message));
     d["refused"] = refusals;
     return d;
   }
   double contactGaugePa() const { return model_->contactGaugePa(); }
+  double maxGaugePa() const { return range_.max_gauge_pa; }
   double limitGaugePa() const { return model_->limitGaugePa(); }
   std::string solver() const { return pf::solverName(model_->options().solver); }
 
@@ -272,6 +317,7 @@ class PyFingerModel {
   }
 
   std::unique_ptr<const pf::FingerModel> model_;
+  pf::PressureRange range_;  // what evaluate() clamps to, as finger_node's ~max_gauge_pa
 };
 
 }  // namespace
@@ -290,20 +336,23 @@ PYBIND11_MODULE(_core, m) {
   m.attr("CONTACT_STATUS") = py::tuple(py::cast(std::vector<std::string>(kContactStatus.begin(), kContactStatus.end())));
   defineCalibrate(m);
   py::class_<PyFingerModel>(m, "FingerModel")
-      .def(py::init<const std::string&, const py::dict&, const std::string&>(), py::arg("config"),
-           py::arg("overrides") = py::dict(), py::arg("solver") = "robust")
+      .def(py::init<const std::string&, const py::dict&, const std::string&, const py::object&>(), py::arg("config"),
+           py::arg("overrides") = py::dict(), py::arg("solver") = "robust", py::arg("max_gauge_pa") = py::none())
       .def("evaluate", &PyFingerModel::evaluate, py::arg("gauge_pa"), py::arg("outputs") = py::none(),
            py::arg("out") = py::none(),
            "The free finger at a gauge pressure (Pa) or a 1-D array of them: a dict of numpy arrays stretch, bulge_m, "
            "half_angle_rad, joint_angle_rad (P, N), backbone_m (P, N+2, 2), tip_angle_rad (P,) and status (P,) uint8 "
-           "codes (STATUS names them; a scalar call gives the name). outputs: the names to compute (None: all); "
+           "codes (STATUS names them; a scalar call gives one code). A pressure above max_gauge_pa is clamped to it "
+           "(status 'clamped to max_gauge_pa', a RuntimeWarning). outputs: the names to compute (None: all); "
            "out: a dict of arrays to fill (float64, uint8 for status, C-contiguous, of the shapes above)")
       .def("blocked_tip_force", &PyFingerModel::blockedTipForce, py::arg("gauge_pa"),
            "The blocked tip force (N) at a gauge pressure (Pa) or a 1-D array of them: the finger held straight by a "
            "plate at its tip (docs/MODEL.md, Force); 0 before the walls touch and for a vacuum; ValueError for a "
            "pressure that is not finite")
       .def("gauge_for_tip_angle", &PyFingerModel::gaugeForTipAngle, py::arg("tip_angle_rad"),
-           py::arg("max_gauge_pa") = py::none(), "The gauge pressure (Pa) for a tip angle; ValueError when none up to max")
+           py::arg("max_gauge_pa") = py::none(),
+           "The gauge pressure (Pa) for a tip angle (rad) or a 1-D array of them; ValueError when none up to "
+           "max_gauge_pa (None: the model's)")
       .def("contact", &PyFingerModel::contact, py::arg("gauge_pa"), py::arg("disk"), py::arg("outputs") = py::none(),
            py::arg("out") = py::none(),
            "The finger closing on a disk (x_m, y_m, radius_m) of its plane, or one disk per pressure (P, 3): "
@@ -322,5 +371,8 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("limit_gauge_pa", &PyFingerModel::limitGaugePa,
                              "the membrane wall's limit point (Pa gauge): at or above it the status is 'beyond limit "
                              "point' and no shape is given; inf under the paper law")
-      .def_property_readonly("solver", &PyFingerModel::solver);
+      .def_property_readonly("solver", &PyFingerModel::solver)
+      .def_property_readonly("max_gauge_pa", &PyFingerModel::maxGaugePa,
+                             "the top of the model's range (Pa gauge): evaluate() clamps a pressure above it to it, "
+                             "with status 'clamped to max_gauge_pa' and a RuntimeWarning, as finger_node does");
 }

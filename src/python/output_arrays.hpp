@@ -85,18 +85,11 @@ class OutputArrays {
     }
   }
 
-  /// The result: each array, or for a scalar call its one row (a status code as its name from @p status_names).
-  py::dict result(bool scalar, const std::vector<const char*>& status_names) const {
+  /// The result: each array, or for a scalar call its one row (numpy's scalar or array; a status stays a code, as
+  /// in an array, and STATUS or CONTACT_STATUS names it).
+  py::dict result(bool scalar) const {
     py::dict d;
-    for (const auto& [name, a] : arrays_) {
-      if (!scalar) {
-        d[name.c_str()] = a;
-      } else if (name == "status") {
-        d[name.c_str()] = status_names.at(static_cast<const std::uint8_t*>(a.data())[0]);
-      } else {
-        d[name.c_str()] = a[py::int_(0)];
-      }
-    }
+    for (const auto& [name, a] : arrays_) d[name.c_str()] = scalar ? py::object(a[py::int_(0)]) : py::object(a);
     return d;
   }
 

@@ -1,4 +1,5 @@
 // finger_model: the model from the command line, as CSV (one row per pressure). See the README, "Tools".
+#include <algorithm>
 #include <cmath>
 #include <iostream>
 #include <sstream>
@@ -7,6 +8,7 @@
 
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/core/regulator.hpp"
 #include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
@@ -55,6 +57,7 @@ void printParameterTable() {
 // What the rows hold besides the shape: a time first (the time mode), the finger closing on an obstacle, the blocked
 // tip force last.
 struct CsvColumns {
+  pf::PressureRange range;  // the model's range, applied to every row as finger_node applies it
   const pf::Obstacle* obstacle = nullptr;
   std::vector<double> times;
   bool blocked_tip_force = false;
@@ -77,15 +80,24 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
     if (columns.blocked_tip_force) out << ',' << pf::formatExact(model.blockedTipForceN(p));
     out << '\n';
   };
-  bool warned = false, warned_failure = false, warned_limit = false;
+  bool warned = false, warned_failure = false, warned_limit = false, warned_clamp = false, warned_extrapolated = false;
   for (std::size_t row = 0; row < pressures.size(); ++row) {
-    const double p = pressures[row];
+    // The range rule of every interface: the row is the finger at the pressure the model was given.
+    const pf::RangeCheck range = pf::checkGaugeRange(pressures[row], columns.range);
+    const double p = range.gauge_pa;
     if (!times.empty()) out << pf::formatExact(times[row]) << ',';
     const pf::FingerState& s = model.evaluate(p, ws);
     if (s.status == pf::EvaluationStatus::kVacuum && !warned) {
-      std::cerr << "finger_model: warning: gauge pressure " << pf::formatExact(p)
-                << " Pa is negative (vacuum), outside the model; printing the straight finger\n";
+      std::cerr << "finger_model: warning: " << pf::vacuumMessage(p) << " is printed\n";
       warned = true;
+    }
+    if (range.clamped && !warned_clamp) {
+      std::cerr << "finger_model: warning: " << pf::clampedMessage(pressures[row], columns.range) << " (gauge_pa "
+                << pf::formatMessage(p) << " is printed)\n";
+      warned_clamp = true;
+    } else if (range.above_validated && !range.clamped && !warned_extrapolated) {
+      std::cerr << "finger_model: warning: " << pf::aboveValidatedMessage(p, columns.range) << "\n";
+      warned_extrapolated = true;
     }
     const bool beyond_limit = s.status == pf::EvaluationStatus::kBeyondLimitPoint;
     if (s.status == pf::EvaluationStatus::kSolverFailure || beyond_limit) {
@@ -143,6 +155,10 @@ int main(int argc, char** argv) {
   app.add_option("--sweep-pa", sweep, "FROM:TO:COUNT, evenly spaced gauge pressures (Pa)");
   app.add_flag("--parameters", parameter_table, "print the parameter table (Markdown) and exit");
   CsvColumns columns;
+  std::string max_gauge;
+  app.add_option("--max-gauge-pa", max_gauge,
+                 "top of the model's range (Pa, default 294199.5 = 3 kg/cm2): a pressure above it is clamped to it, "
+                 "with a warning, as finger_node's ~max_gauge_pa does");
   app.add_flag("--blocked-tip-force", columns.blocked_tip_force,
                "add blocked_tip_force_n: the tip force (N) of the finger held straight by a plate at its tip");
   std::string flow_lpm, duration_s, step_s;
@@ -167,6 +183,11 @@ int main(int argc, char** argv) {
     if (time_mode && !pressures.empty()) throw pf::ParameterError("give pressures or the time mode, not both");
     if (!time_mode && pressures.empty()) {
       throw pf::ParameterError("no pressure given: use --gauge-pa P, --sweep-pa FROM:TO:COUNT or --flow-lpm Q");
+    }
+    if (!max_gauge.empty()) {
+      columns.range.max_gauge_pa = pf::parseFiniteOption("--max-gauge-pa", max_gauge);
+      if (!(columns.range.max_gauge_pa > 0)) throw pf::ParameterError("--max-gauge-pa = " + max_gauge + " must be > 0");
+      columns.range.validated_max_gauge_pa = std::min(columns.range.validated_max_gauge_pa, columns.range.max_gauge_pa);
     }
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);

@@ -15,9 +15,12 @@ enum class EvaluationStatus : std::uint8_t {
   kSolverFailure, ///< the solver produced no finite answer (the paper's closed forms can): nothing is computed
   kBeyondLimitPoint,  ///< the membrane law's pressure maximum reached or passed: the pressure does not determine the
                       ///< shape, so none is given (evaluate() keeps the previous state; a batch writes NaN)
+  kClamped,       ///< above the model's range (pressure_range.hpp): the finger at max_gauge_pa is given. Set by the
+                  ///< interfaces that apply the range rule (finger_node, finger_model, Python), never by FingerModel
 };
 
-/// "ok", "vacuum", "not finite", "solver failure" or "beyond limit point": the names tools and Python print.
+/// "ok", "vacuum", "not finite", "solver failure", "beyond limit point" or "clamped to max_gauge_pa": the names tools
+/// and Python print.
 const char* evaluationStatusName(EvaluationStatus status);
 
 /// Where FingerModel::evaluateMany writes: row-major arrays the caller owns, for `count` pressures. A null pointer

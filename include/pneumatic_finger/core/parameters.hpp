@@ -115,8 +115,8 @@ std::string formatExact(double value);  // NaN as "nan", whatever its sign bit
 /// parameter files are written.
 std::string formatShortest(double value);
 
-/// The one number format of messages (errors, warnings, logs, reports): six significant digits, fewer where the
-/// value reads back exactly with fewer ("91503.6", "-0.1", "3.7e+08"), NaN as "nan". Data a program reads back (CSV
+/// The one number format of messages (errors, warnings, logs, reports): the fewest digits, up to eight, that read back
+/// exactly ("294199.5", "-0.1", "3.7e+08"), else six significant digits ("91503.6"), NaN as "nan". Data a program reads back (CSV
 /// rows, parameter files) uses formatExact or formatShortest instead.
 std::string formatMessage(double value);
 

@@ -7,6 +7,7 @@
 #include <deque>
 #include <string>
 
+#include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/core/units.hpp"
 
 namespace pneumatic_finger {
@@ -92,6 +93,8 @@ class PressureInputPolicy {
 
   const InputCounters& counters() const { return counters_; }
   const PressureInputSettings& settings() const { return settings_; }
+  /// The model's range these settings give (pressure_range.hpp): the rule and the words every interface shares.
+  PressureRange range() const { return {settings_.max_gauge_pa, settings_.validated_max_gauge_pa}; }
   double lastGaugePa() const { return last_gauge_pa_; }
   /// The most recent refusal or correction (empty before any).
   const std::string& lastProblem() const { return last_problem_; }

@@ -1,0 +1,47 @@
+// The model's pressure range: one rule, one status and one set of words for every interface (finger_node,
+// finger_model, Python's evaluate). FingerModel itself answers any pressure; an interface applies this rule first,
+// so that a regulator's glitch, a typo or a sweep past the finger's rating gives the same answer everywhere.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <string>
+
+#include "pneumatic_finger/core/evaluation.hpp"
+#include "pneumatic_finger/core/units.hpp"
+
+namespace pneumatic_finger {
+
+/// Where the model holds (Pa gauge).
+struct PressureRange {
+  /// Above it the finger at max_gauge_pa is given, status kClamped: the URDF's joint limits are there, and the walls
+  /// would otherwise curl toward pi/2 each (the paper law) with no finger to show it.
+  double max_gauge_pa = kModelMaxGaugePa;
+  /// The top of the calibrated range: up to max_gauge_pa the twin extrapolates, and says so.
+  double validated_max_gauge_pa = kValidatedMaxGaugePa;
+};
+
+/// One pressure against the range.
+struct RangeCheck {
+  double gauge_pa = 0.0;         ///< what to evaluate: the pressure, or max_gauge_pa above it
+  bool clamped = false;          ///< it was above max_gauge_pa
+  bool above_validated = false;  ///< it was above validated_max_gauge_pa (and so, too, when clamped)
+};
+
+/// @p gauge_pa against @p range (NaN and inf pass unchanged: the model refuses them with its own status).
+RangeCheck checkGaugeRange(double gauge_pa, const PressureRange& range);
+
+/// The words every interface says (its log, stderr, diagnostics), with numbers in formatMessage's format.
+std::string clampedMessage(double gauge_pa, const PressureRange& range);
+std::string vacuumMessage(double gauge_pa);
+std::string aboveValidatedMessage(double gauge_pa, const PressureRange& range);
+
+/// A batch's pressures through the rule: @p out[i] = checkGaugeRange(in[i]).gauge_pa. Returns how many were clamped
+/// (0: @p out equals @p in). @p in and @p out may be the same array.
+std::size_t clampToRange(const double* in, double* out, std::size_t count, const PressureRange& range);
+
+/// After a batch of clamped pressures: the status of each row whose input was above max_gauge_pa becomes kClamped,
+/// unless the model said otherwise at max_gauge_pa (beyond a membrane wall's limit point, a solver failure).
+void markClamped(const double* in, std::uint8_t* status, std::size_t count, const PressureRange& range);
+
+}  // namespace pneumatic_finger

@@ -1,0 +1,70 @@
+// The model's pressure range: one rule and one set of words, which finger_node's input policy, finger_model and
+// Python all take from the core (pressure_range.hpp). Before, the node clamped, the CLI printed any pressure
+// silently, and Python answered 15 rad at 4.9 MPa with status "ok".
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <vector>
+
+#include "pneumatic_finger/core/pressure_input.hpp"
+#include "pneumatic_finger/core/pressure_range.hpp"
+
+namespace pf = pneumatic_finger;
+
+TEST(PressureRange, ClampsAboveTheModelsRangeAndFlagsAboveTheValidated) {
+  const pf::PressureRange range;  // 3 and 2 kg/cm2
+  const pf::RangeCheck in = pf::checkGaugeRange(1e5, range);
+  EXPECT_EQ(in.gauge_pa, 1e5);
+  EXPECT_FALSE(in.clamped || in.above_validated);
+  const pf::RangeCheck extrapolated = pf::checkGaugeRange(2.5e5, range);
+  EXPECT_EQ(extrapolated.gauge_pa, 2.5e5);
+  EXPECT_TRUE(extrapolated.above_validated && !extrapolated.clamped);
+  const pf::RangeCheck clamped = pf::checkGaugeRange(4.9e6, range);
+  EXPECT_EQ(clamped.gauge_pa, 294199.5);
+  EXPECT_TRUE(clamped.clamped && clamped.above_validated);
+  // At the top itself: in range. Not finite: left to the model, which refuses it with its own status.
+  EXPECT_FALSE(pf::checkGaugeRange(294199.5, range).clamped);
+  EXPECT_FALSE(pf::checkGaugeRange(INFINITY, range).clamped);
+  EXPECT_TRUE(std::isnan(pf::checkGaugeRange(NAN, range).gauge_pa));
+}
+
+TEST(PressureRange, TheWordsNameThePressureAndTheRangeInThePersonsDigits) {
+  const pf::PressureRange range;
+  EXPECT_EQ(pf::clampedMessage(4.9e6, range),
+            "gauge pressure 4900000 Pa is above max_gauge_pa 294199.5 Pa, the top of the model's range: clamped to it");
+  EXPECT_EQ(pf::vacuumMessage(-5), "gauge pressure -5 Pa is a vacuum, outside the model: the straight finger");
+  EXPECT_EQ(pf::aboveValidatedMessage(91503.635757, {1e6, 9e4}),
+            "gauge pressure 91503.6 Pa is above the validated range (0 to 90000 Pa): the twin extrapolates");
+}
+
+TEST(PressureRange, TheNodesInputPolicySaysTheSameWords) {
+  pf::PressureInputSettings settings;
+  pf::PressureInputPolicy policy(settings);
+  const double absolute = settings.atmospheric_pa + 4.9e6;
+  const pf::InputDecision d = policy.onMessage(absolute, 1.0, 1.0);
+  EXPECT_TRUE(d.clamped);
+  EXPECT_EQ(d.gauge_pa, 294199.5);
+  EXPECT_EQ(d.problem, pf::clampedMessage(absolute - settings.atmospheric_pa, policy.range()));
+  EXPECT_EQ(policy.report(1.1).message, d.problem);
+}
+
+TEST(PressureRange, ABatchIsClampedAndMarkedRowByRow) {
+  const pf::PressureRange range;
+  const std::vector<double> in = {1e5, 4.9e6, -5, NAN, 1e9};
+  std::vector<double> out(in.size());
+  EXPECT_EQ(pf::clampToRange(in.data(), out.data(), in.size(), range), 2u);
+  EXPECT_EQ(out[1], range.max_gauge_pa);
+  EXPECT_EQ(out[4], range.max_gauge_pa);
+  EXPECT_EQ(out[2], -5);
+  // The model's own status stays where it said more than ok (here: row 4 failed at the top of the range).
+  const auto ok = static_cast<std::uint8_t>(pf::EvaluationStatus::kOk);
+  const auto failure = static_cast<std::uint8_t>(pf::EvaluationStatus::kSolverFailure);
+  std::vector<std::uint8_t> status = {ok, ok, static_cast<std::uint8_t>(pf::EvaluationStatus::kVacuum),
+                                      static_cast<std::uint8_t>(pf::EvaluationStatus::kNotFinite), failure};
+  pf::markClamped(in.data(), status.data(), status.size(), range);
+  EXPECT_EQ(status[0], ok);
+  EXPECT_EQ(status[1], static_cast<std::uint8_t>(pf::EvaluationStatus::kClamped));
+  EXPECT_EQ(status[4], failure);
+  EXPECT_STREQ(pf::evaluationStatusName(pf::EvaluationStatus::kClamped), "clamped to max_gauge_pa");
+}
