@@ -513,7 +513,7 @@ TEST(FingerNodeParameters, AListInAMessageReadsAsAList) {
   ros::param::set("/bad_list_node/mount_xyz_m", std::vector<double>{0.1, 0.2});
   std::string out;
   EXPECT_EQ(runNode("__name:=bad_list_node", out), 2) << out;
-  EXPECT_NE(out.find("finger_node: error: parameter 'mount_xyz_m' = [0.10000000000000001, 0.20000000000000001] must "
+  EXPECT_NE(out.find("finger_node: error: parameter 'mount_xyz_m' = [0.1, 0.2] must "
                      "be a list of 3 numbers"),
             std::string::npos)
       << out;

@@ -44,3 +44,19 @@ TEST(GraspPlan, UnreachableGoalsAreRefusedNamingTheFingerAndTheLimit) {
   EXPECT_EQ(pf::planGripperCommand({{"a", NAN, 6e4}}, 3.0, 5e4, 1e4, true).kind, Kind::kUnreachable);
   EXPECT_EQ(pf::planGripperCommand({}, 1.0, 3e5, 1e4, false).kind, Kind::kUnreachable);
 }
+
+// The cell's release (goal 0 rad) was logged "close to 0 rad at 0 Pa (/finger_c needs the most); the goal comes
+// before every finger touches the object": no finger needs anything to open.
+TEST(GraspPlan, AReleaseSaysItOpens) {
+  const auto plan =
+      pf::planGripperCommand({{"/finger_a", 0, 5e4}, {"/finger_b", 0, 6e4}, {"/finger_c", 0, 7e4}}, 0.0, 3e5, 1e4, true);
+  EXPECT_EQ(plan.kind, Kind::kClose);
+  EXPECT_EQ(plan.gauge_pa, 0);
+  EXPECT_EQ(plan.message, "open: vent to 0 Pa, where every finger is at the 0 rad goal");
+}
+
+// Numbers in the plan's words as a person reads them, not with 17 digits or the stream's six.
+TEST(GraspPlan, NumbersReadAsWritten) {
+  const auto plan = pf::planGripperCommand({{"a", 91503.635757, NAN}}, 0.1, 3e5, 1e4, false);
+  EXPECT_EQ(plan.message, "close to 0.1 rad at 91503.6 Pa (a needs the most)");
+}

@@ -46,6 +46,14 @@ def test_a_finished_cell_run_reads_clean_in_time_order():
     assert "cycle 1: grasped" in out, out
     assert "REQUIRED process" not in out and "[ WARN]" not in out and "[ERROR]" not in out, out
     assert "needs more than" not in out, out
+    # Each finger's line names it (three alike read "finger_node: grasp object ..." before), the release says it opens,
+    # and no number has the double's 17 digits (".635757 Pa", "0.10000000000000001").
+    speakers = set(re.findall(r"\]: (\S+): grasp object 'cylinder'", out))
+    assert {"/finger_a/finger_a_node", "/finger_b/finger_b_node", "/finger_c/finger_c_node"} <= speakers, speakers
+    assert "needs the most); the goal comes before" not in out and "open: vent to 0 Pa" in out, out
+    text = re.sub(r"\[ ?(?:INFO|WARN|ERROR|DEBUG)\] \[\d+\.\d+(?:, \d+\.\d+)?\]", "", out)  # the stamps' own digits
+    long_number = re.search(r".*\d\.\d{9,}.*", text)
+    assert long_number is None, long_number.group(0)
     # The nodelet manager's own "Unloading nodelet" lines at shutdown come from several of its threads, each stamped
     # before it writes: on a loaded machine two of them swap by a millisecond or so (a CI run saw 1.2 ms). They are
     # nodelet's, not ours, and come after the run.

@@ -19,8 +19,9 @@ import os
 from pneumatic_finger._core import CONTACT_STATUS, STATUS
 from pneumatic_finger._core import FingerModel as _FingerModel
 from pneumatic_finger._core import calibrate as _calibrate
+from pneumatic_finger._core import range_check
 
-__all__ = ["FingerModel", "calibrate", "default_config", "default_data", "STATUS", "CONTACT_STATUS"]
+__all__ = ["FingerModel", "calibrate", "default_config", "default_data", "range_check", "STATUS", "CONTACT_STATUS"]
 
 
 def _share(*parts):

@@ -399,7 +399,7 @@ class CellSequencer {
       object_.in_tool = tool.inverse() * object_.in_base;
       scene_.publishObject(object_, js_.header.stamp);
       say("cycle " + std::to_string(cycle) + ": grasped '" + settings_.object_id + "' at " +
-          std::to_string(result->gauge_pa) + " Pa: every finger touches it; " + hold.message);
+          pf::formatMessage(result->gauge_pa) + " Pa: every finger touches it; " + hold.message);
       return true;
     }
     say("cycle " + std::to_string(cycle) + ": grasp missed, '" + settings_.object_id + "' stays on the pick table: " +

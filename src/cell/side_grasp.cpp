@@ -50,8 +50,8 @@ SideGrasp sideGraspDepth(const std::vector<GripperFinger>& fingers, double radiu
     double depth = 0.0, gauge = 0.0;
     if (!sideTouch(f, radius_m, depth, gauge)) {
       throw ParameterError("finger '" + f.mount.prefix + "' does not reach the side of a cylinder of radius " +
-                           formatExact(radius_m) + " m on the gripper axis up to " +
-                           formatExact(f.mount.max_gauge_pa) + " Pa");
+                           formatMessage(radius_m) + " m on the gripper axis up to " +
+                           formatMessage(f.mount.max_gauge_pa) + " Pa");
     }
     g.touch_depth_m.push_back(depth);
     g.touch_pressure_pa.push_back(gauge);

@@ -52,8 +52,8 @@ std::string boundWarning(const SearchAxis& axis, double value) {
   const double x = coordinateOf(axis, value), width = axis.hi - axis.lo;
   if (x > axis.lo + 1e-6 * width && x < axis.hi - 1e-6 * width) return "";
   std::ostringstream w;
-  w << axis.key << " = " << formatExact(value) << " sits on the " << (x <= axis.lo + 1e-6 * width ? "lower" : "upper")
-    << " end of its search range [" << formatExact(axis.toValue(axis.lo)) << ", " << formatExact(axis.toValue(axis.hi))
+  w << axis.key << " = " << formatMessage(value) << " sits on the " << (x <= axis.lo + 1e-6 * width ? "lower" : "upper")
+    << " end of its search range [" << formatMessage(axis.toValue(axis.lo)) << ", " << formatMessage(axis.toValue(axis.hi))
     << "]: the data want it beyond, so the fit is not a minimum in it";
   return w.str();
 }

@@ -33,7 +33,7 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
                                    std::string& message) const {
   std::ostringstream why;
   if (!std::isfinite(tip_angle_rad) || tip_angle_rad < 0.0) {
-    why << "tip angle " << formatExact(tip_angle_rad) << " rad is not a finite angle >= 0 (flexion is positive)";
+    why << "tip angle " << formatMessage(tip_angle_rad) << " rad is not a finite angle >= 0 (flexion is positive)";
     message = why.str();
     return false;
   }
@@ -42,8 +42,8 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
   const double turns = 2 * n - 1 + parameters_.base_wall_share;
   const double limit = turns * kHalfPi;
   if (tip_angle_rad >= limit) {
-    why << "tip angle " << formatExact(tip_angle_rad) << " rad is beyond the model's limit (2N-1+s0) pi/2 = "
-        << formatExact(limit) << " rad, which no finite pressure reaches";
+    why << "tip angle " << formatMessage(tip_angle_rad) << " rad is beyond the model's limit (2N-1+s0) pi/2 = "
+        << formatMessage(limit) << " rad, which no finite pressure reaches";
     message = why.str();
     return false;
   }
@@ -52,9 +52,9 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
     return true;
   }
   if (std::isfinite(limit_gauge_pa_) && tip_angle_rad >= tipAngleBelowLimit()) {
-    why << "tip angle " << formatExact(tip_angle_rad) << " rad lies beyond the wall's limit point: the largest the "
-        << "membrane law holds is " << formatExact(tipAngleBelowLimit()) << " rad, just below "
-        << formatExact(limit_gauge_pa_) << " Pa, and there the pressure no longer determines the shape";
+    why << "tip angle " << formatMessage(tip_angle_rad) << " rad lies beyond the wall's limit point: the largest the "
+        << "membrane law holds is " << formatMessage(tipAngleBelowLimit()) << " rad, just below "
+        << formatMessage(limit_gauge_pa_) << " Pa, and there the pressure no longer determines the shape";
     message = why.str();
     return false;
   }
@@ -77,9 +77,9 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
     }
   }
   if (!(answer <= max_gauge_pa)) {
-    why << "tip angle " << formatExact(tip_angle_rad) << " rad needs more than the allowed " << formatExact(max_gauge_pa)
+    why << "tip angle " << formatMessage(tip_angle_rad) << " rad needs more than the allowed " << formatMessage(max_gauge_pa)
         << " Pa gauge";
-    if (std::isfinite(answer)) why << " (" << formatExact(answer) << " Pa)";
+    if (std::isfinite(answer)) why << " (" << formatMessage(answer) << " Pa)";
     message = why.str();
     return false;
   }

@@ -1,5 +1,7 @@
 #include "pneumatic_finger/core/grasp_plan.hpp"
 
+#include "pneumatic_finger/core/parameters.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <sstream>
@@ -33,21 +35,28 @@ GripperPlan planGripperCommand(const std::vector<FingerGoalAnswer>& fingers, dou
   if (!std::isnan(touch_pa) && (std::isnan(free_pa) || touch_pa <= free_pa)) {
     plan.kind = GripperPlan::Kind::kGrasp;
     plan.gauge_pa = std::min(touch_pa + squeeze_margin_pa, limit_pa);
-    why << "grasp: every finger touches the object by " << touch_pa << " Pa (" << touch_by << " last), before the "
-        << goal_position_rad << " rad goal; commanding " << plan.gauge_pa << " Pa";
+    why << "grasp: every finger touches the object by " << formatMessage(touch_pa) << " Pa (" << touch_by
+        << " last), before the " << formatMessage(goal_position_rad) << " rad goal; commanding "
+        << formatMessage(plan.gauge_pa) << " Pa";
     if (plan.gauge_pa < touch_pa + squeeze_margin_pa) why << " (the limit; the margin would ask for more)";
+  } else if (!std::isnan(free_pa) && free_pa == 0) {
+    // Every finger is at its goal unpressurised: an opening, which no finger "needs the most" and no object delays.
+    plan.kind = GripperPlan::Kind::kClose;
+    plan.gauge_pa = 0;
+    why << "open: vent to 0 Pa, where every finger is at the " << formatMessage(goal_position_rad) << " rad goal";
   } else if (!std::isnan(free_pa)) {
     plan.kind = GripperPlan::Kind::kClose;
     plan.gauge_pa = free_pa;
-    why << "close to " << goal_position_rad << " rad at " << free_pa << " Pa (" << free_by << " needs the most)";
+    why << "close to " << formatMessage(goal_position_rad) << " rad at " << formatMessage(free_pa) << " Pa (" << free_by
+        << " needs the most)";
     if (object_present) {
       why << (std::isnan(touch_pa) ? "; " + touch_by + " does not touch the object up to the limit"
                                    : "; the goal comes before every finger touches the object");
     }
   } else {
     plan.kind = GripperPlan::Kind::kUnreachable;
-    why << "no gauge pressure up to " << limit_pa << " Pa brings " << free_by << "'s tip to " << goal_position_rad
-        << " rad";
+    why << "no gauge pressure up to " << formatMessage(limit_pa) << " Pa brings " << free_by << "'s tip to "
+        << formatMessage(goal_position_rad) << " rad";
     if (object_present) why << ", and " << touch_by << " does not touch the object up to it";
   }
   plan.message = why.str();

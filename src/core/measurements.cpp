@@ -253,7 +253,7 @@ MeasurementSet measurementSetFromColumns(const std::vector<std::string>& names,
         [&](int column) {
           const double v = columns[static_cast<std::size_t>(column)][i];
           if (!std::isfinite(v)) {
-            throw ParameterError(at + formatExact(v) + " in column " + names[static_cast<std::size_t>(column)] +
+            throw ParameterError(at + formatMessage(v) + " in column " + names[static_cast<std::size_t>(column)] +
                                  " is not a finite number");
           }
           return v;

@@ -74,7 +74,7 @@ std::string unitSuffix(const ParameterSpec& spec) {
 
 std::string keyAndValue(const ParameterSpec& spec, double value) {
   std::ostringstream s;
-  s << "parameter '" << spec.key << "' = " << formatExact(value) << " is outside its allowed range "
+  s << "parameter '" << spec.key << "' = " << formatMessage(value) << " is outside its allowed range "
     << describeRange(spec) << unitSuffix(spec);
   return s.str();
 }
@@ -84,19 +84,19 @@ std::string keyAndValue(const ParameterSpec& spec, double value) {
 void checkParameterValue(const ParameterSpec& spec, double value) {
   if (spec.shape == ParameterShape::kChoice) {
     if (!(value >= 0 && value < static_cast<double>(choiceNames(spec).size()) && value == std::floor(value))) {
-      throw ParameterError(std::string("parameter '") + spec.key + "' = " + formatExact(value) + " is not " +
+      throw ParameterError(std::string("parameter '") + spec.key + "' = " + formatMessage(value) + " is not " +
                            describeRange(spec));
     }
     return;
   }
   if (!std::isfinite(value)) {
-    throw ParameterError(std::string("parameter '") + spec.key + "' = " + formatExact(value) +
+    throw ParameterError(std::string("parameter '") + spec.key + "' = " + formatMessage(value) +
                          " is not a finite number; allowed: " + describeRange(spec) + unitSuffix(spec));
   }
   const bool above_min = spec.min_inclusive ? value >= spec.min_value : value > spec.min_value;
   if (!above_min || value > spec.max_value) throw ParameterError(keyAndValue(spec, value));
   if (spec.shape == ParameterShape::kScalarInteger && value != std::floor(value)) {
-    throw ParameterError(std::string("parameter '") + spec.key + "' = " + formatExact(value) +
+    throw ParameterError(std::string("parameter '") + spec.key + "' = " + formatMessage(value) +
                          " is not a whole number; allowed: " + describeRange(spec));
   }
 }
@@ -223,8 +223,8 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& raw) {
     const auto k = static_cast<std::size_t>(i);
     if (p.wall_critical_height_m[k] > p.chamber_height_m[k]) {
       std::ostringstream s;
-      s << "parameter 'wall_critical_height_m' = " << formatExact(p.wall_critical_height_m[k]) << " m (chamber "
-        << i + 1 << ") exceeds chamber_height_m = " << formatExact(p.chamber_height_m[k])
+      s << "parameter 'wall_critical_height_m' = " << formatMessage(p.wall_critical_height_m[k]) << " m (chamber "
+        << i + 1 << ") exceeds chamber_height_m = " << formatMessage(p.chamber_height_m[k])
         << " m; allowed: (0, chamber_height_m]";
       throw ParameterError(s.str());
     }

@@ -163,7 +163,7 @@ class PyFingerModel {
     for (py::ssize_t i = 0; i < p.size(); ++i) {
       if (!std::isfinite(p.data()[i])) {
         throw py::value_error("gauge_pa" + (scalar ? std::string() : "[" + std::to_string(i) + "]") + " = " +
-                              pf::formatExact(p.data()[i]) + " is not a finite pressure (Pa)");
+                              pf::formatMessage(p.data()[i]) + " is not a finite pressure (Pa)");
       }
       force.mutable_data()[i] = model_->blockedTipForceN(p.data()[i]);
     }
@@ -335,6 +335,24 @@ PYBIND11_MODULE(_core, m) {
   m.attr("STATUS") = py::tuple(py::cast(std::vector<std::string>(kEvaluationStatus.begin(), kEvaluationStatus.end())));
   m.attr("CONTACT_STATUS") = py::tuple(py::cast(std::vector<std::string>(kContactStatus.begin(), kContactStatus.end())));
   defineCalibrate(m);
+  m.def(
+      "range_check",
+      [](double gauge_pa, const py::object& max_gauge_pa) {
+        pf::PressureRange range;
+        if (!max_gauge_pa.is_none()) {
+          range.max_gauge_pa = max_gauge_pa.cast<double>();
+          range.validated_max_gauge_pa = std::min(range.validated_max_gauge_pa, range.max_gauge_pa);
+        }
+        const pf::RangeCheck c = pf::checkGaugeRange(gauge_pa, range);
+        const std::string words = c.clamped         ? pf::clampedMessage(gauge_pa, range)
+                                  : gauge_pa < 0    ? pf::vacuumMessage(gauge_pa)
+                                  : c.above_validated ? pf::aboveValidatedMessage(gauge_pa, range)
+                                                      : std::string();
+        return py::make_tuple(c.gauge_pa, words);
+      },
+      py::arg("gauge_pa"), py::arg("max_gauge_pa") = py::none(),
+      "The model's range rule, as finger_node, finger_model and evaluate() apply it: (the pressure to evaluate, the "
+      "words to warn with, empty in range)");
   py::class_<PyFingerModel>(m, "FingerModel")
       .def(py::init<const std::string&, const py::dict&, const std::string&, const py::object&>(), py::arg("config"),
            py::arg("overrides") = py::dict(), py::arg("solver") = "robust", py::arg("max_gauge_pa") = py::none())

@@ -14,7 +14,7 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("input rate (Hz, last 1 s)", r.rate_hz);
   status.add("seconds since last pressure", r.age_s);
   status.add("last gauge pressure (Pa)", input_.lastGaugePa());
-  status.add("validated range (Pa gauge)", "0.." + formatExact(settings_.input.validated_max_gauge_pa));
+  status.add("validated range (Pa gauge)", "0.." + formatMessage(settings_.input.validated_max_gauge_pa));
   // The input rules' counters, each with the name diagnostics give it.
   const std::pair<const char*, long> counted[] = {
       {"messages received", c.received},
@@ -37,7 +37,7 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("tip error bar", tip_uncertainty_.empty()
                                    ? std::string("none (NaN in finger_state)")
                                    : "calibrated at " + std::to_string(tip_uncertainty_.gauge_pa.size()) +
-                                         " pressures up to " + formatExact(tip_uncertainty_.gauge_pa.back()) +
+                                         " pressures up to " + formatMessage(tip_uncertainty_.gauge_pa.back()) +
                                          " Pa gauge; above: extrapolated");
   status.add("grasp object", object_ ? object_->id : std::string("(none)"));
   status.add("grasp object status", graspObjectStatusName(grasp_->status()));

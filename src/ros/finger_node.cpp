@@ -34,6 +34,8 @@ void FingerNode::buildModel(ros::NodeHandle& nh) {
 
 FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
     : settings_(readNodeSettings(private_nh)), input_(settings_.input), nh_(nh) {
+  // Its own name in every line it logs: the cell runs three, whose lines must be told apart ("/finger_a/finger_node").
+  log_name_ = private_nh.getNamespace();
   buildModel(nh);
   if (settings_.publish_tf) publishStaticFrames();
   sizeMessages();
@@ -54,7 +56,7 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
                                this, ros::TransportHints().tcpNoDelay());
   const int n = settings_.finger.chamber_count;
   const std::string& prefix = settings_.urdf.prefix;
-  ROS_INFO("finger_node: %d chambers (%d distinct), solver %s, frames %s..%s and %s on %s; URDF in '%s'", n,
+  ROS_INFO("%s: %d chambers (%d distinct), solver %s, frames %s..%s and %s on %s; URDF in '%s'", log_name_.c_str(), n,
            model_->distinctChamberCount(), solverName(settings_.solver), segmentLinkName(prefix, 0).c_str(),
            segmentLinkName(prefix, n).c_str(), tipLinkName(prefix).c_str(), settings_.urdf.parent_frame.c_str(),
            nh.resolveName(settings_.description_param).c_str());
@@ -135,8 +137,8 @@ void FingerNode::setUpTipMarker(ros::NodeHandle& nh) {
   tip_marker_.type = visualization_msgs::Marker::SPHERE;
   tip_marker_.pose.orientation.w = 1.0;
   if (tip_uncertainty_.empty()) {
-    ROS_INFO("finger_node: the parameters have no tip_uncertainty (finger_calibrate writes it): the tip's error bar "
-             "is published as NaN");
+    ROS_INFO("%s: the parameters have no tip_uncertainty (finger_calibrate writes it): the tip's error bar "
+             "is published as NaN", log_name_.c_str());
   }
 }
 
@@ -144,19 +146,19 @@ void FingerNode::onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg) {
   // The rules are the core's (PressureInputPolicy); this only forwards the message and acts on the verdict.
   const ros::Time now = ros::Time::now();
   const InputDecision d = input_.onMessage(msg->fluid_pressure, msg->header.stamp.toSec(), now.toSec());
-  if (d.time_jumped) ROS_WARN("finger_node: %s", d.problem.c_str());  // once per jump
+  if (d.time_jumped) ROS_WARN("%s: %s", log_name_.c_str(), d.problem.c_str());  // once per jump
   switch (d.verdict) {
     case InputVerdict::kThrottled:
       return;
     case InputVerdict::kRefusedNotFinite:
     case InputVerdict::kRefusedNegativeAbsolute:
     case InputVerdict::kRefusedOutOfOrder:
-      ROS_WARN_THROTTLE(5.0, "finger_node: refused a pressure message: %s; keeping the last state", d.problem.c_str());
+      ROS_WARN_THROTTLE(5.0, "%s: refused a pressure message: %s; keeping the last state", log_name_.c_str(), d.problem.c_str());
       return;
     case InputVerdict::kAccept:
       break;
   }
-  if (!d.time_jumped && !d.problem.empty()) ROS_WARN_THROTTLE(5.0, "finger_node: %s", d.problem.c_str());
+  if (!d.time_jumped && !d.problem.empty()) ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), d.problem.c_str());
   // The message's own stamp to the nanosecond (the policy compares seconds as doubles), or the receive time.
   publishAt(d.gauge_pa, d.stamp_replaced ? now : msg->header.stamp, d.clamped);
 }
@@ -167,7 +169,7 @@ bool FingerNode::publishAt(double gauge_pa, const ros::Time& stamp, bool clamped
   if (state.status == EvaluationStatus::kBeyondLimitPoint) {
     // No invented shape: finger_state repeats the last one and says why; joint_states and tf stay as they were.
     input_.noteBeyondLimitPoint(gauge_pa, model_->limitGaugePa(), now.toSec());
-    ROS_WARN_THROTTLE(5.0, "finger_node: %s", input_.lastProblem().c_str());
+    ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), input_.lastProblem().c_str());
     if (have_pressure_) {  // before any shape there is none to repeat: diagnostics alone say why
       finger_state_.header.stamp = stamp;
       finger_state_.status = FingerModelState::STATUS_BEYOND_LIMIT_POINT;
@@ -186,15 +188,15 @@ bool FingerNode::publishAt(double gauge_pa, const ros::Time& stamp, bool clamped
   if (failed) {
     // Nothing non-finite is ever published: the last state stays, and diagnostics say why.
     input_.noteSolverFailure(std::string("solver '") + solverName(settings_.solver) + "' found no finite answer at " +
-                                 formatExact(gauge_pa) + " Pa gauge" + (with_contact ? " (with the grasp object)" : "") +
+                                 formatMessage(gauge_pa) + " Pa gauge" + (with_contact ? " (with the grasp object)" : "") +
                                  "; last state kept",
                              now.toSec());
-    ROS_WARN_THROTTLE(5.0, "finger_node: %s", input_.lastProblem().c_str());
+    ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), input_.lastProblem().c_str());
     return false;
   }
   if (state.status == EvaluationStatus::kVacuum) {
     input_.noteVacuum(gauge_pa, now.toSec());
-    ROS_WARN_THROTTLE(5.0, "finger_node: %s", input_.lastProblem().c_str());
+    ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), input_.lastProblem().c_str());
   }
   have_pressure_ = true;
   last_gauge_pa_ = gauge_pa;
@@ -324,9 +326,9 @@ void FingerNode::onGraspObject(const GraspObject::ConstPtr& msg) {
   grasp_->clear();
   object_timer_.stop();
   if (msg->id.empty()) {
-    ROS_INFO("finger_node: grasp object cleared");
+    ROS_INFO("%s: grasp object cleared", log_name_.c_str());
   } else if (acceptObject(msg)) {
-    ROS_INFO("finger_node: grasp object '%s' in '%s'", msg->id.c_str(), msg->header.frame_id.c_str());
+    ROS_INFO("%s: grasp object '%s' in '%s'", log_name_.c_str(), msg->id.c_str(), msg->header.frame_id.c_str());
     updateObject();
   }
   if (have_pressure_) publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
@@ -338,7 +340,7 @@ bool FingerNode::acceptObject(const GraspObject::ConstPtr& msg) {
   if (why.empty() && msg->header.frame_id.empty()) why = "header.frame_id is empty";
   if (!why.empty()) {
     object_refused_ = "grasp object '" + msg->id + "' refused: " + why;
-    ROS_ERROR("finger_node: %s; the finger stays free", object_refused_.c_str());
+    ROS_ERROR("%s: %s; the finger stays free", log_name_.c_str(), object_refused_.c_str());
     return false;
   }
   object_ = msg;
@@ -387,7 +389,7 @@ bool FingerNode::objectPose(Eigen::Isometry3d& finger_from_frame, std::string& w
     const double age_s = (ros::Time::now() - t.header.stamp).toSec();
     if (settings_.transform_timeout_s > 0 && !t.header.stamp.isZero() && age_s > settings_.transform_timeout_s) {
       why = "the transform from '" + object_->header.frame_id + "' to '" + parent_frame + "' is " +
-            formatExact(std::round(age_s * 100) / 100) + " s old (over transform_timeout_s): has its publisher stopped?";
+            formatMessage(std::round(age_s * 100) / 100) + " s old (over transform_timeout_s): has its publisher stopped?";
       return false;
     }
     parent_from_frame = isometryFromMessage(t.transform);
@@ -405,16 +407,16 @@ bool FingerNode::updateObject() {
     // wait is not a problem worth a WARN. A transform still missing after it, or lost later, is.
     const bool starting = !object_located_once_ && (ros::WallTime::now() - object_since_).toSec() < kTransformGraceS;
     if (starting) {
-      ROS_DEBUG("finger_node: grasp object '%s': waiting for tf: %s", object_->id.c_str(), why.c_str());
+      ROS_DEBUG("%s: grasp object '%s': waiting for tf: %s", log_name_.c_str(), object_->id.c_str(), why.c_str());
     } else {
-      ROS_WARN_THROTTLE(5.0, "finger_node: grasp object '%s': %s", object_->id.c_str(), why.c_str());
+      ROS_WARN_THROTTLE(5.0, "%s: grasp object '%s': %s", log_name_.c_str(), object_->id.c_str(), why.c_str());
     }
     return grasp_->lostTransform(why);
   }
   object_located_once_ = true;
   const bool changed = grasp_->locate(finger_from_frame);
   if (changed && grasp_->status() == GraspObjectStatus::kOverlapsAtRest) {
-    ROS_WARN_THROTTLE(5.0, "finger_node: grasp object '%s' %s", object_->id.c_str(), grasp_->problem().c_str());
+    ROS_WARN_THROTTLE(5.0, "%s: grasp object '%s' %s", log_name_.c_str(), object_->id.c_str(), grasp_->problem().c_str());
   }
   return changed;
 }
@@ -462,21 +464,21 @@ void FingerNode::onReconfigure(FingerNodeConfig& config, uint32_t /*level*/) {
     input_.updateSettings(settings_.input);
     if (actuator) {
       if (!tip_uncertainty_.empty()) {
-        ROS_WARN("finger_node: the actuator was reconfigured: the calibration's tip error bar no longer applies, "
-                 "finger_state publishes it as NaN");
+        ROS_WARN("%s: the actuator was reconfigured: the calibration's tip error bar no longer applies, "
+                 "finger_state publishes it as NaN", log_name_.c_str());
         tip_uncertainty_ = TipUncertainty{};
         tip_marker_.action = visualization_msgs::Marker::DELETE;
         tip_marker_pub_.publish(tip_marker_);
         marker_bar_m_ = -1.0;
       }
       buildModel(nh_);
-      ROS_INFO("finger_node: reconfigured: shear_modulus_pa %s Pa, chamber_gap_m %s m, base_wall_share %s, "
-               "wall_locking_jm %s; URDF republished", formatExact(config.shear_modulus_pa).c_str(),
-               formatExact(config.chamber_gap_m).c_str(), formatExact(config.base_wall_share).c_str(),
-               formatExact(config.wall_locking_jm).c_str());
+      ROS_INFO("%s: reconfigured: shear_modulus_pa %s Pa, chamber_gap_m %s m, base_wall_share %s, "
+               "wall_locking_jm %s; URDF republished", log_name_.c_str(), formatMessage(config.shear_modulus_pa).c_str(),
+               formatMessage(config.chamber_gap_m).c_str(), formatMessage(config.base_wall_share).c_str(),
+               formatMessage(config.wall_locking_jm).c_str());
     }
   } catch (const ParameterError& e) {
-    ROS_ERROR("finger_node: reconfigure refused: %s; keeping the previous values", e.what());
+    ROS_ERROR("%s: reconfigure refused: %s; keeping the previous values", log_name_.c_str(), e.what());
     config = now;
   }
 }

@@ -196,7 +196,7 @@ class GripperActionServer {
         return false;
       }
       if (!srv.response.success) {
-        why = ns + " cannot grip with " + std::to_string(force_n) + " N: " + srv.response.message;
+        why = ns + " cannot grip with " + pf::formatMessage(force_n) + " N: " + srv.response.message;
         return false;
       }
       if (srv.response.gauge_pa >= needed) needed = srv.response.gauge_pa, by = ns;

@@ -137,7 +137,7 @@ void resumeLiveActuatorKeys(const RawParameterMap& live, NodeSettings& s) {
       continue;
     }
     raw[key] = value;
-    changed += (changed.empty() ? "" : ", ") + key + " = " + formatExact(value.values[0]);
+    changed += (changed.empty() ? "" : ", ") + key + " = " + formatMessage(value.values[0]);
   }
   if (changed.empty()) return;
   s.finger = FingerParameters::fromRaw(raw);

@@ -71,7 +71,7 @@ NodeParameterSpec listParameter(const char* key, const char* type, const char* u
 std::string describeParameterValue(const XmlRpc::XmlRpcValue& v) {
   auto& x = const_cast<XmlRpc::XmlRpcValue&>(v);
   switch (x.getType()) {
-    case XmlRpc::XmlRpcValue::TypeDouble: return formatExact(static_cast<double>(x));
+    case XmlRpc::XmlRpcValue::TypeDouble: return formatMessage(static_cast<double>(x));
     case XmlRpc::XmlRpcValue::TypeInt: return std::to_string(static_cast<int>(x));
     case XmlRpc::XmlRpcValue::TypeBoolean: return static_cast<bool>(x) ? "true" : "false";
     case XmlRpc::XmlRpcValue::TypeString: return "'" + static_cast<std::string>(x) + "'";

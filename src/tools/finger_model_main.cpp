@@ -1,6 +1,8 @@
 // finger_model: the model from the command line, as CSV (one row per pressure). See the README, "Tools".
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 #include <string>
@@ -85,7 +87,7 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
     // The range rule of every interface: the row is the finger at the pressure the model was given.
     const pf::RangeCheck range = pf::checkGaugeRange(pressures[row], columns.range);
     const double p = range.gauge_pa;
-    if (!times.empty()) out << pf::formatExact(times[row]) << ',';
+    if (!times.empty()) out << pf::formatShortest(times[row]) << ',';
     const pf::FingerState& s = model.evaluate(p, ws);
     if (s.status == pf::EvaluationStatus::kVacuum && !warned) {
       std::cerr << "finger_model: warning: " << pf::vacuumMessage(p) << " is printed\n";
@@ -210,7 +212,10 @@ int main(int argc, char** argv) {
                                              finger.atmospheric_pressure_pa);
       const long rows = static_cast<long>(std::floor(t_end / dt * (1 + 1e-12))) + 1;  // T itself when DT divides it
       for (long k = 0; k < rows; ++k) {
-        times.push_back(static_cast<double>(k) * dt);
+        // k DT to 15 digits: 7 x 0.002 is the time 0.014, not the product's 0.014000000000000002.
+        char t[32];
+        std::snprintf(t, sizeof t, "%.15g", static_cast<double>(k) * dt);
+        times.push_back(std::strtod(t, nullptr));
         pressures.push_back(rate * times.back());
       }
     }

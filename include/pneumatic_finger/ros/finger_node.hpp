@@ -104,6 +104,7 @@ class FingerNode {
   std::unique_ptr<dynamic_reconfigure::Server<FingerNodeConfig>> reconfigure_;
   bool reconfigure_synced_ = false;
   ros::NodeHandle nh_;
+  std::string log_name_;  // the private namespace, the first word of every log line
 
   // The grasp object. Nothing here works without one: the tf listener is made for the first object in another
   // frame, the timer runs only while there is an object, and an object out of reach costs no contact solve.
