@@ -162,3 +162,62 @@ def test_python_is_numpy_shaped():
     with pytest.raises(ValueError, match=r"tip_angle_rad\[1\]"):
         model.gauge_for_tip_angle([0.2, 50.0])
     assert len(pf.STATUS) == 6 and pf.STATUS[5] == "clamped to max_gauge_pa"
+
+
+def readme_block(after):
+    # The first ``` block after the heading or sentence @after, as a user copies it.
+    text = (pathlib.Path(__file__).resolve().parent.parent / "README.md").read_text()
+    rest = text[text.index(after):]
+    return rest.split("```\n", 2)[1]
+
+
+def test_the_readme_quick_start_runs_as_pasted():
+    import socket
+    with socket.socket() as s:
+        s.bind(("localhost", 0))
+        port = s.getsockname()[1]
+    root = pathlib.Path(__file__).resolve().parent.parent
+    env = dict(os.environ, ROS_MASTER_URI=f"http://localhost:{port}", ROS_HOSTNAME="localhost",
+               PATH="/usr/bin:/bin:" + os.environ.get("PATH", ""))
+    script = readme_block("## Quick start")
+    done = subprocess.run(["timeout", "120", "bash", "-c", "set -m\n" + script], cwd=root, env=env,
+                          capture_output=True, text=True)
+    assert done.returncode == 0, done.stdout + done.stderr
+    assert "finger_joint_1" in done.stdout and "position:" in done.stdout, done.stdout
+    without_ros = subprocess.run(["bash", "-c", "source devel/setup.bash\n" + readme_block("Without ROS, the same")],
+                                 cwd=root, env=env, capture_output=True, text=True)
+    assert without_ros.returncode == 0, without_ros.stderr
+    assert float(without_ros.stdout.splitlines()[-1]) > 0
+
+
+def test_the_calibration_walkthrough_runs_as_written():
+    # docs/CALIBRATE.md's ```bash blocks, in order, in one shell, as a user pastes them; on the shipped example.
+    import re
+    import socket
+    root = pathlib.Path(__file__).resolve().parent.parent
+    blocks = re.findall(r"```bash\n(.*?)```", (root / "docs" / "CALIBRATE.md").read_text(), re.S)
+    assert len(blocks) == 4
+    with socket.socket() as s:
+        s.bind(("localhost", 0))
+        port = s.getsockname()[1]
+    env = dict(os.environ, ROS_MASTER_URI=f"http://localhost:{port}", ROS_HOSTNAME="localhost",
+               PATH="/usr/bin:/bin:" + os.environ.get("PATH", ""))
+    done = subprocess.run(["timeout", "180", "bash", "-ec", "set -m\n" + "\n".join(blocks)], cwd=root, env=env,
+                          capture_output=True, text=True)
+    out = done.stdout
+    assert done.returncode == 0, out + done.stderr
+    assert "# compared: tip_position" in out and "# leave-one-out error" in out, out
+    # The page's figures are the report's: 2.1 mm fitted, 4.4 mm left out.
+    assert "largest |error|: tip position 0.00206759 m (2.068 mm)" in out, out
+    assert "largest leave-one-out |error|: tip position 0.00444253 m (4.443 mm)" in out, out
+    assert "(4, 2)" in out  # Python's leave-one-out arrays
+    # The node published the file's bar at 147 kPa (147108 Pa gauge): about the third row's, 0.00242741 m.
+    lines = out.splitlines()
+    bar = float(lines[lines.index("---") - 1])
+    assert abs(bar - 0.00242741) < 1e-6, out
+
+
+def test_the_example_tip_positions_are_the_scripts():
+    root = pathlib.Path(__file__).resolve().parent.parent
+    done = subprocess.run(["/usr/bin/python3", str(root / "scripts" / "example_tips.py"), "--check"])
+    assert done.returncode == 0
