@@ -38,7 +38,9 @@ const std::vector<ParameterSpec> kSpecs = {
      "half angle the passive base segment's face adds to joint 1, as a share of chamber 1's: theta_0 = s0 theta_1 "
      "(0: an inert face; 1: a face that turns as a chamber wall does; effective, calibrated)"},
     {"shear_modulus_pa", "mu", "Pa", 223531464.01998678, 0, false, 1e12, ParameterShape::kPerChamber,
-     "effective Neo-Hookean shear modulus of the elastomer (calibrated)"},
+     "effective stiffness of the wall in the paper's energy balance (calibrated): a fitted number, not the "
+     "elastomer's measured shear modulus (the paper law's fit is about 1000 times a silicone's; the membrane law's is "
+     "close to it)"},
     {"atmospheric_pressure_pa", "P_o", "Pa", kStandardAtmospherePa, 1e3, true, 1e6, ParameterShape::kScalar,
      "ambient pressure; gauge = absolute - P_o"},
     // Not in the model: the URDF's masses and inertias. The paper does not name its elastomer; 1070 kg/m^3 is the
