@@ -133,20 +133,7 @@ TEST(PressureInput, BadValuesAreRefusedNamingThem) {
   EXPECT_EQ(p.report(1.3).level, pf::InputHealth::kWarn);
 }
 
-TEST(PressureInput, AbovetheRangeIsClampedAndFlagged) {
-  pf::PressureInputPolicy p(settings());
-  const auto d = p.onMessage(kAtm + 1e12, 1.0, 1.0);
-  EXPECT_EQ(d.verdict, pf::InputVerdict::kAccept);
-  EXPECT_TRUE(d.clamped);
-  EXPECT_TRUE(d.out_of_range);
-  EXPECT_EQ(d.gauge_pa, 3e5);
-  const auto between = p.onMessage(kAtm + 2.5e5, 1.1, 1.1);
-  EXPECT_FALSE(between.clamped);
-  EXPECT_TRUE(between.out_of_range);
-  EXPECT_EQ(between.gauge_pa, 2.5e5);
-  EXPECT_EQ(p.counters().clamped, 1);
-  EXPECT_EQ(p.counters().out_of_range, 2);
-}
+// Above the range: test_pressure_range.cpp (PressureRange.TheNodesInputPolicySaysTheSameWords), with the words.
 
 TEST(PressureInput, ThrottlingKeepsOneMessagePerPeriod) {
   auto s = settings();

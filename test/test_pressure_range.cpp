@@ -47,6 +47,13 @@ TEST(PressureRange, TheNodesInputPolicySaysTheSameWords) {
   EXPECT_EQ(d.gauge_pa, 294199.5);
   EXPECT_EQ(d.problem, pf::clampedMessage(absolute - settings.atmospheric_pa, policy.range()));
   EXPECT_EQ(policy.report(1.1).message, d.problem);
+  // Between the validated range and the model's: flagged, not clamped; both counted.
+  const pf::InputDecision between = policy.onMessage(settings.atmospheric_pa + 2.5e5, 1.2, 1.2);
+  EXPECT_FALSE(between.clamped);
+  EXPECT_TRUE(between.out_of_range);
+  EXPECT_EQ(between.gauge_pa, 2.5e5);
+  EXPECT_EQ(policy.counters().clamped, 1);
+  EXPECT_EQ(policy.counters().out_of_range, 2);
 }
 
 TEST(PressureRange, ABatchIsClampedAndMarkedRowByRow) {
