@@ -9,7 +9,6 @@ finger_calibrate), the law with the smaller bending error is kept (for both segm
 "Force") is predicted at every pressure of the force data, which no fit saw. Prints the Markdown of docs/FORCE.md
 ("Measured against predicted") and draws the plot (default docs/force_blocked.png). About a minute.
 """
-import argparse
 import csv
 import math
 import pathlib
@@ -21,6 +20,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pneumatic_finger.core as pf  # noqa: E402
+from page_support import plot_arguments, save  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 MU, GAP, JM = "shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"
@@ -110,14 +110,11 @@ def plot(results, path):
         ax.set_xlabel("gauge pressure (kPa)")
         ax.set_ylabel("tip force (N)")
         ax.legend(fontsize=7, loc="upper left")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save(fig, path)
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--plot", default=str(ROOT / "docs/force_blocked.png"))
-    args = parser.parse_args()
+    args = plot_arguments(__doc__, ROOT / "docs/force_blocked.png")
     results = [study(s) for s in SEGMENTS]
     print("| segment | law (by bending) | bending fit: largest error (deg) | walls touch at (kPa) | "
           "force within the goal | pressures outside it (kPa) | largest error (N) |")  # outside: by the goal alone

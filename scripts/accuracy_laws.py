@@ -10,7 +10,6 @@ each law is fitted with the package's calibration (pneumatic_finger.calibrate, t
 Prints a Markdown table (docs/ACCURACY.md, "Other actuators" is its output) and draws the plot (default
 docs/accuracy_laws.png). Takes about ten minutes: each three-key leave-one-out is fifteen nested searches.
 """
-import argparse
 import csv
 import math
 import pathlib
@@ -23,6 +22,7 @@ import matplotlib.pyplot as plt  # noqa: E402
 import numpy as np  # noqa: E402
 
 import pneumatic_finger.core as pf  # noqa: E402
+from page_support import plot_arguments, save  # noqa: E402
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DEG = 180 / math.pi
@@ -176,14 +176,11 @@ def plot(results, path):
         ax.set_ylabel("joints 2..7 average (deg)" if s["column"] == "avg" else "bend angle of the segment (deg)")
         ax.grid(alpha=0.3)
         ax.legend(fontsize=7, loc="upper left")
-    fig.tight_layout()
-    fig.savefig(path, dpi=110)
+    save(fig, path)
 
 
 def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--plot", default=str(ROOT / "docs/accuracy_laws.png"))
-    args = parser.parse_args()
+    args = plot_arguments(__doc__, ROOT / "docs/accuracy_laws.png")
     with tempfile.TemporaryDirectory() as tmp:
         results = [study(s, tmp) for s in SETS]
     table(results)

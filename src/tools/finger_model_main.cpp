@@ -142,6 +142,27 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
   std::cout << out.str();
 }
 
+// --obstacle-disk X,Y,R (a far-away unit disk when not given: never read then).
+pf::Obstacle parseDisk(const std::string& disk) {
+  if (disk.empty()) return pf::Obstacle::disk(0, 0, 1);
+  const std::vector<std::string> f = pf::splitFields(disk);
+  if (f.size() != 3) throw pf::ParameterError("--obstacle-disk expects X,Y,R, got '" + disk + "'");
+  const pf::Obstacle obstacle = pf::Obstacle::disk(pf::parseFiniteOption("--obstacle-disk X", f[0]),
+                                                   pf::parseFiniteOption("--obstacle-disk Y", f[1]),
+                                                   pf::parseFiniteOption("--obstacle-disk R", f[2]));
+  if (!obstacle.problem().empty()) throw pf::ParameterError("--obstacle-disk: " + obstacle.problem());
+  return obstacle;
+}
+
+// --max-gauge-pa P: the model's range up to P (the validated range no higher than it).
+pf::PressureRange parseRange(const std::string& text) {
+  pf::PressureRange range;
+  range.max_gauge_pa = pf::parseFiniteOption("--max-gauge-pa", text);
+  if (!(range.max_gauge_pa > 0)) throw pf::ParameterError("--max-gauge-pa = " + text + " must be > 0");
+  range.validated_max_gauge_pa = std::min(range.validated_max_gauge_pa, range.max_gauge_pa);
+  return range;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -186,11 +207,7 @@ int main(int argc, char** argv) {
     if (!time_mode && pressures.empty()) {
       throw pf::ParameterError("no pressure given: use --gauge-pa P, --sweep-pa FROM:TO:COUNT or --flow-lpm Q");
     }
-    if (!max_gauge.empty()) {
-      columns.range.max_gauge_pa = pf::parseFiniteOption("--max-gauge-pa", max_gauge);
-      if (!(columns.range.max_gauge_pa > 0)) throw pf::ParameterError("--max-gauge-pa = " + max_gauge + " must be > 0");
-      columns.range.validated_max_gauge_pa = std::min(columns.range.validated_max_gauge_pa, columns.range.max_gauge_pa);
-    }
+    if (!max_gauge.empty()) columns.range = parseRange(max_gauge);
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);
     const pf::FingerParameters finger = parameters.load();
@@ -221,15 +238,7 @@ int main(int argc, char** argv) {
     }
     pf::FingerModel model(finger, options);
     pf::FingerWorkspace ws(model);
-    pf::Obstacle obstacle = pf::Obstacle::disk(0, 0, 1);
-    if (!disk.empty()) {
-      const std::vector<std::string> f = pf::splitFields(disk);
-      if (f.size() != 3) throw pf::ParameterError("--obstacle-disk expects X,Y,R, got '" + disk + "'");
-      obstacle = pf::Obstacle::disk(pf::parseFiniteOption("--obstacle-disk X", f[0]),
-                                    pf::parseFiniteOption("--obstacle-disk Y", f[1]),
-                                    pf::parseFiniteOption("--obstacle-disk R", f[2]));
-      if (!obstacle.problem().empty()) throw pf::ParameterError("--obstacle-disk: " + obstacle.problem());
-    }
+    const pf::Obstacle obstacle = parseDisk(disk);
     columns.obstacle = disk.empty() ? nullptr : &obstacle;
     columns.times = times;
     printCsv(model, ws, pressures, columns);
