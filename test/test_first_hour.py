@@ -221,3 +221,60 @@ def test_the_example_tip_positions_are_the_scripts():
     root = pathlib.Path(__file__).resolve().parent.parent
     done = subprocess.run(["/usr/bin/python3", str(root / "scripts" / "example_tips.py"), "--check"])
     assert done.returncode == 0
+
+
+def test_the_time_column_reads_as_its_decimal():
+    out = tool("finger_model", "--flow-lpm", "1", "--duration-s", "0.02", "--step-s", "0.002").stdout
+    times = [line.split(",")[0] for line in out.splitlines()[1:]]
+    assert times[7] == "0.014", times  # not the product's 0.014000000000000002
+
+
+def test_small_ones():
+    # finger_node --help answers at once, without a master.
+    done = subprocess.run(["timeout", "10", str(BIN / "finger_node"), "--help"], capture_output=True, text=True,
+                          env=dict(os.environ, ROS_MASTER_URI="http://localhost:1"))
+    assert done.returncode == 0 and "Usage: rosrun pneumatic_finger finger_node" in done.stdout, done.stdout
+    # finger_design names the option of a value that is not a number, and warns of a vacuum as finger_model does.
+    design = [str(pathlib.Path(__file__).resolve().parent.parent / "scripts" / "finger_design"),
+              "--vary", "chamber_gap_m=2e-5:5e-5:2"]
+    bad = subprocess.run(["/usr/bin/python3", *design, "--quantity", "tip_angle_rad@150kPa"], capture_output=True,
+                         text=True)
+    assert bad.returncode == 2
+    assert "--quantity tip_angle_rad@150kPa: '150kPa' is not a number (Pa gauge" in bad.stderr, bad.stderr
+    vacuum = subprocess.run(["/usr/bin/python3", *design, "--quantity", "tip_angle_rad@-5"], capture_output=True,
+                            text=True)
+    words = "gauge pressure -5 Pa is a vacuum, outside the model: the straight finger"
+    assert vacuum.returncode == 0 and words in vacuum.stderr, vacuum.stderr
+    assert words in tool("finger_model", "--gauge-pa", "-5").stderr
+
+
+def test_the_readme_says_how_far_to_trust_the_real_finger():
+    # Beside the solver's 1e-12, the real-world error, as finger_calibrate measures it on the shipped data.
+    readme = (pathlib.Path(__file__).resolve().parent.parent / "README.md").read_text()
+    report = tool("finger_calibrate").stdout
+    fit = report.split("# largest |error|:")[1].splitlines()[0]
+    loo = report.split("# largest leave-one-out |error|:")[1].splitlines()[0]
+    assert "joints 0.0210734 rad (1.207 deg)" in fit and "average 0.00928543 rad (0.532 deg)" in fit
+    assert "(2.156 mm)" in fit and "joints 0.0286891 rad (1.644 deg)" in loo and "(5.629 mm)" in loo
+    for figure in ("within 1.21°", "within 0.53°", "within 2.2 mm", "within 1.64°", "5.6 mm at the tip"):
+        assert figure in readme, figure
+    # And mu is called what it is.
+    table = tool("finger_model", "--parameters").stdout
+    row = next(line for line in table.splitlines() if line.startswith("| `shear_modulus_pa`"))
+    assert "not the elastomer's measured shear modulus" in row
+
+
+def test_force_counts_only_pressures_where_the_model_predicts_a_force():
+    # FORCE.md's summary: a pressure predicted at 0 N is not met by the goal's 0.05 N floor.
+    page = (pathlib.Path(__file__).resolve().parent.parent / "docs" / "FORCE.md").read_text()
+    ribbed = page[page.index("**ribbed**"):]
+    rows = []
+    for line in ribbed.splitlines()[4:]:  # the ribbed table's rows, up to its end
+        if not line.startswith("| "):
+            break
+        rows.append(line.split("|")[1:-1])
+    assert len(rows) == 22
+    pressing = [r for r in rows if float(r[2]) > 0]
+    met = sum(1 for r in pressing if r[5].strip() == "yes")
+    assert f"| {met} of {len(pressing)} where it predicts a force" in page
+    assert len(pressing) < len(rows)  # some rows below the touch exist, and are not counted
