@@ -349,12 +349,12 @@ TEST_F(FingerNodeTest, InverseServiceRoundTrips) {
   ASSERT_TRUE(client.call(srv));
   EXPECT_FALSE(srv.response.success);
   EXPECT_NE(srv.response.message.find("needs more than"), std::string::npos) << srv.response.message;
-  // A refusal names what was wrong and nothing else; a NaN reads as "nan" (printf's "-nan" reads like a number).
+  // A refusal names what was wrong and nothing else, with the number as the user wrote it (not the double's 17
+  // digits, "-0.10000000000000001"); a NaN reads as "nan" (printf's "-nan" reads like a number).
   srv.request.tip_angle_rad = -0.1;
   ASSERT_TRUE(client.call(srv));
   EXPECT_FALSE(srv.response.success);
-  EXPECT_EQ(srv.response.message,
-            "tip angle -0.10000000000000001 rad is not a finite angle >= 0 (flexion is positive)");
+  EXPECT_EQ(srv.response.message, "tip angle -0.1 rad is not a finite angle >= 0 (flexion is positive)");
   srv.request.tip_angle_rad = -std::numeric_limits<double>::quiet_NaN();
   ASSERT_TRUE(client.call(srv));
   EXPECT_FALSE(srv.response.success);
