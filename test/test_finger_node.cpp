@@ -494,7 +494,7 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
   for (int i = 0; i < 7; ++i) EXPECT_EQ(listener_->joint_states[stamp].position[static_cast<std::size_t>(i)], free.joint_angle_rad[i]);
 }
 
-// A list parameter (as rosparam loads it from a file) reads as a list in the message, with every digit: it printed
+// A list parameter (as rosparam loads it from a file) reads as a list in the message, each number as written: it printed
 // as "0.100000000000000010.20000000000000001" before.
 namespace {
 // Runs finger_node with @p args (stdout and stderr together) and returns its exit status, -1 if it did not exit.
