@@ -215,7 +215,6 @@ void checkKeysAndData(const FingerParameters& base, const std::vector<std::strin
   if (quantity == CalibrationQuantity::kOuterAverage && base.chamber_count < 2) {
     throw ParameterError("the average compares joints 2..N: chamber_count must be >= 2");
   }
-  checkMeasurementsPlausible(base, data);
 }
 
 // What the data cannot determine is refused, not fitted to an arbitrary value. The chamber keys shape theta(P), which

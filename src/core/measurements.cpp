@@ -37,15 +37,20 @@ std::vector<std::string> splitCsv(const std::string& line) {
 
 std::string where(const std::string& origin, int line) { return origin + ":" + std::to_string(line) + ": "; }
 
+// The columns calibration reads besides the joints (and the average column, named by the caller).
+constexpr const char* kMeasuredColumns[] = {"gauge_pa", "tip_angle_rad", "bend_angle_rad", "tip_x_m", "tip_y_m"};
+
+// "joint_<k>" for a whole number k: the stem of a joint's column, whatever its unit.
+bool isJointStem(const std::string& stem) {
+  return stem.rfind("joint_", 0) == 0 && stem.size() > 6 && stem.find_first_not_of("0123456789", 6) == std::string::npos;
+}
+
 // A column name calibration reads (the average column aside).
 bool isMeasuredColumn(const std::string& name) {
-  if (name == "gauge_pa" || name == "tip_angle_rad" || name == "bend_angle_rad" || name == "tip_x_m" ||
-      name == "tip_y_m") {
-    return true;
+  for (const char* known : kMeasuredColumns) {
+    if (name == known) return true;
   }
-  const std::string suffix = "_rad";
-  return name.rfind("joint_", 0) == 0 && name.size() > 10 && name.compare(name.size() - 4, 4, suffix) == 0 &&
-         name.find_first_not_of("0123456789", 6) == name.size() - 4;
+  return name.size() > 4 && name.compare(name.size() - 4, 4, "_rad") == 0 && isJointStem(name.substr(0, name.size() - 4));
 }
 
 }  // namespace
@@ -68,13 +73,11 @@ constexpr const char* kKnownColumns =
 std::string meantColumn(const std::string& column) {
   const auto cut = column.rfind('_');
   const std::string stem = cut == std::string::npos ? column : column.substr(0, cut);
-  for (const char* known : {"gauge_pa", "tip_angle_rad", "bend_angle_rad", "tip_x_m", "tip_y_m"}) {
+  for (const char* known : kMeasuredColumns) {
     const std::string k = known;
     if (stem == k.substr(0, k.rfind('_'))) return k;
   }
-  const bool joint = stem.rfind("joint_", 0) == 0 && stem.size() > 6 &&
-                     stem.find_first_not_of("0123456789", 6) == std::string::npos;
-  return joint ? stem + "_rad" : std::string();
+  return isJointStem(stem) ? stem + "_rad" : std::string();
 }
 
 // The columns calibration does not read, named: each that looks like one of ours under another unit with what it

@@ -1,11 +1,22 @@
 // The model's pressure range (pressure_range.hpp).
 #include "pneumatic_finger/core/pressure_range.hpp"
 
+#include <algorithm>
 #include <cmath>
 
 #include "pneumatic_finger/core/parameters.hpp"
 
 namespace pneumatic_finger {
+
+PressureRange PressureRange::upTo(double max_gauge_pa) {
+  if (!(max_gauge_pa > 0) || std::isinf(max_gauge_pa)) {
+    throw ParameterError("max_gauge_pa = " + formatMessage(max_gauge_pa) + " Pa must be finite and > 0");
+  }
+  PressureRange range;
+  range.max_gauge_pa = max_gauge_pa;
+  range.validated_max_gauge_pa = std::min(range.validated_max_gauge_pa, max_gauge_pa);
+  return range;
+}
 
 RangeCheck checkGaugeRange(double gauge_pa, const PressureRange& range) {
   RangeCheck c;

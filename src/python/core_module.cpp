@@ -97,13 +97,7 @@ class PyFingerModel {
                 const py::object& max_gauge_pa) {
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);
-    if (!max_gauge_pa.is_none()) {
-      range_.max_gauge_pa = max_gauge_pa.cast<double>();
-      if (!(range_.max_gauge_pa > 0) || std::isinf(range_.max_gauge_pa)) {
-        throw py::value_error("max_gauge_pa = " + pf::formatMessage(range_.max_gauge_pa) + " must be finite and > 0 (Pa)");
-      }
-      range_.validated_max_gauge_pa = std::min(range_.validated_max_gauge_pa, range_.max_gauge_pa);
-    }
+    if (!max_gauge_pa.is_none()) range_ = pf::PressureRange::upTo(max_gauge_pa.cast<double>());
     model_ = std::make_unique<pf::FingerModel>(pf::FingerParameters::fromRaw(loadRaw(config, overrides)), options);
   }
 
@@ -338,11 +332,8 @@ PYBIND11_MODULE(_core, m) {
   m.def(
       "range_check",
       [](double gauge_pa, const py::object& max_gauge_pa) {
-        pf::PressureRange range;
-        if (!max_gauge_pa.is_none()) {
-          range.max_gauge_pa = max_gauge_pa.cast<double>();
-          range.validated_max_gauge_pa = std::min(range.validated_max_gauge_pa, range.max_gauge_pa);
-        }
+        const pf::PressureRange range =
+            max_gauge_pa.is_none() ? pf::PressureRange() : pf::PressureRange::upTo(max_gauge_pa.cast<double>());
         const pf::RangeCheck c = pf::checkGaugeRange(gauge_pa, range);
         const std::string words = c.clamped         ? pf::clampedMessage(gauge_pa, range)
                                   : gauge_pa < 0    ? pf::vacuumMessage(gauge_pa)

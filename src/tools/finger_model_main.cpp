@@ -154,14 +154,6 @@ pf::Obstacle parseDisk(const std::string& disk) {
   return obstacle;
 }
 
-// --max-gauge-pa P: the model's range up to P (the validated range no higher than it).
-pf::PressureRange parseRange(const std::string& text) {
-  pf::PressureRange range;
-  range.max_gauge_pa = pf::parseFiniteOption("--max-gauge-pa", text);
-  if (!(range.max_gauge_pa > 0)) throw pf::ParameterError("--max-gauge-pa = " + text + " must be > 0");
-  range.validated_max_gauge_pa = std::min(range.validated_max_gauge_pa, range.max_gauge_pa);
-  return range;
-}
 
 }  // namespace
 
@@ -207,7 +199,7 @@ int main(int argc, char** argv) {
     if (!time_mode && pressures.empty()) {
       throw pf::ParameterError("no pressure given: use --gauge-pa P, --sweep-pa FROM:TO:COUNT or --flow-lpm Q");
     }
-    if (!max_gauge.empty()) columns.range = parseRange(max_gauge);
+    if (!max_gauge.empty()) columns.range = pf::PressureRange::upTo(pf::parseFiniteOption("--max-gauge-pa", max_gauge));
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);
     const pf::FingerParameters finger = parameters.load();

@@ -69,7 +69,8 @@ MeasurementSet measurementSetFromColumns(const std::vector<std::string>& names,
                                          const std::vector<std::vector<double>>& columns, const std::string& origin,
                                          std::size_t min_rows, const std::string& average_column = "");
 
-/// What a finger can do, checked before anything is fitted to a measurement (calibrate() calls it): no joint beyond
+/// What a finger can do, checked once before anything is fitted to a measurement (runCalibration calls it, the entry
+/// of finger_calibrate and pf.calibrate; calibrate() and leave-one-out, which refit many times, do not): no joint beyond
 /// pi rad (each of its two walls turns at most pi/2), no tip angle beyond 2 pi (a full turn), no tip farther from the
 /// mount than the finger is long (@p parameters' rest length). Data in degrees, or in mm, fails it by far.
 /// @throws ParameterError naming the line, the column, the value, the bound and the likely unit mistake

@@ -19,6 +19,10 @@ struct PressureRange {
   double max_gauge_pa = kModelMaxGaugePa;
   /// The top of the calibrated range: up to max_gauge_pa the twin extrapolates, and says so.
   double validated_max_gauge_pa = kValidatedMaxGaugePa;
+
+  /// The range up to @p max_gauge_pa (an interface's --max-gauge-pa or max_gauge_pa=), the validated range no higher.
+  /// @throws ParameterError naming the value unless it is finite and > 0
+  static PressureRange upTo(double max_gauge_pa);
 };
 
 /// One pressure against the range.
