@@ -90,8 +90,8 @@ TEST(Cli, HeaderAndOneRowPerPressure) {
   ASSERT_EQ(l.size(), 3u);
   EXPECT_EQ(l[0],
             "gauge_pa,stretch,bulge_m,half_angle_rad,joint_1_rad,joint_2_rad,joint_3_rad,joint_4_rad,joint_5_rad,"
-            "joint_6_rad,joint_7_rad,tip_x_m,tip_y_m");
-  EXPECT_EQ(fields(l[1]).size(), 13u);
+            "joint_6_rad,joint_7_rad,tip_x_m,tip_y_m,supplied_volume_m3");
+  EXPECT_EQ(fields(l[1]).size(), 14u);
   // At rest: the straight finger, 15 mm + 7 x 10 mm long.
   EXPECT_EQ(fields(l[1])[1], "1");
   EXPECT_DOUBLE_EQ(std::stod(fields(l[1])[11]), 0.085);
@@ -117,7 +117,8 @@ TEST(Cli, ColumnsFollowChamberCountAndSweep) {
   ASSERT_EQ(r.status, 0) << r.err;
   const auto l = lines(r.out);
   ASSERT_EQ(l.size(), 6u);
-  EXPECT_EQ(l[0], "gauge_pa,stretch,bulge_m,half_angle_rad,joint_1_rad,joint_2_rad,joint_3_rad,tip_x_m,tip_y_m");
+  EXPECT_EQ(l[0], "gauge_pa,stretch,bulge_m,half_angle_rad,joint_1_rad,joint_2_rad,joint_3_rad,tip_x_m,tip_y_m,"
+                  "supplied_volume_m3");
   EXPECT_EQ(fields(l[5])[0], "200000");
   EXPECT_EQ(fields(l[3])[0], "100000");
 }
@@ -378,4 +379,50 @@ TEST(Cli, BlockedTipForceIsTheLastColumnAndTheLibrarysNumber) {
   EXPECT_EQ(l[1], lp[1] + ",0");
   EXPECT_EQ(l[2], lp[2] + "," + pneumatic_finger::formatExact(model.blockedTipForceN(196133)));
   EXPECT_GT(model.blockedTipForceN(196133), 0.1);
+}
+
+// Volume as the input (docs/MODEL.md, Volume): a pressure's supplied volume, given back, gives that pressure; under
+// the membrane law a volume past the limit point gives a bent finger at a pressure below the limit, where
+// --gauge-pa has no shape.
+TEST(Cli, VolumeInputAnswersThePressureAndPassesTheLimitPoint) {
+  const std::string membrane = "--set wall_law=membrane --set shear_modulus_pa=2e4 --set dead_volume_m3=1e-5 ";
+  const CliRun by_pressure = run(membrane + "--gauge-pa 3000");
+  ASSERT_EQ(by_pressure.status, 0) << by_pressure.err;
+  const auto row = fields(lines(by_pressure.out)[1]);
+  const std::string volume = row[13];
+  const CliRun by_volume = run(membrane + "--supplied-volume-m3 " + volume);
+  ASSERT_EQ(by_volume.status, 0) << by_volume.err;
+  const auto back = fields(lines(by_volume.out)[1]);
+  EXPECT_NEAR(std::stod(back[0]), 3000.0, 3000.0 * 1e-12);
+  EXPECT_EQ(back[13], volume);
+  // The model: its limit point and a volume well past it.
+  const pf::FingerModel model(pf::FingerParameters::fromRaw(
+      {{"wall_law", {{1.0}, false}}, {"shear_modulus_pa", {{2e4}, false}}, {"dead_volume_m3", {{1e-5}, false}}}));
+  pf::FingerWorkspace ws(model);
+  const double limit_volume = model.suppliedVolumeAt(model.belowLimitGaugePa());
+  const CliRun past = run(membrane + "--supplied-volume-m3 " + pf::formatExact(3.0 * limit_volume));
+  ASSERT_EQ(past.status, 0) << past.err;
+  const auto p = fields(lines(past.out)[1]);
+  const pf::FingerState& s = model.evaluateVolume(3.0 * limit_volume, ws);
+  EXPECT_EQ(p[0], pf::formatExact(s.gauge_pa));
+  EXPECT_LT(std::stod(p[0]), model.limitGaugePa()) << "past the limit point the pressure has fallen";
+  EXPECT_EQ(p[10], pf::formatExact(s.joint_angle_rad[6]));
+  EXPECT_EQ(past.err, "");
+}
+
+TEST(Cli, VolumeInputRefusesWhatItCannotModel) {
+  const CliRun nan_volume = run("--supplied-volume-m3 nan");
+  EXPECT_EQ(nan_volume.status, 2);
+  EXPECT_NE(nan_volume.err.find("--supplied-volume-m3"), std::string::npos) << nan_volume.err;
+  const CliRun both = run("--supplied-volume-m3 1e-6 --gauge-pa 1000");
+  EXPECT_EQ(both.status, 2);
+  EXPECT_NE(both.err.find("give one input"), std::string::npos) << both.err;
+  const CliRun held = run("--supplied-volume-m3 1e-6 --obstacle-disk 0.05,0.03,0.01");
+  EXPECT_EQ(held.status, 2);
+  EXPECT_NE(held.err.find("changes its volume, which is not modelled"), std::string::npos) << held.err;
+  // Drawn out of an incompressible fluid: the straight finger, gauge nan, with a warning.
+  const CliRun drawn = run("--supplied-volume-m3 -1e-6");
+  ASSERT_EQ(drawn.status, 0) << drawn.err;
+  EXPECT_EQ(fields(lines(drawn.out)[1])[0], "nan");
+  EXPECT_NE(drawn.err.find("draws fluid out"), std::string::npos) << drawn.err;
 }

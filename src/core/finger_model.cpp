@@ -72,6 +72,7 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
     for (auto& g : groups_) buildTable(g);
   }
   buildForceModel();
+  buildVolumeModel();
   shape_ = static_cast<std::uint64_t>(n) << 32 | static_cast<std::uint64_t>(groups_.size());
   static std::atomic<std::uint64_t> next_id{1};
   id_ = next_id.fetch_add(1, std::memory_order_relaxed);

@@ -3,7 +3,7 @@
 #include <cmath>
 #include <limits>
 
-#include "golden_section.hpp"
+#include "first_zero.hpp"
 
 namespace pneumatic_finger {
 
@@ -29,18 +29,6 @@ double slopeSign(const MembraneWall& w, double d) {
   return (w.locking_jm - firstInvariantExcess(d)) * (6.0 - u) * lam4 + 4.0 * u * u;
 }
 
-// Bisection to the last bit of a sign change of f on [lo, hi] (f(lo) and f(hi) of opposite signs).
-template <class F>
-double bisectSignChange(F&& f, double lo, double hi) {
-  const bool lo_positive = f(lo) > 0.0;
-  for (int i = 0; i < 200; ++i) {
-    const double mid = 0.5 * (lo + hi);
-    if (mid <= lo || mid >= hi) break;
-    ((f(mid) > 0.0) == lo_positive ? lo : hi) = mid;
-  }
-  return lo;
-}
-
 // The Gent wall's limit point: the first zero of slopeSign beyond the Neo-Hookean one (7^(1/6) - 1), where the first
 // term turns negative; the locking term grows without bound towards the lock, so a zero exists only where the first
 // term wins somewhere. Between the two, slopeSign falls and then rises (one product that grows from 0 and returns to 0
@@ -50,23 +38,7 @@ double bisectSignChange(F&& f, double lo, double hi) {
 double gentLimitStretchExcess(const MembraneWall& w) {
   const double start = std::pow(7.0, 1.0 / 6.0) - 1.0;
   if (!(w.locking_stretch_excess > start)) return kInf;
-  const double span = w.locking_stretch_excess - start;
-  constexpr int kScan = 64;
-  const auto sign = [&w](double x) { return slopeSign(w, x); };
-  int best = 1;
-  double best_value = kInf;
-  for (int i = 1; i < kScan; ++i) {
-    const double v = sign(start + span * (static_cast<double>(i) / kScan));
-    if (v <= 0.0) return bisectSignChange(sign, start + span * (static_cast<double>(i - 1) / kScan),
-                                          start + span * (static_cast<double>(i) / kScan));
-    if (v < best_value) best_value = v, best = i;
-  }
-  const GoldenMinimum m = goldenSection(sign, start + span * (best - 1) / kScan, start + span * (best + 1) / kScan, 80,
-                                        [](double a, double b, double f1, double f2) {
-                                          return f1 > 0.0 && f2 > 0.0 && b - a > 1e-15 * b;
-                                        });
-  if (m.value > 0.0) return kInf;
-  return bisectSignChange(sign, start + span * (best - 1) / kScan, m.x);
+  return firstFallBelowZero([&w](double x) { return slopeSign(w, x); }, start, w.locking_stretch_excess);
 }
 
 }  // namespace

@@ -58,6 +58,11 @@ const std::vector<ParameterSpec> kSpecs = {
     {"wall_locking_jm", "J_m", "-", 0, 0, true, 1e4, ParameterShape::kScalar,
      "membrane law: Gent's locking invariant, the I1 - 3 at which the elastomer locks; 0: no locking "
      "(Neo-Hookean)"},
+    // docs/MODEL.md "Volume": the gas the supply compresses besides growing the chambers. Up to a cubic metre: a
+    // lab's cylinder, tubes and reservoir, with a unit mistake (mL for m^3) refused.
+    {"dead_volume_m3", "V_g", "m^3", 0, 0, true, 1.0, ParameterShape::kScalar,
+     "gas at rest in the drive (cylinder, tubes and chambers, at P_o) that the supply compresses isothermally "
+     "besides growing the chambers; 0: an incompressible fluid. Only the supplied volume depends on it"},
 };
 
 // The names of a choice key, in index order.
@@ -218,6 +223,7 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& raw) {
   p.wall_law = static_cast<WallLaw>(static_cast<int>(scalar(spec("wall_law"), raw)));
   p.wall_thickness_m = perChamber(spec("wall_thickness_m"), raw, n);
   p.wall_locking_jm = scalar(spec("wall_locking_jm"), raw);
+  p.dead_volume_m3 = scalar(spec("dead_volume_m3"), raw);
   // docs/MODEL.md stage 3-4: under the paper law b is a height on the wall, so it cannot exceed the wall (chamber)
   // height L. Under the membrane law b is where the walls push, measured from the bending axis: the chamber need not
   // sit on the base layer, so b may exceed L ("The membrane law").
@@ -255,6 +261,7 @@ RawParameterMap FingerParameters::toRaw() const {
   raw["wall_law"] = {{static_cast<double>(wall_law)}, false};
   put_list("wall_thickness_m", wall_thickness_m);
   raw["wall_locking_jm"] = {{wall_locking_jm}, false};
+  raw["dead_volume_m3"] = {{dead_volume_m3}, false};
   return raw;
 }
 

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
+#include <limits>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -21,21 +22,25 @@ namespace {
 
 constexpr const char* kDescription =
     "The finger model from the command line. Prints CSV, one row per pressure:\n"
-    "gauge_pa,stretch,bulge_m,half_angle_rad,joint_1_rad..joint_N_rad,tip_x_m,tip_y_m\n"
-    "(stretch, bulge and half angle of chamber 1; 17 significant digits). Exit 2 on bad input.\n"
+    "gauge_pa,stretch,bulge_m,half_angle_rad,joint_1_rad..joint_N_rad,tip_x_m,tip_y_m,supplied_volume_m3\n"
+    "(stretch, bulge and half angle of chamber 1; the volume the supply has pushed in, docs/MODEL.md Volume; 17\n"
+    "significant digits). Exit 2 on bad input.\n"
+    "Volume as the input (--supplied-volume-m3 V, --sweep-volume-m3): the same columns, gauge_pa the pressure the\n"
+    "volume makes; under the membrane law the volume sets the shape past the limit point too.\n"
     "Time mode (--flow-lpm Q --duration-s T --step-s DT): a constant flow fills one finger; each row starts with\n"
     "time_s, at 0, DT, .., T, the gauge pressure P_o Q t / V_o (eq 4, ideal spring; V_o = sum L d e).\n"
     "--blocked-tip-force adds blocked_tip_force_n: the tip force (N) of the finger held straight by a plate at its\n"
     "tip (docs/MODEL.md, Force).";
 
-std::vector<double> parseSweep(const std::string& text) {
+// FROM:TO:COUNT of option @p option (--sweep-pa, --sweep-volume-m3): COUNT evenly spaced values.
+std::vector<double> parseSweep(const std::string& option, const std::string& text) {
   const std::vector<std::string> f = pf::splitFields(text, ':');
-  if (f.size() != 3) throw pf::ParameterError("--sweep-pa expects FROM:TO:COUNT, got '" + text + "'");
-  const double a = pf::parseFiniteOption("--sweep-pa FROM", f[0]);
-  const double b = pf::parseFiniteOption("--sweep-pa TO", f[1]);
-  const double n = pf::parseFiniteOption("--sweep-pa COUNT", f[2]);
+  if (f.size() != 3) throw pf::ParameterError(option + " expects FROM:TO:COUNT, got '" + text + "'");
+  const double a = pf::parseFiniteOption(option + " FROM", f[0]);
+  const double b = pf::parseFiniteOption(option + " TO", f[1]);
+  const double n = pf::parseFiniteOption(option + " COUNT", f[2]);
   if (n < 1 || n > 1e7 || n != static_cast<double>(static_cast<long>(n))) {
-    throw pf::ParameterError("--sweep-pa COUNT = " + f[2] + " must be a whole number in [1, 10000000]");
+    throw pf::ParameterError(option + " COUNT = " + f[2] + " must be a whole number in [1, 10000000]");
   }
   std::vector<double> out;
   const long k = static_cast<long>(n);
@@ -65,6 +70,22 @@ struct CsvColumns {
   bool blocked_tip_force = false;
 };
 
+// The header row: the time first (time mode), the shape, the supplied volume, the blocked tip force last.
+void printHeader(std::ostream& out, int chamber_count, bool time, bool blocked_tip_force) {
+  if (time) out << "time_s,";
+  out << "gauge_pa,stretch,bulge_m,half_angle_rad";
+  for (int j = 1; j <= chamber_count; ++j) out << ",joint_" << j << "_rad";
+  out << ",tip_x_m,tip_y_m,supplied_volume_m3" << (blocked_tip_force ? ",blocked_tip_force_n\n" : "\n");
+}
+
+// The shape's columns of a state, gauge_pa to tip_y_m, with joints @p q and tip @p tip.
+void printShape(std::ostream& out, const pf::FingerState& s, const Eigen::VectorXd& q, const Eigen::Vector2d& tip) {
+  out << pf::formatExact(s.gauge_pa) << ',' << pf::formatExact(s.stretch[0]) << ',' << pf::formatExact(s.bulge_m[0])
+      << ',' << pf::formatExact(s.half_angle_rad[0]);
+  for (Eigen::Index j = 0; j < q.size(); ++j) out << ',' << pf::formatExact(q[j]);
+  out << ',' << pf::formatExact(tip.x()) << ',' << pf::formatExact(tip.y());
+}
+
 void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::vector<double>& pressures,
               const CsvColumns& columns) {
   const pf::ContactSolver contact(model);
@@ -73,10 +94,7 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
   bool warned_overlap = false;
   const int n = model.chamberCount();
   std::ostringstream out;
-  if (!times.empty()) out << "time_s,";
-  out << "gauge_pa,stretch,bulge_m,half_angle_rad";
-  for (int j = 1; j <= n; ++j) out << ",joint_" << j << "_rad";
-  out << ",tip_x_m,tip_y_m" << (columns.blocked_tip_force ? ",blocked_tip_force_n\n" : "\n");
+  printHeader(out, n, !times.empty(), columns.blocked_tip_force);
   // Computed only when asked for (it costs a wall solve): the held finger's force, whatever the free shape's status.
   auto end_row = [&](double p) {
     if (columns.blocked_tip_force) out << ',' << pf::formatExact(model.blockedTipForceN(p));
@@ -115,14 +133,14 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
       }
       warned_now = true;
       out << pf::formatExact(p);
-      for (int j = 0; j < n + 5; ++j) out << ",nan";
+      for (int j = 0; j < n + 6; ++j) out << ",nan";
       end_row(p);
       continue;
     }
-    out << pf::formatExact(p) << ',' << pf::formatExact(s.stretch[0]) << ',' << pf::formatExact(s.bulge_m[0]) << ','
-        << pf::formatExact(s.half_angle_rad[0]);
     Eigen::VectorXd q = s.joint_angle_rad;
     Eigen::Vector2d tip = s.tip();
+    // The free finger's volume; a finger held by the obstacle has walls pressed flat, whose volume is not modelled.
+    double volume_m3 = model.suppliedVolumeAt(p);
     if (obstacle) {
       // The finger closing on the obstacle: joints held where the backbone touched it (docs/GRASP.md).
       const pf::ContactState c = contact.solve(p, *obstacle);
@@ -133,11 +151,47 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
       if (c.status == pf::ContactState::Status::kInContact) {
         q = c.joint_angle_rad;
         tip = c.backbone_m.col(c.backbone_m.cols() - 1);
+        volume_m3 = std::numeric_limits<double>::quiet_NaN();
       }
     }
-    for (int j = 0; j < n; ++j) out << ',' << pf::formatExact(q[j]);
-    out << ',' << pf::formatExact(tip.x()) << ',' << pf::formatExact(tip.y());
+    printShape(out, s, q, tip);
+    out << ',' << pf::formatExact(volume_m3);
     end_row(p);
+  }
+  std::cout << out.str();
+}
+
+// Volume as the input: a row per supplied volume, gauge_pa the pressure it makes (docs/MODEL.md, Volume).
+void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::vector<double>& volumes) {
+  const int n = model.chamberCount();
+  std::ostringstream out;
+  printHeader(out, n, false, false);
+  bool warned_limit = false, warned_vacuum = false;
+  for (double v : volumes) {
+    const pf::FingerState& s = model.evaluateVolume(v, ws);
+    if (s.status == pf::EvaluationStatus::kBeyondLimitPoint || s.status == pf::EvaluationStatus::kSolverFailure) {
+      if (!warned_limit) {
+        std::cerr << "finger_model: warning: supplied volume " << pf::formatMessage(v) << " m^3 is "
+                  << (s.status == pf::EvaluationStatus::kSolverFailure
+                          ? "one the solver found no finite answer for"
+                          : "at or beyond the most the model follows, " + pf::formatMessage(model.volumeLimitM3()) +
+                                " m^3 (the gas in the drive snaps the finger there, or the wall locks)")
+                  << "; such rows are nan\n";
+        warned_limit = true;
+      }
+      out << "nan";
+      for (int j = 0; j < n + 5; ++j) out << ",nan";
+      out << ',' << pf::formatExact(v) << '\n';
+      continue;
+    }
+    if (s.status == pf::EvaluationStatus::kVacuum && !warned_vacuum) {
+      std::cerr << "finger_model: warning: supplied volume " << pf::formatMessage(v)
+                << " m^3 draws fluid out: the model has no vacuum; the straight finger is printed, gauge_pa the "
+                << "dead gas's pressure (nan for an incompressible fluid, dead_volume_m3 = 0)\n";
+      warned_vacuum = true;
+    }
+    printShape(out, s, s.joint_angle_rad, s.tip());
+    out << ',' << pf::formatExact(v) << '\n';
   }
   std::cout << out.str();
 }
@@ -161,13 +215,18 @@ int main(int argc, char** argv) {
   CLI::App app(kDescription, "finger_model");
   pf::ParameterOptions parameters;
   parameters.addTo(app);
-  std::string solver = "robust", sweep;
-  std::vector<std::string> gauges;
+  std::string solver = "robust", sweep, volume_sweep;
+  std::vector<std::string> gauges, volumes;
   bool parameter_table = false;
   app.add_option("--solver", solver, "robust (default), paper or table");
   // Kept as text: NaN and inf are refused by our own parser, with the option's name.
   app.add_option("--gauge-pa", gauges, "gauge pressure P (Pa); repeat for several rows")->allow_extra_args(false);
   app.add_option("--sweep-pa", sweep, "FROM:TO:COUNT, evenly spaced gauge pressures (Pa)");
+  app.add_option("--supplied-volume-m3", volumes,
+                 "volume as the input: the volume V (m^3) a supply has pushed in (chambers' growth plus the dead gas's "
+                 "compression); repeat for several rows, which gauge_pa then answers")
+      ->allow_extra_args(false);
+  app.add_option("--sweep-volume-m3", volume_sweep, "FROM:TO:COUNT, evenly spaced supplied volumes (m^3)");
   app.add_flag("--parameters", parameter_table, "print the parameter table (Markdown) and exit");
   CsvColumns columns;
   std::string max_gauge;
@@ -193,11 +252,25 @@ int main(int argc, char** argv) {
     // NaN and inf are refused here: a pressure the model cannot place is an input error, not a row.
     for (const auto& g : gauges) pressures.push_back(pf::parseFiniteOption("--gauge-pa", g));
     if (!gauges.empty() && !sweep.empty()) throw pf::ParameterError("give --gauge-pa or --sweep-pa, not both");
-    if (!sweep.empty()) pressures = parseSweep(sweep);
+    if (!sweep.empty()) pressures = parseSweep("--sweep-pa", sweep);
+    std::vector<double> supplied;
+    for (const auto& v : volumes) supplied.push_back(pf::parseFiniteOption("--supplied-volume-m3", v));
+    if (!volumes.empty() && !volume_sweep.empty()) {
+      throw pf::ParameterError("give --supplied-volume-m3 or --sweep-volume-m3, not both");
+    }
+    if (!volume_sweep.empty()) supplied = parseSweep("--sweep-volume-m3", volume_sweep);
     const bool time_mode = !flow_lpm.empty() || !duration_s.empty() || !step_s.empty();
-    if (time_mode && !pressures.empty()) throw pf::ParameterError("give pressures or the time mode, not both");
-    if (!time_mode && pressures.empty()) {
-      throw pf::ParameterError("no pressure given: use --gauge-pa P, --sweep-pa FROM:TO:COUNT or --flow-lpm Q");
+    if (time_mode + !pressures.empty() + !supplied.empty() > 1) {
+      throw pf::ParameterError("give one input: pressures, supplied volumes or the time mode");
+    }
+    if (!time_mode && pressures.empty() && supplied.empty()) {
+      throw pf::ParameterError("no pressure given: use --gauge-pa P, --sweep-pa FROM:TO:COUNT, --flow-lpm Q or "
+                               "--supplied-volume-m3 V");
+    }
+    if (!supplied.empty() && (!disk.empty() || columns.blocked_tip_force || !max_gauge.empty())) {
+      throw pf::ParameterError("--supplied-volume-m3 takes no --obstacle-disk, --blocked-tip-force or --max-gauge-pa: "
+                               "a finger held by an object or a plate changes its volume, which is not modelled, "
+                               "and the pressure is an output there");
     }
     if (!max_gauge.empty()) columns.range = pf::PressureRange::upTo(pf::parseFiniteOption("--max-gauge-pa", max_gauge));
     pf::ModelOptions options;
@@ -230,6 +303,10 @@ int main(int argc, char** argv) {
     }
     pf::FingerModel model(finger, options);
     pf::FingerWorkspace ws(model);
+    if (!supplied.empty()) {
+      printVolumeCsv(model, ws, supplied);
+      return 0;
+    }
     const pf::Obstacle obstacle = parseDisk(disk);
     columns.obstacle = disk.empty() ? nullptr : &obstacle;
     columns.times = times;

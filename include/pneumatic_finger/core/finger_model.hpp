@@ -144,6 +144,29 @@ class FingerModel {
   void evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out, FingerWorkspace& workspace,
                     BatchPath path = BatchPath::kBest) const;
 
+  /// Volume as the input (docs/MODEL.md, "Volume"): evaluates the finger into which a supply has pushed
+  /// @p supplied_volume_m3 (m^3, the chambers' growth plus the dead gas's compression, chamber_volume.hpp), and
+  /// returns its state, whose gauge_pa is then an output: the pressure the volume makes. Under the membrane law with
+  /// identical chambers the volume sets the stretch, and so the shape, before, at and past the pressure's limit point
+  /// (the pressure falls there while the volume rises); with unequal chambers it is followed up to that point. Status
+  /// kBeyondLimitPoint (previous numbers kept) above volumeLimitM3(); kVacuum for a negative volume (the rest shape,
+  /// gauge_pa the dead gas's vacuum, NaN for an incompressible fluid); kNotFinite for NaN or inf (previous numbers
+  /// kept). Always computes (the unchanged-pressure cache is left out and cleared).
+  /// @throws std::invalid_argument when @p workspace was sized for a model of another shape
+  const FingerState& evaluateVolume(double supplied_volume_m3, FingerWorkspace& workspace) const;
+
+  /// The supplied volume (m^3) at @p gauge_pa: every chamber's growth from its rest volume (by the wall law) plus the
+  /// compression of dead_volume_m3 of gas. For a vacuum the chambers stay at rest and the dead gas expands (negative).
+  /// NaN at or beyond the limit point (the pressure does not set the volume there) and for NaN. Thread-safe.
+  double suppliedVolumeAt(double gauge_pa) const;
+
+  /// The largest supplied volume evaluateVolume() follows (m^3): +inf where the volume sets the shape without end;
+  /// with a dead gas volume, the first maximum of the supplied volume along the inflation (where the gas's
+  /// expansion, as the pressure falls past the limit point, outpaces the chambers' growth, and the finger snaps even
+  /// under volume control); the lock of a Gent wall; with unequal membrane chambers, the volume at the pressure's
+  /// limit point.
+  double volumeLimitM3() const { return volume_limit_m3_; }
+
   const FingerParameters& parameters() const { return parameters_; }
   const ModelOptions& options() const { return options_; }
   int chamberCount() const { return parameters_.chamber_count; }
@@ -264,7 +287,7 @@ class FingerModel {
   /// Writes the state at @p gauge_pa into @p out; returns false, leaving @p out untouched, when the solver gave a
   /// non-finite stretch, bulge or half angle.
   bool writeState(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const;
-  /// writeState out of line, for evaluateMany's one-at-a-time path (another translation unit).
+  /// writeState out of line, for evaluateMany's one-at-a-time path and the volume input (other translation units).
   bool writeStateAt(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const;
   /// writeState's table path (identical chambers, table_shape_writer_ set): false where the table does not answer
   /// (outside its range, or theta a rounding error below 0 next to contact; the points may then be written).
@@ -284,6 +307,13 @@ class FingerModel {
   /// The moment (N m) at joint @p joint (0-based) at @p gauge_pa (not NaN), from each group's strip (indexed by
   /// group).
   double jointMomentNm(std::size_t joint, double gauge_pa, const double* strip_m) const;
+  /// The volume model's constants (finger_volume.cpp): each group's volume coefficient and the volume's limit.
+  void buildVolumeModel();
+  /// The supplied volume (m^3) of identical membrane chambers at stretch excess @p delta (>= 0, below the lock).
+  double suppliedVolumeAtStretch(double delta) const;
+  /// The state of identical membrane chambers at stretch excess @p delta into @p out (gauge_pa included); false for a
+  /// non-finite half angle.
+  bool writeStretchState(double delta, FingerState& out) const;
   /// Throws: @p workspace was sized for a model of another shape (evaluate(), evaluateMany()).
   [[noreturn]] void refuseWorkspace(const FingerWorkspace& workspace) const;
   /// The rest shape, with NaN for stretch and bulge when the options leave them out (chamber_detail false).
@@ -314,6 +344,12 @@ class FingerModel {
   std::vector<double> push_lever_m2_;
   double force_l2w_ = 0.0;  // sum_j l_j^2 w_j (m^2)
   double uniform_force_lever_ = 0.0;
+  // The volume model (buildVolumeModel): per group, what multiplies its state's growth: under the membrane law the
+  // group's rest volume sum V_o (m^3, times lambda^3 - 1), under the paper law its sum (pi/2) L e (m^2, times h).
+  std::vector<double> volume_coefficient_;
+  bool volume_by_stretch_ = false;  // identical membrane chambers: the volume input is solved in delta, past the limit
+  double volume_limit_stretch_excess_ = 0.0;  // delta where volumeLimitM3() is reached (volume_by_stretch_)
+  double volume_limit_m3_ = 0.0;
   bool membrane_ = false;  // the membrane wall law (parameters_.wall_law)
   double table_error_rad_ = 0.0;
   std::uint64_t shape_ = 0;  // chamber count << 32 | group count: what a workspace must have been sized for

@@ -88,6 +88,7 @@ struct FingerParameters {
   WallLaw wall_law = WallLaw::kPaper;            ///< stages 1-3: the paper's chain or the membrane
   std::vector<double> wall_thickness_m;          ///< t_n: the membrane law's wall thickness at rest
   double wall_locking_jm = 0.0;                  ///< J_m: the membrane's Gent locking invariant (0: Neo-Hookean)
+  double dead_volume_m3 = 0.0;                   ///< V_g: gas at rest in the drive (0: incompressible fluid)
 
   /// The defaults of parameterSpecs() (the calibrated paper actuator).
   static FingerParameters defaults();

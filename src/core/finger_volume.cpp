@@ -1,0 +1,148 @@
+// The chambers' volume, the supplied volume, and volume as the input (docs/MODEL.md, "Volume").
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "pneumatic_finger/core/chamber_volume.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/units.hpp"
+#include "first_zero.hpp"
+#include "uniform_shape.hpp"
+#include "wall_chain.hpp"
+
+namespace pneumatic_finger {
+
+namespace {
+constexpr double kInf = std::numeric_limits<double>::infinity();
+}  // namespace
+
+double paperVolumePerBulgeM2(double chamber_height_m, double chamber_width_m) {
+  return 0.5 * kPi * chamber_height_m * chamber_width_m;
+}
+
+double deadGasUptakeM3(double dead_volume_m3, double gauge_pa, double atmospheric_pa) {
+  if (dead_volume_m3 == 0.0) return 0.0;  // an incompressible fluid, at any pressure
+  return dead_volume_m3 * (gauge_pa / (atmospheric_pa + gauge_pa));
+}
+
+void FingerModel::buildVolumeModel() {
+  volume_coefficient_.assign(groups_.size(), 0.0);
+  for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
+    const double l = parameters_.chamber_height_m[k], e = parameters_.chamber_width_m[k];
+    volume_coefficient_[static_cast<std::size_t>(group_of_chamber_[k])] +=
+        membrane_ ? l * parameters_.chamber_thickness_m[k] * e : paperVolumePerBulgeM2(l, e);
+  }
+  volume_by_stretch_ = membrane_ && groups_.size() == 1;
+  volume_limit_stretch_excess_ = kInf;
+  if (!volume_by_stretch_) {
+    // The pressure sets the volume, increasingly, up to the limit point (if any).
+    volume_limit_m3_ = std::isfinite(limit_gauge_pa_) ? suppliedVolumeAt(belowLimitGaugePa()) : kInf;
+    return;
+  }
+  const MembraneWall& wall = groups_[0].membrane;
+  const double v_g = parameters_.dead_volume_m3, p_o = parameters_.atmospheric_pressure_pa;
+  double end = wall.locking_stretch_excess;
+  if (v_g > 0.0) {
+    // dV/ddelta = 3 V_o lambda^2 + V_g P_o P'/(P_o + P)^2. The second term is negative only past the pressure's
+    // limit point. A Neo-Hookean wall has |P'| <= (4 mu t/L)/lambda^2 there, so beyond
+    // lambda^4 = V_g (4 mu t/L) / (3 V_o P_o) the chambers' growth wins for good: the scan ends there (or at the lock).
+    const double slope_end =
+        std::pow(v_g * wall.pressure_scale_pa / (3.0 * volume_coefficient_[0] * p_o), 0.25) - 1.0;
+    if (!std::isfinite(end)) end = 1.01 * std::max(slope_end, wall.limit_stretch_excess);
+    const auto slope = [this, &wall, v_g, p_o](double d) {
+      const double p = membraneGaugeForStretchExcess(wall, d);
+      const double dp = p * membraneLogSlope(wall, d);
+      return volume_coefficient_[0] * membraneVolumeGrowthSlope(d) + v_g * p_o * dp / ((p_o + p) * (p_o + p));
+    };
+    if (std::isfinite(wall.limit_stretch_excess)) {
+      volume_limit_stretch_excess_ = firstFallBelowZero(slope, wall.limit_stretch_excess, end);
+    }
+  }
+  if (std::isfinite(volume_limit_stretch_excess_)) {
+    volume_limit_m3_ = suppliedVolumeAtStretch(volume_limit_stretch_excess_);
+  } else if (std::isfinite(wall.locking_stretch_excess)) {
+    // At the lock the pressure is unbounded: the chambers' volume there, and all of the dead gas.
+    volume_limit_stretch_excess_ = wall.locking_stretch_excess;
+    volume_limit_m3_ = volume_coefficient_[0] * membraneVolumeGrowthFactor(wall.locking_stretch_excess) + v_g;
+  } else {
+    volume_limit_m3_ = kInf;
+  }
+}
+
+double FingerModel::suppliedVolumeAt(double gauge_pa) const {
+  if (std::isnan(gauge_pa) || gauge_pa >= limit_gauge_pa_) return std::numeric_limits<double>::quiet_NaN();
+  const double p_o = parameters_.atmospheric_pressure_pa;
+  double growth_m3 = 0.0;
+  if (gauge_pa > 0.0) {
+    for (std::size_t g = 0; g < groups_.size(); ++g) {
+      const ChamberGroup& group = groups_[g];
+      if (membrane_) {
+        growth_m3 += volume_coefficient_[g] * membraneVolumeGrowthFactor(membraneStretchExcess(group.membrane, gauge_pa));
+      } else {
+        const double delta = stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa));
+        growth_m3 += volume_coefficient_[g] * bulge(delta, group.chamber_height_m);
+      }
+    }
+  }
+  return growth_m3 + deadGasUptakeM3(parameters_.dead_volume_m3, gauge_pa, p_o);
+}
+
+double FingerModel::suppliedVolumeAtStretch(double delta) const {
+  const double p = membraneGaugeForStretchExcess(groups_[0].membrane, delta);
+  const double gas = std::isinf(p) ? parameters_.dead_volume_m3
+                                   : deadGasUptakeM3(parameters_.dead_volume_m3, p, parameters_.atmospheric_pressure_pa);
+  return volume_coefficient_[0] * membraneVolumeGrowthFactor(delta) + gas;
+}
+
+bool FingerModel::writeStretchState(double delta, FingerState& out) const {
+  const ChamberGroup& group = groups_[0];
+  const double bulge_m = 0.5 * group.chamber_height_m * delta;
+  const HalfAngle half = halfAngle(bulge_m, group.chamber_gap_m, group.wall_critical_height_m);
+  if (!std::isfinite(half.rad)) return false;
+  uniformWriterFor(parameters_.chamber_count)(parameters_, first_joint_series_, options_.chamber_detail, 1.0 + delta,
+                                              bulge_m, half.rad, half.cos, half.sin, half.tan, out);
+  out.gauge_pa = membraneGaugeForStretchExcess(group.membrane, delta);
+  return true;
+}
+
+const FingerState& FingerModel::evaluateVolume(double supplied_volume_m3, FingerWorkspace& ws) const {
+  if (ws.shape_ != shape_) refuseWorkspace(ws);
+  FingerState& state = ws.state_;
+  ws.has_last_ = false;  // the state is not that of a pressure the cache could answer
+  const double v = supplied_volume_m3, v_g = parameters_.dead_volume_m3;
+  if (!std::isfinite(v)) {
+    state.status = EvaluationStatus::kNotFinite;
+    return state;
+  }
+  if (!(v < volume_limit_m3_)) {
+    state.status = EvaluationStatus::kBeyondLimitPoint;
+    return state;
+  }
+  ++ws.computations_;
+  bool written = false;
+  if (v < 0.0) {
+    // Drawn out: the chambers are at rest (the model has no vacuum), and only a gas can give the volume.
+    written = writeStateAt(0.0, ws, state);
+    state.gauge_pa = v_g > 0.0 ? parameters_.atmospheric_pressure_pa * v / (v_g - v)
+                               : std::numeric_limits<double>::quiet_NaN();
+    state.status = written ? EvaluationStatus::kVacuum : EvaluationStatus::kSolverFailure;
+    return state;
+  }
+  if (volume_by_stretch_) {
+    const double top = volume_limit_stretch_excess_;
+    double hi = std::isfinite(top) ? top : 1.0;
+    while (!std::isfinite(top) && suppliedVolumeAtStretch(hi) < v) hi *= 2.0;
+    const double delta =
+        increasingRoot([this](double d) { return suppliedVolumeAtStretch(d); }, v, 0.0, hi);
+    written = writeStretchState(delta, state);
+  } else {
+    double hi = std::isfinite(limit_gauge_pa_) ? belowLimitGaugePa() : 1e3;
+    while (!std::isfinite(limit_gauge_pa_) && suppliedVolumeAt(hi) < v && hi < 1e300) hi *= 2.0;
+    const double p = increasingRoot([this](double x) { return suppliedVolumeAt(x); }, v, 0.0, hi);
+    written = writeStateAt(p, ws, state);
+  }
+  state.status = written ? EvaluationStatus::kOk : EvaluationStatus::kSolverFailure;
+  return state;
+}
+
+}  // namespace pneumatic_finger

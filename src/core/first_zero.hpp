@@ -1,0 +1,86 @@
+// Where a function first falls to zero, and where an increasing one reaches a target: the searches behind the
+// membrane's limit point, the supplied volume's limit and volume as an input. Internal header of src/core.
+#pragma once
+
+#include <cmath>
+#include <limits>
+
+#include "golden_section.hpp"
+
+namespace pneumatic_finger {
+
+/// Bisection to the last bit of a sign change of f on [lo, hi] (f(lo) and f(hi) of opposite signs). Returns the end
+/// on lo's side.
+template <class F>
+double bisectSignChange(F&& f, double lo, double hi) {
+  const bool lo_positive = f(lo) > 0.0;
+  for (int i = 0; i < 200; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    if (mid <= lo || mid >= hi) break;
+    ((f(mid) > 0.0) == lo_positive ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+/// The first zero of @p f on (start, end), where f is positive at start and, between its samples, falls and rises
+/// at most once (a slope's sign: the membrane's dP/dlambda, the supplied volume's dV/ddelta): a coarse scan finds a
+/// negative sample or the lowest one, golden-section search the minimum around the lowest, and a negative value is
+/// bisected back to the first sign change. +inf where f stays positive. About 200 evaluations, where a scan fine
+/// enough to find a narrow dip would take thousands.
+template <class F>
+double firstFallBelowZero(F&& f, double start, double end) {
+  constexpr int kScan = 64;
+  const double span = end - start;
+  auto at = [&](int i) { return start + span * (static_cast<double>(i) / kScan); };
+  int best = 1;
+  double best_value = std::numeric_limits<double>::infinity();
+  for (int i = 1; i < kScan; ++i) {
+    const double v = f(at(i));
+    if (v <= 0.0) return bisectSignChange(f, at(i - 1), at(i));
+    if (v < best_value) best_value = v, best = i;
+  }
+  const GoldenMinimum m = goldenSection(f, at(best - 1), at(best + 1), 80,
+                                        [](double a, double b, double f1, double f2) {
+                                          return f1 > 0.0 && f2 > 0.0 && b - a > 1e-15 * b;
+                                        });
+  if (m.value > 0.0) return std::numeric_limits<double>::infinity();
+  return bisectSignChange(f, at(best - 1), m.x);
+}
+
+/// The x in [lo, hi] at which the increasing @p f reaches @p target, f(lo) <= target <= f(hi): regula falsi with
+/// the Illinois halving (superlinear on a smooth f), and a bisection whenever a step would not shrink the bracket
+/// by half within two steps, so that it ends, at the latest, when lo and hi are neighbouring doubles. Returns the end
+/// whose f is nearer the target.
+template <class F>
+double increasingRoot(F&& f, double target, double lo, double hi) {
+  double g_lo = f(lo) - target, g_hi = f(hi) - target;
+  if (!(g_lo < 0.0)) return lo;
+  if (!(g_hi > 0.0)) return hi;
+  double true_lo = g_lo, true_hi = g_hi;  // g_lo and g_hi are the Illinois-weighted ones
+  int side = 0;
+  double width_before = hi - lo;
+  for (int i = 0; i < 2200; ++i) {  // 1100 bisections span every double
+    double x = lo - g_lo * (hi - lo) / (g_hi - g_lo);
+    // Every second step checks that the last two halved the bracket; otherwise this one bisects.
+    if (i % 2 == 1) {
+      if (hi - lo > 0.5 * width_before) x = 0.5 * (lo + hi);
+      width_before = hi - lo;
+    }
+    if (!(x > lo && x < hi)) x = 0.5 * (lo + hi);
+    if (!(x > lo && x < hi)) break;  // lo and hi are neighbours
+    const double g = f(x) - target;
+    if (g == 0.0) return x;
+    if (g < 0.0) {
+      lo = x, g_lo = true_lo = g;
+      if (side == -1) g_hi *= 0.5;
+      side = -1;
+    } else {
+      hi = x, g_hi = true_hi = g;
+      if (side == 1) g_lo *= 0.5;
+      side = 1;
+    }
+  }
+  return -true_lo <= true_hi ? lo : hi;
+}
+
+}  // namespace pneumatic_finger

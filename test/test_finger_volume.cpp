@@ -1,0 +1,240 @@
+// The chambers' volume, the supplied volume and volume as the input (docs/MODEL.md, "Volume"), against a reference
+// that writes the volumes literally in __float128 ((1 + delta)^3 - 1 times L d e; half an ellipse's area, (pi/2) a b,
+// before and after; V_g P/(P_o + P)) on the quad-precision reference's stretch, pressure, bulge and half angle.
+#include <gtest/gtest.h>
+
+#include <quadmath.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/core/chamber_volume.hpp"
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
+#include "reference_quad.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+using quad = __float128;
+
+// The membrane finger of test_membrane_wall.cpp (mu = 20 kPa, t = 2 mm, L = 11.5 mm, d = 5 mm, e = 7 mm, N = 7).
+constexpr double kMu = 2e4, kThickness = 0.002, kHeight = 0.0115, kDepth = 0.005, kWidth = 0.007;
+constexpr int kChambers = 7;
+constexpr double kAtmosphere = 101325.0;
+
+pf::FingerParameters finger(const std::string& yaml) {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlText(yaml, "test", raw);
+  return pf::FingerParameters::fromRaw(raw);
+}
+
+pf::FingerParameters membraneFinger(double jm, double dead_volume_m3) {
+  return finger("wall_law: membrane\nshear_modulus_pa: 2e4\nwall_thickness_m: 0.002\nwall_locking_jm: " +
+                std::to_string(jm) + "\ndead_volume_m3: " + pf::formatExact(dead_volume_m3) + "\n");
+}
+
+// The supplied volume of the membrane finger at stretch excess delta, literally: N L d e ((1 + delta)^3 - 1) plus
+// V_g P/(P_o + P), P the quad reference's law at delta.
+double referenceMembraneVolume(double delta, double jm, double dead_volume_m3) {
+  const quad lam = 1 + quad(delta);
+  const quad growth = quad(kChambers) * quad(kHeight) * quad(kDepth) * quad(kWidth) * (lam * lam * lam - 1);
+  const quad p = reference::membraneGaugePa({kMu, kThickness, kHeight, jm}, delta);
+  return static_cast<double>(growth + quad(dead_volume_m3) * p / (quad(kAtmosphere) + p));
+}
+
+// The paper finger's supplied volume at gauge_pa: each chamber's two walls, half ellipses of semi-axes L/2 and
+// L/2 + h across e, minus their rest half circles, from the reference chain's bulge; plus the dead gas.
+double referencePaperVolume(const pf::FingerParameters& p, double gauge_pa) {
+  quad total = 0;
+  for (int i = 0; i < p.chamber_count; ++i) {
+    const auto k = static_cast<std::size_t>(i);
+    const reference::ChamberChain c = reference::chamberChain(
+        gauge_pa, p.atmospheric_pressure_pa,
+        {p.chamber_height_m[k], p.wall_critical_height_m[k], p.chamber_gap_m[k], p.shear_modulus_pa[k]});
+    const quad a = quad(p.chamber_height_m[k]) / 2, half_pi = acosq(quad(0));
+    total += 2 * quad(p.chamber_width_m[k]) * (half_pi * a * (a + quad(c.bulge_m)) - half_pi * a * a);
+  }
+  const quad gp = quad(gauge_pa);
+  return static_cast<double>(total + quad(p.dead_volume_m3) * gp / (quad(p.atmospheric_pressure_pa) + gp));
+}
+
+double relativeError(double x, double reference) { return std::fabs(x - reference) / std::fabs(reference); }
+
+}  // namespace
+
+TEST(FingerVolume, TheDeadVolumeIsAKeyInCubicMetresAndZeroByDefault) {
+  EXPECT_EQ(pf::FingerParameters::defaults().dead_volume_m3, 0.0);
+  EXPECT_EQ(finger("dead_volume_m3: 8.1e-5\n").dead_volume_m3, 8.1e-5);
+  try {
+    finger("dead_volume_m3: -1e-6\n");
+    FAIL() << "a negative dead volume was accepted";
+  } catch (const pf::ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("'dead_volume_m3' = -1e-06 is outside its allowed range [0, 1] m^3"),
+              std::string::npos)
+        << e.what();
+  }
+  // 80 mL written in mL by mistake: refused, not a 80 m^3 reservoir.
+  EXPECT_THROW(finger("dead_volume_m3: 80\n"), pf::ParameterError);
+}
+
+// Under pressure control, below the limit point: the supplied volume at a pressure is the reference's at the
+// reference's stretch for that pressure, for the paper law's ellipse and the membrane's sphere, with and without gas.
+TEST(FingerVolume, SuppliedVolumeAtAPressureMatchesTheReference) {
+  for (double v_g : {0.0, 8e-5}) {
+    SCOPED_TRACE("dead volume " + std::to_string(v_g));
+    const pf::FingerModel paper(finger("dead_volume_m3: " + pf::formatExact(v_g) + "\n"));
+    for (double p = 1e-3; p <= 3e5; p *= 1.7) {
+      EXPECT_LT(relativeError(paper.suppliedVolumeAt(p), referencePaperVolume(paper.parameters(), p)), 1e-12) << p;
+    }
+    for (double jm : {0.0, 50.0}) {
+      const pf::FingerModel membrane(membraneFinger(jm, v_g));
+      const reference::Membrane wall{kMu, kThickness, kHeight, jm};
+      for (double p = 1e-3; p < membrane.limitGaugePa(); p *= 1.3) {
+        const double delta = reference::membraneStretchExcess(wall, p);
+        // The reference's delta is rounded once; the volume's relative sensitivity to it is below 3.
+        EXPECT_LT(relativeError(membrane.suppliedVolumeAt(p), referenceMembraneVolume(delta, jm, v_g)), 1e-12) << p;
+      }
+    }
+  }
+}
+
+TEST(FingerVolume, SuppliedVolumeHasNoPressureBeyondTheLimitAndAVacuumOnlyForAGas) {
+  const pf::FingerModel membrane(membraneFinger(0.0, 8e-5));
+  EXPECT_TRUE(std::isnan(membrane.suppliedVolumeAt(membrane.limitGaugePa())));
+  EXPECT_TRUE(std::isnan(membrane.suppliedVolumeAt(std::numeric_limits<double>::quiet_NaN())));
+  EXPECT_EQ(membrane.suppliedVolumeAt(0.0), 0.0);
+  // -10 kPa: the chambers stay at rest, the gas expands by V_g P/(P_o + P).
+  EXPECT_DOUBLE_EQ(membrane.suppliedVolumeAt(-1e4), 8e-5 * -1e4 / (kAtmosphere - 1e4));
+  const pf::FingerModel water(pf::FingerParameters::defaults());
+  EXPECT_EQ(water.suppliedVolumeAt(-1e4), 0.0);
+}
+
+// Volume control of identical membrane chambers: the volume sets the stretch before, at and past the limit point,
+// where the pressure falls while the finger keeps bending. The state matches the reference's at the stretch whose
+// reference volume was asked for.
+TEST(FingerVolume, VolumeInputFollowsTheFingerPastTheLimitPoint) {
+  for (double jm : {0.0, 50.0}) {
+    SCOPED_TRACE("J_m " + std::to_string(jm));
+    const pf::FingerModel model(membraneFinger(jm, 0.0));
+    pf::FingerWorkspace ws(model);
+    const reference::Membrane wall{kMu, kThickness, kHeight, jm};
+    const double limit_delta = reference::membraneLimitStretchExcess(wall);
+    const double top = jm > 0 ? 0.99 * pf::membraneWall(kMu, kThickness, kHeight, jm).locking_stretch_excess : 4.0 * limit_delta;
+    double previous_tip = -1.0;
+    int past_limit = 0;
+    for (double delta = 1e-9; delta < top; delta *= 1.25) {
+      const double v = referenceMembraneVolume(delta, jm, 0.0);
+      const pf::FingerState& s = model.evaluateVolume(v, ws);
+      ASSERT_EQ(s.status, pf::EvaluationStatus::kOk) << delta;
+      // The bulge, (L/2) delta, keeps delta's digits (the stretch 1 + delta rounds them away near rest).
+      EXPECT_LT(relativeError(s.bulge_m[0], 0.5 * kHeight * delta), 1e-12) << delta;
+      EXPECT_LT(relativeError(s.gauge_pa, reference::membraneGaugePa(wall, delta)), 1e-12) << delta;
+      const double theta = reference::halfAngleForBulge(0.5 * kHeight * delta, model.parameters().chamber_gap_m[0],
+                                                        model.parameters().wall_critical_height_m[0]);
+      EXPECT_NEAR(s.half_angle_rad[3], theta, 1e-12 * std::max(1.0, theta)) << delta;
+      if (previous_tip > 0.0) {
+        EXPECT_GT(s.tip_angle_rad, previous_tip) << "once bending, the finger bends more with every step";
+      }
+      EXPECT_GE(s.tip_angle_rad, previous_tip);
+      previous_tip = s.tip_angle_rad;
+      past_limit += delta > limit_delta && s.gauge_pa < model.limitGaugePa();
+    }
+    EXPECT_GT(past_limit, 3) << "the sweep passes the limit point, where the pressure falls";
+  }
+}
+
+// The paper law: the volume is the pressure's, monotone; the volume input returns that pressure and its shape.
+TEST(FingerVolume, VolumeInputOfThePaperLawReturnsThePressure) {
+  for (double v_g : {0.0, 8e-5}) {
+    const pf::FingerModel model(finger("dead_volume_m3: " + pf::formatExact(v_g) + "\n"));
+    pf::FingerWorkspace ws(model), by_pressure(model);
+    EXPECT_EQ(model.volumeLimitM3(), std::numeric_limits<double>::infinity());
+    for (double p = 1e-3; p <= 3e5; p *= 1.9) {
+      const pf::FingerState& s = model.evaluateVolume(referencePaperVolume(model.parameters(), p), ws);
+      ASSERT_EQ(s.status, pf::EvaluationStatus::kOk) << p;
+      EXPECT_LT(relativeError(s.gauge_pa, p), 1e-12) << p;
+      const pf::FingerState& r = model.evaluate(s.gauge_pa, by_pressure);
+      EXPECT_EQ(s.tip_angle_rad, r.tip_angle_rad) << "the volume's state is its pressure's, bit for bit";
+    }
+  }
+}
+
+// With a compressible drive the supply's gas re-expands as the pressure falls past the limit point: where it outpaces
+// the chambers' growth, the supplied volume has a maximum, and even volume control snaps there.
+TEST(FingerVolume, ALargeDeadGasVolumeSnapsEvenUnderVolumeControl) {
+  const double v_g = 2e-3;  // 2 L of air behind a 7-chamber finger of 2.8 mL
+  const pf::FingerModel model(membraneFinger(0.0, v_g));
+  ASSERT_TRUE(std::isfinite(model.volumeLimitM3()));
+  // The reference volume's maximum, by golden-section search on its stretch (a maximum is flat: its value is
+  // well conditioned even where its place is not).
+  const double pressure_limit = reference::membraneLimitStretchExcess({kMu, kThickness, kHeight, 0.0});
+  double a = pressure_limit, b = 4.0 * pressure_limit;
+  for (int i = 0; i < 200; ++i) {
+    const double x1 = b - 0.618 * (b - a), x2 = a + 0.618 * (b - a);
+    (referenceMembraneVolume(x1, 0.0, v_g) > referenceMembraneVolume(x2, 0.0, v_g) ? b : a) = (x1 + x2) / 2;
+  }
+  const double peak_delta = 0.5 * (a + b), peak = referenceMembraneVolume(peak_delta, 0.0, v_g);
+  EXPECT_LT(relativeError(model.volumeLimitM3(), peak), 1e-12);
+  EXPECT_LT(referenceMembraneVolume(peak_delta * 1.01, 0.0, v_g), peak) << "a maximum, not a plateau";
+  pf::FingerWorkspace ws(model);
+  const pf::FingerState& at = model.evaluateVolume(model.volumeLimitM3() * (1 - 1e-9), ws);
+  ASSERT_EQ(at.status, pf::EvaluationStatus::kOk);
+  EXPECT_GT(at.stretch[0] - 1.0, pressure_limit) << "the volume's maximum comes after the pressure's";
+  const double tip = at.tip_angle_rad;
+  EXPECT_EQ(model.evaluateVolume(model.volumeLimitM3() * (1 + 1e-9), ws).status,
+            pf::EvaluationStatus::kBeyondLimitPoint);
+  EXPECT_EQ(ws.state().tip_angle_rad, tip) << "beyond it, the last shape stays";
+  // Without the gas the same finger follows its volume without end.
+  EXPECT_EQ(pf::FingerModel(membraneFinger(0.0, 0.0)).volumeLimitM3(), std::numeric_limits<double>::infinity());
+}
+
+TEST(FingerVolume, AGentWallLocksAtItsVolume) {
+  const double jm = 6.0;  // no limit point: the pressure rises to the lock
+  const pf::FingerModel model(membraneFinger(jm, 1e-4));
+  const pf::MembraneWall w = pf::membraneWall(kMu, kThickness, kHeight, jm);
+  const quad lam = 1 + quad(w.locking_stretch_excess);
+  const double locked = static_cast<double>(quad(kChambers * kHeight * kDepth * kWidth) * (lam * lam * lam - 1) +
+                                            quad(1e-4));
+  EXPECT_LT(relativeError(model.volumeLimitM3(), locked), 1e-12);
+  pf::FingerWorkspace ws(model);
+  EXPECT_EQ(model.evaluateVolume(locked * (1 + 1e-9), ws).status, pf::EvaluationStatus::kBeyondLimitPoint);
+  EXPECT_EQ(model.evaluateVolume(locked * (1 - 1e-6), ws).status, pf::EvaluationStatus::kOk);
+}
+
+TEST(FingerVolume, UnequalMembraneChambersAreFollowedUpToThePressuresLimit) {
+  const pf::FingerModel model(finger("wall_law: membrane\nshear_modulus_pa: [2e4, 2e4, 2e4, 2e4, 2e4, 2e4, 3e4]\n"
+                                     "wall_thickness_m: 0.002\n"));
+  ASSERT_GT(model.distinctChamberCount(), 1);
+  EXPECT_EQ(model.volumeLimitM3(), model.suppliedVolumeAt(model.belowLimitGaugePa()));
+  pf::FingerWorkspace ws(model);
+  const double p = 0.5 * model.limitGaugePa();
+  const pf::FingerState& s = model.evaluateVolume(model.suppliedVolumeAt(p), ws);
+  ASSERT_EQ(s.status, pf::EvaluationStatus::kOk);
+  EXPECT_LT(relativeError(s.gauge_pa, p), 1e-12);
+  EXPECT_EQ(model.evaluateVolume(model.volumeLimitM3() * 1.001, ws).status, pf::EvaluationStatus::kBeyondLimitPoint);
+}
+
+TEST(FingerVolume, BadVolumesAreRefusedOrGiveTheRestShape) {
+  const pf::FingerModel model(membraneFinger(0.0, 8e-5));
+  pf::FingerWorkspace ws(model);
+  const double v = 1e-5;
+  const double tip = model.evaluateVolume(v, ws).tip_angle_rad;
+  for (double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()}) {
+    const pf::FingerState& s = model.evaluateVolume(bad, ws);
+    EXPECT_EQ(s.status, pf::EvaluationStatus::kNotFinite);
+    EXPECT_EQ(s.tip_angle_rad, tip) << "the previous numbers stay";
+  }
+  // Drawn out by 1 mL: the chambers at rest; the gas's pressure P_o v/(V_g - v).
+  const pf::FingerState& drawn = model.evaluateVolume(-1e-6, ws);
+  EXPECT_EQ(drawn.status, pf::EvaluationStatus::kVacuum);
+  EXPECT_EQ(drawn.tip_angle_rad, 0.0);
+  EXPECT_DOUBLE_EQ(drawn.gauge_pa, kAtmosphere * -1e-6 / (8e-5 + 1e-6));
+  const pf::FingerModel water(membraneFinger(0.0, 0.0));
+  pf::FingerWorkspace ws_water(water);
+  EXPECT_TRUE(std::isnan(water.evaluateVolume(-1e-6, ws_water).gauge_pa)) << "an incompressible fluid has no vacuum";
+  EXPECT_EQ(water.evaluateVolume(0.0, ws_water).gauge_pa, 0.0);
+}
