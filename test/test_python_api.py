@@ -239,3 +239,49 @@ def test_calibration_says_what_the_data_cannot_tell():
     assert fit["correlation"][0][1] == pytest.approx(fit["correlation"][1][0])
     assert fit["correlation"][0][1] < -0.95
     assert any("trade off" in w for w in fit["warnings"])
+
+
+MEMBRANE = {"wall_law": "membrane", "shear_modulus_pa": 2e4, "dead_volume_m3": 1e-5}
+MEMBRANE_ARGS = ["--set", "wall_law=membrane", "--set", "shear_modulus_pa=2e4", "--set", "dead_volume_m3=1e-5"]
+
+
+def test_supplied_volume_equals_the_cli_and_is_computed_only_when_asked():
+    model = pf.FingerModel(overrides=MEMBRANE)
+    p = [0.0, 1000.0, 5000.0, 8000.0]
+    state = model.evaluate(numpy.array(p), outputs=["supplied_volume_m3"])
+    assert list(state) == ["supplied_volume_m3"]
+    for i, row in enumerate(cli(*MEMBRANE_ARGS, *gauge_args(p))):
+        assert float(row["supplied_volume_m3"]) == state["supplied_volume_m3"][i]
+        assert model.supplied_volume(p[i]) == state["supplied_volume_m3"][i]
+    assert "supplied_volume_m3" not in model.evaluate(1000.0, outputs=["tip_angle_rad"])
+
+
+def test_evaluate_volume_equals_the_cli_past_the_limit_point():
+    model = pf.FingerModel(overrides=MEMBRANE)
+    top = model.supplied_volume(0.999 * model.limit_gauge_pa)
+    volumes = [0.0, 0.5 * top, 2.0 * top, 4.0 * top]
+    state = model.evaluate_volume(numpy.array(volumes))
+    rows = cli(*MEMBRANE_ARGS, *sum((["--supplied-volume-m3", repr(v)] for v in volumes), []))
+    for i, row in enumerate(rows):
+        assert float(row["gauge_pa"]) == state["gauge_pa"][i]
+        for n in range(7):
+            assert float(row[f"joint_{n + 1}_rad"]) == state["joint_angle_rad"][i, n]
+        assert float(row["supplied_volume_m3"]) == state["supplied_volume_m3"][i] == volumes[i]
+    assert list(pf.STATUS[c] for c in state["status"]) == ["ok"] * 4
+    # Past the limit point the pressure falls while the finger keeps bending.
+    assert state["gauge_pa"][3] < state["gauge_pa"][2] < model.limit_gauge_pa
+    assert state["tip_angle_rad"][3] > state["tip_angle_rad"][2] > state["tip_angle_rad"][1]
+    assert model.volume_limit_m3 == math.inf
+
+
+def test_evaluate_volume_refuses_bad_input_naming_it():
+    model = pf.FingerModel()
+    with pytest.raises(ValueError, match=r"supplied_volume_m3 must be a number or a 1-D array of them \(m\^3\)"):
+        model.evaluate_volume([[1e-6]])
+    with pytest.raises(ValueError, match="out= needs supplied_volume_m3 as a 1-D array"):
+        model.evaluate_volume(1e-6, out={"gauge_pa": numpy.empty(1)})
+    nan = model.evaluate_volume(math.nan)
+    assert pf.STATUS[nan["status"]] == "not finite" and math.isnan(nan["gauge_pa"])
+    drawn = model.evaluate_volume(-1e-6)
+    assert pf.STATUS[drawn["status"]] == "vacuum" and math.isnan(drawn["gauge_pa"])
+    assert drawn["tip_angle_rad"] == 0.0

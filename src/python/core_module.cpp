@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <memory>
 #include <string>
@@ -53,14 +54,14 @@ std::uint8_t contactStatusCode(pf::ContactState::Status status) {
 
 
 // The pressures of a call: a number (scalar: the results drop the pressure axis) or a 1-D sequence.
-// A number or a 1-D array of them (@p name says what, in the message: "gauge_pa" pressures in Pa by default).
-Array pressures(const py::object& gauge_pa, bool& scalar, const char* name = "gauge_pa") {
+// A number or a 1-D array of them (@p name says what, in the message, and @p unit its unit: pressures in Pa by
+// default).
+Array pressures(const py::object& gauge_pa, bool& scalar, const char* name = "gauge_pa", const char* unit = "Pa") {
   scalar = !py::isinstance<py::array>(gauge_pa) && !py::isinstance<py::list>(gauge_pa) &&
            !py::isinstance<py::tuple>(gauge_pa);
   Array p = Array::ensure(gauge_pa);
   if (!p || p.ndim() > 1) {
-    throw py::value_error(std::string(name) + " must be a number or a 1-D array of them (" +
-                          (std::string(name) == "gauge_pa" ? "Pa" : "rad") + ")");
+    throw py::value_error(std::string(name) + " must be a number or a 1-D array of them (" + unit + ")");
   }
   return p;
 }
@@ -71,7 +72,13 @@ using E = Element;
 const std::vector<OutputField> kStateFields = {
     {"stretch", E::kFloat64, {-1}},         {"bulge_m", E::kFloat64, {-1}},      {"half_angle_rad", E::kFloat64, {-1}},
     {"joint_angle_rad", E::kFloat64, {-1}}, {"backbone_m", E::kFloat64, {-2, 2}}, {"tip_angle_rad", E::kFloat64, {}},
-    {"status", E::kCode, {}}};
+    {"status", E::kCode, {}},               {"supplied_volume_m3", E::kFloat64, {}}};
+// evaluate_volume's: the state's, and the pressure the volume makes.
+const std::vector<OutputField> kVolumeFields = [] {
+  std::vector<OutputField> f = kStateFields;
+  f.push_back({"gauge_pa", E::kFloat64, {}});
+  return f;
+}();
 const std::vector<OutputField> kContactFields = {
     {"joint_angle_rad", E::kFloat64, {-1}}, {"backbone_m", E::kFloat64, {-2, 2}}, {"held", E::kFlag, {-1}},
     {"first_touch_gauge_pa", E::kFloat64, {}}, {"status", E::kCode, {}},
@@ -133,10 +140,62 @@ class PyFingerModel {
         evaluated = in_range.data();
       }
       model_->evaluateMany(evaluated, count, rows, workspace);
+      if (double* volume = arrays.data<double>("supplied_volume_m3")) {
+        // Computed only when asked for: a wall solve per pressure. NaN where the pressure gives no shape.
+        for (std::size_t i = 0; i < count; ++i) volume[i] = model_->suppliedVolumeAt(evaluated[i]);
+      }
       if (clamped > 0 && rows.status) pf::markClamped(p.data(), rows.status, count, range_);
     }
     if (clamped > 0) warnClamped(p.data(), count, clamped);
     return arrays.result(scalar);
+  }
+
+  // Volume as the input (docs/MODEL.md, Volume): the state each supplied volume gives, and the pressure it makes.
+  // Numpy-shaped as evaluate; a volume the model does not follow gives NaN and its status.
+  py::dict evaluateVolume(const py::object& volume_m3, const py::object& outputs, const py::object& out) const {
+    bool scalar = false;
+    const Array v = pressures(volume_m3, scalar, "supplied_volume_m3", "m^3");
+    if (scalar && !out.is_none()) throw py::value_error("out= needs supplied_volume_m3 as a 1-D array");
+    const auto count = static_cast<std::size_t>(v.size());
+    OutputArrays arrays(kVolumeFields, outputs, out, v.size(), model_->chamberCount());
+    arrays.refuseOverlap(v.data(), count * sizeof(double));
+    {
+      py::gil_scoped_release release;
+      pf::FingerWorkspace workspace(*model_);
+      for (std::size_t i = 0; i < count; ++i) {
+        writeVolumeRow(model_->evaluateVolume(v.data()[i], workspace), v.data()[i], i, arrays);
+      }
+    }
+    return arrays.result(scalar);
+  }
+
+  // Row @p i of evaluate_volume's arrays from @p s: NaN where the model kept a previous state (not finite, beyond
+  // the volume's limit), as the batch writes.
+  void writeVolumeRow(const pf::FingerState& s, double volume_m3, std::size_t i, OutputArrays& arrays) const {
+    const bool shaped = s.status == pf::EvaluationStatus::kOk || s.status == pf::EvaluationStatus::kVacuum;
+    const double nan = std::numeric_limits<double>::quiet_NaN();
+    const auto n = static_cast<std::size_t>(model_->chamberCount());
+    auto per_chamber = [&](const char* name, const Eigen::VectorXd& x) {
+      if (double* d = arrays.data<double>(name)) {
+        for (std::size_t k = 0; k < n; ++k) d[i * n + k] = shaped ? x[static_cast<Eigen::Index>(k)] : nan;
+      }
+    };
+    per_chamber("stretch", s.stretch);
+    per_chamber("bulge_m", s.bulge_m);
+    per_chamber("half_angle_rad", s.half_angle_rad);
+    per_chamber("joint_angle_rad", s.joint_angle_rad);
+    if (double* d = arrays.data<double>("backbone_m")) {
+      const std::size_t points = n + 2;
+      for (std::size_t k = 0; k < 2 * points; ++k) {
+        d[i * 2 * points + k] = shaped ? s.backbone_m(static_cast<Eigen::Index>(k % 2),
+                                                      static_cast<Eigen::Index>(k / 2))
+                                       : nan;
+      }
+    }
+    if (double* d = arrays.data<double>("tip_angle_rad")) d[i] = shaped ? s.tip_angle_rad : nan;
+    if (double* d = arrays.data<double>("gauge_pa")) d[i] = shaped ? s.gauge_pa : nan;
+    if (double* d = arrays.data<double>("supplied_volume_m3")) d[i] = volume_m3;
+    if (std::uint8_t* d = arrays.data<std::uint8_t>("status")) d[i] = static_cast<std::uint8_t>(s.status);
   }
 
   // The interfaces' words for a clamp, once per call, as a RuntimeWarning.
@@ -259,6 +318,8 @@ class PyFingerModel {
   double contactGaugePa() const { return model_->contactGaugePa(); }
   double maxGaugePa() const { return range_.max_gauge_pa; }
   double limitGaugePa() const { return model_->limitGaugePa(); }
+  double volumeLimitM3() const { return model_->volumeLimitM3(); }
+  double suppliedVolume(double gauge_pa) const { return model_->suppliedVolumeAt(gauge_pa); }
   std::string solver() const { return pf::solverName(model_->options().solver); }
 
 
@@ -354,6 +415,17 @@ PYBIND11_MODULE(_core, m) {
            "codes (STATUS names them; a scalar call gives one code). A pressure above max_gauge_pa is clamped to it "
            "(status 'clamped to max_gauge_pa', a RuntimeWarning). outputs: the names to compute (None: all); "
            "out: a dict of arrays to fill (float64, uint8 for status, C-contiguous, of the shapes above)")
+      .def("evaluate_volume", &PyFingerModel::evaluateVolume, py::arg("supplied_volume_m3"),
+           py::arg("outputs") = py::none(), py::arg("out") = py::none(),
+           "Volume as the input (docs/MODEL.md, Volume): the finger into which a supply has pushed a volume (m^3: the "
+           "chambers' growth plus the compression of dead_volume_m3 of gas) or a 1-D array of them, in order. The "
+           "outputs of evaluate and gauge_pa (P,), the pressure the volume makes; under the membrane law with "
+           "identical chambers the volume sets the shape past the limit point too. NaN and status 'beyond limit "
+           "point' above the most the model follows (volume_limit_m3); 'vacuum' for a negative volume")
+      .def("supplied_volume", [](const PyFingerModel& self, double gauge_pa) { return self.suppliedVolume(gauge_pa); },
+           py::arg("gauge_pa"),
+           "The supplied volume (m^3) at a gauge pressure (Pa): the chambers' growth and the dead gas's compression; "
+           "NaN at or beyond the limit point")
       .def("blocked_tip_force", &PyFingerModel::blockedTipForce, py::arg("gauge_pa"),
            "The blocked tip force (N) at a gauge pressure (Pa) or a 1-D array of them: the finger held straight by a "
            "plate at its tip (docs/MODEL.md, Force); 0 before the walls touch and for a vacuum; ValueError for a "
@@ -380,6 +452,10 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("limit_gauge_pa", &PyFingerModel::limitGaugePa,
                              "the membrane wall's limit point (Pa gauge): at or above it the status is 'beyond limit "
                              "point' and no shape is given; inf under the paper law")
+      .def_property_readonly("volume_limit_m3", &PyFingerModel::volumeLimitM3,
+                             "the largest supplied volume (m^3) evaluate_volume follows: inf where the volume sets the "
+                             "shape without end; finite with a large dead gas volume (the gas snaps the finger) or a "
+                             "Gent wall's lock")
       .def_property_readonly("solver", &PyFingerModel::solver)
       .def_property_readonly("max_gauge_pa", &PyFingerModel::maxGaugePa,
                              "the top of the model's range (Pa gauge): evaluate() clamps a pressure above it to it, "
