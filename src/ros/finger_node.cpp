@@ -241,6 +241,8 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
   finger_state_.tip.orientation.z = std::sin(0.5 * tip_angle_rad);
   finger_state_.tip.orientation.w = std::cos(0.5 * tip_angle_rad);
   finger_state_.tip_angle_rad = tip_angle_rad;
+  const bool held = contact && std::any_of(contact->held.begin(), contact->held.end(), [](bool h) { return h; });
+  finger_state_.supplied_volume_m3 = held ? NAN : model_->suppliedVolumeAt(state.gauge_pa);
   finger_state_.walls_in_contact = state.walls_in_contact;
   finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.input.validated_max_gauge_pa;
   finger_state_.status = state.status == EvaluationStatus::kVacuum ? FingerModelState::STATUS_VACUUM
