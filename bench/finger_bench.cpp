@@ -244,6 +244,36 @@ void benchMembrane(benchmark::State& state) {
   state.SetLabel("membrane wall law, Gent, up to 0.99 of the limit point");
 }
 
+// Volume as the input (docs/MODEL.md, "Volume"), beside membrane/validated: the same finger with 10 mL of gas in the
+// drive, at the volumes it takes at that benchmark's 64 pressures, one at a time. Its largest relative error in the
+// pressure the volume gives back, as a counter.
+void benchMembraneVolume(benchmark::State& state) {
+  pf::FingerParameters params = kParams;
+  params.wall_law = pf::WallLaw::kMembrane;
+  params.shear_modulus_pa.assign(params.shear_modulus_pa.size(), 2e4);
+  params.wall_thickness_m.assign(params.wall_thickness_m.size(), 0.002);
+  params.wall_locking_jm = 50.0;
+  params.dead_volume_m3 = 1e-5;
+  const pf::FingerModel model(params);
+  pf::FingerWorkspace ws(model);
+  std::vector<double> volumes;
+  double worst = 0.0;
+  for (int i = 1; i <= 64; ++i) {
+    const double p = 0.99 * model.limitGaugePa() * i / 64.0;
+    volumes.push_back(model.suppliedVolumeAt(p));
+    worst = std::max(worst, std::fabs(model.evaluateVolume(volumes.back(), ws).gauge_pa - p) / p);
+  }
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const pf::FingerState& s = model.evaluateVolume(volumes[i], ws);
+    benchmark::DoNotOptimize(s.backbone_m.data());
+    benchmark::ClobberMemory();
+    if (++i == volumes.size()) i = 0;
+  }
+  state.counters["max_gauge_relative_error"] = worst;
+  state.SetLabel("membrane wall law, Gent, volume input, the volumes of membrane/validated's pressures");
+}
+
 // The blocked tip force (docs/MODEL.md, "Force") at the pressures robust/validated runs, beside the shape it adds to:
 // its cost is one wall solve (stages 1-3) and a strip's square root. Its largest relative error, over the pressures
 // past twice the contact pressure, against the quad reference's bulge through the page's formula, as a counter.
@@ -515,6 +545,7 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("force/blocked_tip", benchBlockedForce);
   benchmark::RegisterBenchmark("force/contact", benchContactForce);
   benchmark::RegisterBenchmark("membrane/validated", benchMembrane);
+  benchmark::RegisterBenchmark("membrane/volume", benchMembraneVolume);
   for (int stage = 1; stage <= 5; ++stage) {
     benchmark::RegisterBenchmark(("robust_stage/" + std::to_string(stage)).c_str(),
                                  [stage](benchmark::State& s) { benchStages(s, stage); });
