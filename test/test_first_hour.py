@@ -2,6 +2,8 @@
 
 Run by `make run_tests` (CMakeLists.txt passes the package's executables in PNEUMATIC_FINGER_BIN).
 """
+import csv
+import io
 import os
 import pathlib
 import subprocess
@@ -28,8 +30,8 @@ def tips_csv(tmp_path):
         out = tool("finger_model", "--gauge-pa", repr(p), "--set", "shear_modulus_pa=3.7e8",
                    "--set", "chamber_gap_m=8.5e-5")
         assert out.returncode == 0, out.stderr
-        row = out.stdout.splitlines()[1].split(",")
-        rows.append(",".join([row[0], row[-2], row[-1]]))
+        row = next(csv.DictReader(io.StringIO(out.stdout)))
+        rows.append(",".join([row["gauge_pa"], row["tip_x_m"], row["tip_y_m"]]))
     path = tmp_path / "tips.csv"
     path.write_text("\n".join(rows) + "\n")
     return path
@@ -142,8 +144,8 @@ def test_one_pressure_above_the_range_gets_one_answer_everywhere():
     assert pf.STATUS[state["status"]] == "clamped to max_gauge_pa"
     assert state["tip_angle_rad"] == model.evaluate(294199.5)["tip_angle_rad"]
     assert state["tip_angle_rad"] < 2.0  # not the 15 rad of an unclamped paper wall
-    row = top.stdout.splitlines()[1].split(",")
-    assert float(row[-2]) == state["backbone_m"][-1][0]
+    row = next(csv.DictReader(io.StringIO(top.stdout)))
+    assert float(row["tip_x_m"]) == state["backbone_m"][-1][0]
     # An explicit range, the same in both.
     lower = tool("finger_model", "--gauge-pa", "2e5", "--max-gauge-pa", "1.5e5")
     assert "above max_gauge_pa 150000 Pa" in lower.stderr

@@ -377,6 +377,25 @@ class PyFingerModel {
 
 }  // namespace
 
+// Volume as the input (docs/MODEL.md, Volume): FingerModel's evaluate_volume, supplied_volume and volume_limit_m3.
+void defineVolume(py::class_<PyFingerModel>& c) {
+  c.def("evaluate_volume", &PyFingerModel::evaluateVolume, py::arg("supplied_volume_m3"),
+           py::arg("outputs") = py::none(), py::arg("out") = py::none(),
+           "Volume as the input (docs/MODEL.md, Volume): the finger into which a supply has pushed a volume (m^3: the "
+           "chambers' growth plus the compression of dead_volume_m3 of gas) or a 1-D array of them, in order. The "
+           "outputs of evaluate and gauge_pa (P,), the pressure the volume makes; under the membrane law with "
+           "identical chambers the volume sets the shape past the limit point too. NaN and status 'beyond limit "
+           "point' above the most the model follows (volume_limit_m3); 'vacuum' for a negative volume")
+      .def("supplied_volume", [](const PyFingerModel& self, double gauge_pa) { return self.suppliedVolume(gauge_pa); },
+           py::arg("gauge_pa"),
+           "The supplied volume (m^3) at a gauge pressure (Pa): the chambers' growth and the dead gas's compression; "
+           "NaN at or beyond the limit point")
+      .def_property_readonly("volume_limit_m3", &PyFingerModel::volumeLimitM3,
+                             "the largest supplied volume (m^3) evaluate_volume follows: inf where the volume sets the "
+                             "shape without end; finite with a large dead gas volume (the gas snaps the finger) or a "
+                             "Gent wall's lock");
+}
+
 PYBIND11_MODULE(_core, m) {
   m.doc() = "The pneumatic finger model (C++ core). Use pneumatic_finger.core, which adds the default parameter file.";
   // The core's refusals (a bad key, value or file) are Python's ValueError, with the tools' message.
@@ -405,7 +424,9 @@ PYBIND11_MODULE(_core, m) {
       py::arg("gauge_pa"), py::arg("max_gauge_pa") = py::none(),
       "The model's range rule, as finger_node, finger_model and evaluate() apply it: (the pressure to evaluate, the "
       "words to warn with, empty in range)");
-  py::class_<PyFingerModel>(m, "FingerModel")
+  py::class_<PyFingerModel> finger_model(m, "FingerModel");
+  defineVolume(finger_model);
+  finger_model
       .def(py::init<const std::string&, const py::dict&, const std::string&, const py::object&>(), py::arg("config"),
            py::arg("overrides") = py::dict(), py::arg("solver") = "robust", py::arg("max_gauge_pa") = py::none())
       .def("evaluate", &PyFingerModel::evaluate, py::arg("gauge_pa"), py::arg("outputs") = py::none(),
@@ -415,17 +436,6 @@ PYBIND11_MODULE(_core, m) {
            "codes (STATUS names them; a scalar call gives one code). A pressure above max_gauge_pa is clamped to it "
            "(status 'clamped to max_gauge_pa', a RuntimeWarning). outputs: the names to compute (None: all); "
            "out: a dict of arrays to fill (float64, uint8 for status, C-contiguous, of the shapes above)")
-      .def("evaluate_volume", &PyFingerModel::evaluateVolume, py::arg("supplied_volume_m3"),
-           py::arg("outputs") = py::none(), py::arg("out") = py::none(),
-           "Volume as the input (docs/MODEL.md, Volume): the finger into which a supply has pushed a volume (m^3: the "
-           "chambers' growth plus the compression of dead_volume_m3 of gas) or a 1-D array of them, in order. The "
-           "outputs of evaluate and gauge_pa (P,), the pressure the volume makes; under the membrane law with "
-           "identical chambers the volume sets the shape past the limit point too. NaN and status 'beyond limit "
-           "point' above the most the model follows (volume_limit_m3); 'vacuum' for a negative volume")
-      .def("supplied_volume", [](const PyFingerModel& self, double gauge_pa) { return self.suppliedVolume(gauge_pa); },
-           py::arg("gauge_pa"),
-           "The supplied volume (m^3) at a gauge pressure (Pa): the chambers' growth and the dead gas's compression; "
-           "NaN at or beyond the limit point")
       .def("blocked_tip_force", &PyFingerModel::blockedTipForce, py::arg("gauge_pa"),
            "The blocked tip force (N) at a gauge pressure (Pa) or a 1-D array of them: the finger held straight by a "
            "plate at its tip (docs/MODEL.md, Force); 0 before the walls touch and for a vacuum; ValueError for a "
@@ -452,10 +462,6 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("limit_gauge_pa", &PyFingerModel::limitGaugePa,
                              "the membrane wall's limit point (Pa gauge): at or above it the status is 'beyond limit "
                              "point' and no shape is given; inf under the paper law")
-      .def_property_readonly("volume_limit_m3", &PyFingerModel::volumeLimitM3,
-                             "the largest supplied volume (m^3) evaluate_volume follows: inf where the volume sets the "
-                             "shape without end; finite with a large dead gas volume (the gas snaps the finger) or a "
-                             "Gent wall's lock")
       .def_property_readonly("solver", &PyFingerModel::solver)
       .def_property_readonly("max_gauge_pa", &PyFingerModel::maxGaugePa,
                              "the top of the model's range (Pa gauge): evaluate() clamps a pressure above it to it, "

@@ -209,6 +209,44 @@ pf::Obstacle parseDisk(const std::string& disk) {
 }
 
 
+// --supplied-volume-m3 (repeated) or --sweep-volume-m3, finite numbers (m^3).
+std::vector<double> parseVolumes(const std::vector<std::string>& volumes, const std::string& volume_sweep) {
+  std::vector<double> supplied;
+  for (const auto& v : volumes) supplied.push_back(pf::parseFiniteOption("--supplied-volume-m3", v));
+  if (!volumes.empty() && !volume_sweep.empty()) {
+    throw pf::ParameterError("give --supplied-volume-m3 or --sweep-volume-m3, not both");
+  }
+  if (!volume_sweep.empty()) supplied = parseSweep("--sweep-volume-m3", volume_sweep);
+  return supplied;
+}
+
+// The time mode's rows: a constant flow fills one finger; each row's time and its pressure, by the regulator's fill law.
+void timeModeRows(const pf::FingerParameters& finger, const std::string& flow_lpm, const std::string& duration_s,
+                  const std::string& step_s, std::vector<double>& times, std::vector<double>& pressures) {
+  if (flow_lpm.empty() || duration_s.empty() || step_s.empty()) {
+    throw pf::ParameterError("the time mode needs --flow-lpm, --duration-s and --step-s together");
+  }
+  const double q = pf::parseFiniteOption("--flow-lpm", flow_lpm);
+  const double t_end = pf::parseFiniteOption("--duration-s", duration_s);
+  const double dt = pf::parseFiniteOption("--step-s", step_s);
+  if (!(q > 0)) throw pf::ParameterError("--flow-lpm = " + flow_lpm + " must be > 0");
+  if (!(t_end >= 0)) throw pf::ParameterError("--duration-s = " + duration_s + " must be >= 0");
+  if (!(dt > 0) || t_end / dt > 1e7) {
+    throw pf::ParameterError("--step-s = " + step_s + " must be > 0 and give at most 10000000 rows");
+  }
+  // The regulator's fill law (one definition): dP/dt = P_o Q / V_o for one finger.
+  const double rate = pf::fillRatePaPerS(q * pf::kM3PerSPerLitrePerMinute, pf::restVolumeM3(finger, 1),
+                                         finger.atmospheric_pressure_pa);
+  const long rows = static_cast<long>(std::floor(t_end / dt * (1 + 1e-12))) + 1;  // T itself when DT divides it
+  for (long k = 0; k < rows; ++k) {
+    // k DT to 15 digits: 7 x 0.002 is the time 0.014, not the product's 0.014000000000000002.
+    char t[32];
+    std::snprintf(t, sizeof t, "%.15g", static_cast<double>(k) * dt);
+    times.push_back(std::strtod(t, nullptr));
+    pressures.push_back(rate * times.back());
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -253,12 +291,7 @@ int main(int argc, char** argv) {
     for (const auto& g : gauges) pressures.push_back(pf::parseFiniteOption("--gauge-pa", g));
     if (!gauges.empty() && !sweep.empty()) throw pf::ParameterError("give --gauge-pa or --sweep-pa, not both");
     if (!sweep.empty()) pressures = parseSweep("--sweep-pa", sweep);
-    std::vector<double> supplied;
-    for (const auto& v : volumes) supplied.push_back(pf::parseFiniteOption("--supplied-volume-m3", v));
-    if (!volumes.empty() && !volume_sweep.empty()) {
-      throw pf::ParameterError("give --supplied-volume-m3 or --sweep-volume-m3, not both");
-    }
-    if (!volume_sweep.empty()) supplied = parseSweep("--sweep-volume-m3", volume_sweep);
+    const std::vector<double> supplied = parseVolumes(volumes, volume_sweep);
     const bool time_mode = !flow_lpm.empty() || !duration_s.empty() || !step_s.empty();
     if (time_mode + !pressures.empty() + !supplied.empty() > 1) {
       throw pf::ParameterError("give one input: pressures, supplied volumes or the time mode");
@@ -277,30 +310,7 @@ int main(int argc, char** argv) {
     options.solver = pf::parseSolverName(solver);
     const pf::FingerParameters finger = parameters.load();
     std::vector<double> times;
-    if (time_mode) {
-      if (flow_lpm.empty() || duration_s.empty() || step_s.empty()) {
-        throw pf::ParameterError("the time mode needs --flow-lpm, --duration-s and --step-s together");
-      }
-      const double q = pf::parseFiniteOption("--flow-lpm", flow_lpm);
-      const double t_end = pf::parseFiniteOption("--duration-s", duration_s);
-      const double dt = pf::parseFiniteOption("--step-s", step_s);
-      if (!(q > 0)) throw pf::ParameterError("--flow-lpm = " + flow_lpm + " must be > 0");
-      if (!(t_end >= 0)) throw pf::ParameterError("--duration-s = " + duration_s + " must be >= 0");
-      if (!(dt > 0) || t_end / dt > 1e7) {
-        throw pf::ParameterError("--step-s = " + step_s + " must be > 0 and give at most 10000000 rows");
-      }
-      // The regulator's fill law (one definition): dP/dt = P_o Q / V_o for one finger.
-      const double rate = pf::fillRatePaPerS(q * pf::kM3PerSPerLitrePerMinute, pf::restVolumeM3(finger, 1),
-                                             finger.atmospheric_pressure_pa);
-      const long rows = static_cast<long>(std::floor(t_end / dt * (1 + 1e-12))) + 1;  // T itself when DT divides it
-      for (long k = 0; k < rows; ++k) {
-        // k DT to 15 digits: 7 x 0.002 is the time 0.014, not the product's 0.014000000000000002.
-        char t[32];
-        std::snprintf(t, sizeof t, "%.15g", static_cast<double>(k) * dt);
-        times.push_back(std::strtod(t, nullptr));
-        pressures.push_back(rate * times.back());
-      }
-    }
+    if (time_mode) timeModeRows(finger, flow_lpm, duration_s, step_s, times, pressures);
     pf::FingerModel model(finger, options);
     pf::FingerWorkspace ws(model);
     if (!supplied.empty()) {
