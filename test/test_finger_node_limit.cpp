@@ -1,7 +1,8 @@
 // rostest: finger_node under the membrane wall law (test/finger_node_limit.test, config/marchese2015_ribbed.yaml). A
 // pressure at or beyond the wall's limit point does not determine the shape: the node publishes no joint_states and no
 // new shape, finger_state repeats the last one with STATUS_BEYOND_LIMIT_POINT, diagnostics WARN and say why; a pressure
-// below the limit brings the shape back.
+// below the limit brings the shape back. A Gent wall (namespace gent) snaps through at its limit pressure to its far
+// branch, publishes that shape with STATUS_SNAPPED_THROUGH, and snaps back at the far branch's lower turning point.
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -63,10 +64,24 @@ void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
   }
 }
 
-pf::FingerModel ribbedModel() {
+pf::FingerModel ribbedModel(double locking_jm = 0.0) {
   pf::RawParameterMap raw;
   pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/marchese2015_ribbed.yaml", raw);
+  raw["wall_locking_jm"] = {{locking_jm}, false};
   return pf::FingerModel(pf::FingerParameters::fromRaw(raw));
+}
+
+std::vector<sensor_msgs::JointState> gent_joints;
+std::vector<pf::FingerModelState> gent_states;
+
+void onGentJoints(const sensor_msgs::JointState::ConstPtr& m) {
+  std::lock_guard<std::mutex> lock(mutex);
+  gent_joints.push_back(*m);
+}
+
+void onGentState(const pf::FingerModelState::ConstPtr& m) {
+  std::lock_guard<std::mutex> lock(mutex);
+  gent_states.push_back(*m);
 }
 
 }  // namespace
@@ -126,6 +141,54 @@ TEST(FingerNodeLimitPoint, NothingIsPublishedPastTheLimitPointAndTheShapeReturns
   ASSERT_TRUE(waitFor([&] { return countOf(joints) > joints_before; }, 10));
   EXPECT_EQ(lastOf(states).status, pf::FingerModelState::STATUS_OK);
   EXPECT_LT(lastOf(joints).position[0], shown.position[0]);
+}
+
+// The ramp up through the snap and down again: each pressure's finger_state and joint_states are the model's on the
+// same path (a workspace that saw the same pressures), with the jump up and the jump back both published.
+TEST(FingerNodeLimitPoint, AGentWallSnapsThroughAndBackAndBothJumpsArePublished) {
+  ros::NodeHandle nh;
+  const ros::Subscriber sub_j = nh.subscribe("gent/joint_states", 100, onGentJoints);
+  const ros::Subscriber sub_s = nh.subscribe("gent/finger_state", 100, onGentState);
+  ros::Publisher pub = nh.advertise<sensor_msgs::FluidPressure>("gent/pressure", 10);
+  ASSERT_TRUE(waitFor([&] { return pub.getNumSubscribers() > 0 && sub_j.getNumPublishers() > 0; }, 30));
+  const pf::FingerModel model = ribbedModel(50.0);
+  const double limit = model.limitGaugePa(), turning = model.farTurningGaugePa();
+  ASSERT_TRUE(std::isfinite(turning)) << "a Gent wall with J_m = 50 stiffens again past its limit";
+  pf::FingerWorkspace ws(model);
+  struct Step {
+    double gauge_pa;
+    std::uint8_t status;
+  };
+  const std::uint8_t ok = pf::FingerModelState::STATUS_OK, snapped = pf::FingerModelState::STATUS_SNAPPED_THROUGH;
+  // 1.01 x the limit: the absolute pressure's round trip through the message moves the gauge pressure by an ulp.
+  const Step ramp[] = {{0.9 * limit, ok},           {1.01 * limit, snapped},   {1.2 * limit, snapped},
+                       {0.5 * (limit + turning), snapped}, {0.9 * turning, ok}, {0.5 * turning, ok}};
+  double previous_tip = 0.0;
+  for (const Step& step : ramp) {
+    SCOPED_TRACE(step.gauge_pa);
+    const std::size_t states_before = countOf(gent_states), joints_before = countOf(gent_joints);
+    sensor_msgs::FluidPressure m;
+    m.header.stamp = ros::Time::now();
+    m.fluid_pressure = step.gauge_pa + pf_test::kAtm;
+    pub.publish(m);
+    ASSERT_TRUE(waitFor([&] { return countOf(gent_states) > states_before && countOf(gent_joints) > joints_before; },
+                        10));
+    // The node's gauge pressure is the message's absolute one less P_o: the model at that pressure.
+    const pf::FingerState& want = model.evaluate((step.gauge_pa + pf_test::kAtm) - pf_test::kAtm, ws);
+    const pf::FingerModelState got = lastOf(gent_states);
+    EXPECT_EQ(got.status, step.status);
+    EXPECT_EQ(static_cast<bool>(got.snapped_through[0]), step.status == snapped);
+    EXPECT_EQ(got.tip_angle_rad, want.tip_angle_rad);
+    const sensor_msgs::JointState shown = lastOf(gent_joints);
+    for (int i = 0; i < model.chamberCount(); ++i) EXPECT_EQ(shown.position[i], want.joint_angle_rad[i]) << i;
+    if (step.gauge_pa == 1.01 * limit) {
+      EXPECT_GT(got.tip_angle_rad, previous_tip + 0.3) << "the jump up";
+    }
+    if (step.gauge_pa == 0.9 * turning) {
+      EXPECT_LT(got.tip_angle_rad, previous_tip - 0.3) << "the jump back";
+    }
+    previous_tip = got.tip_angle_rad;
+  }
 }
 
 int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "finger_node_limit_test", 2); }

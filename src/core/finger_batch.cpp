@@ -39,6 +39,7 @@ const char* evaluationStatusName(EvaluationStatus status) {
     case EvaluationStatus::kSolverFailure: return "solver failure";
     case EvaluationStatus::kBeyondLimitPoint: return "beyond limit point";
     case EvaluationStatus::kClamped: return "clamped to max_gauge_pa";
+    case EvaluationStatus::kSnappedThrough: return "snapped through";
   }
   return "unknown";
 }
@@ -103,15 +104,19 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
   };
   for (std::size_t i = 0; i < count; ++i) {
     const double p = gauge_pa[i];
-    EvaluationStatus status = !std::isfinite(p)       ? EvaluationStatus::kNotFinite
-                              : p >= limit_gauge_pa_ ? EvaluationStatus::kBeyondLimitPoint
-                              : p < 0.0               ? EvaluationStatus::kVacuum
-                                                      : EvaluationStatus::kOk;
+    // The membrane law's walls follow their branches through the sequence, in order, from the workspace's.
+    const EvaluationStatus branch = std::isfinite(p) ? followBranches(p, workspace) : EvaluationStatus::kOk;
+    EvaluationStatus status = !std::isfinite(p)                              ? EvaluationStatus::kNotFinite
+                              : branch != EvaluationStatus::kOk              ? branch
+                              : p < 0.0                                      ? EvaluationStatus::kVacuum
+                                                                             : EvaluationStatus::kOk;
     const bool solve = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum;
-    if (solve && !writeStateAt(p < 0.0 ? 0.0 : p, workspace, state)) {
+    if (solve && !writeStateAt(p < 0.0 ? 0.0 : p, workspace, state)) status = EvaluationStatus::kSolverFailure;
+    if (status == EvaluationStatus::kSnappedThrough && !writeBranchState(p, workspace, state)) {
       status = EvaluationStatus::kSolverFailure;
     }
-    const bool answered = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum;
+    const bool answered = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum ||
+                          status == EvaluationStatus::kSnappedThrough;
     const FingerState& s = state;
     row(s.stretch, out.stretch, i, answered);
     row(s.bulge_m, out.bulge_m, i, answered);

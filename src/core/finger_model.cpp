@@ -63,6 +63,13 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
     contact_gauge_pa_ = std::min(contact_gauge_pa_, it->contact_gauge_pa);
     limit_gauge_pa_ = std::min(limit_gauge_pa_, membrane_ ? it->membrane.limit_gauge_pa : limit_gauge_pa_);
   }
+  far_turning_gauge_pa_ = -std::numeric_limits<double>::infinity();
+  for (const ChamberGroup& g : groups_) {
+    if (membrane_ && std::isfinite(g.membrane.far_turning_gauge_pa)) {
+      far_turning_gauge_pa_ = std::max(far_turning_gauge_pa_, g.membrane.far_turning_gauge_pa);
+    }
+  }
+  if (!std::isfinite(far_turning_gauge_pa_)) far_turning_gauge_pa_ = std::numeric_limits<double>::infinity();
   // The table holds the paper law's shape; under the membrane law the table solver answers from the robust chain.
   if (options_.solver == SolverKind::kTable && !membrane_) {
     if (groups_.size() == 1) {
@@ -94,6 +101,7 @@ void FingerModel::addGroup(ChamberGroup g) {
 FingerWorkspace::FingerWorkspace(const FingerModel& model)
     : shape_(model.shape_),
       state_(model.initialState()),
+      far_branch_(model.groups_.size(), 0),
       group_solutions_(model.groups_.size()),
       chamber_half_(static_cast<std::size_t>(model.chamberCount())) {}
 
@@ -373,10 +381,15 @@ const FingerState& FingerModel::evaluate(double gauge_pa, FingerWorkspace& ws) c
   // Unchanged pressure on the same model: nothing to do. (A workspace of the same shape may have been used with
   // another model last: its state is that model's, so it is recomputed.)
   if (ws.has_last_ && gauge_pa == ws.last_gauge_pa_ && ws.last_model_id_ == id_) return state;
-  if (__builtin_expect(gauge_pa >= limit_gauge_pa_, 0)) {  // +inf under the paper law: never
-    state.status = EvaluationStatus::kBeyondLimitPoint;
-    ws.has_last_ = false;  // the previous numbers stay; the next pressure below the limit recomputes
-    return state;
+  // +inf under the paper law, and no wall on its far branch: never. Otherwise the walls' branches decide.
+  if (__builtin_expect(gauge_pa >= limit_gauge_pa_ || ws.any_far_, 0)) {
+    const EvaluationStatus branch = followBranches(gauge_pa, ws);
+    if (branch == EvaluationStatus::kBeyondLimitPoint) {
+      state.status = branch;
+      ws.has_last_ = false;  // the previous numbers stay; the next pressure below the limit recomputes
+      return state;
+    }
+    if (branch == EvaluationStatus::kSnappedThrough) return evaluateFarBranch(gauge_pa, ws);
   }
   const bool vacuum = gauge_pa < 0.0;
   ++ws.computations_;

@@ -61,6 +61,23 @@ MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, doub
   w.limit_gauge_pa = std::isfinite(w.limit_stretch_excess)
                          ? membraneGaugeForStretchExcess(w, w.limit_stretch_excess)
                          : kInf;
+  w.far_turning_stretch_excess = w.far_turning_gauge_pa = kInf;
+  if (std::isfinite(w.limit_stretch_excess) && std::isfinite(w.locking_stretch_excess)) {
+    // Past the limit slopeSign is negative (the limit is its last positive point), and towards the lock the locking
+    // term makes it positive again: halving the distance to the lock finds a positive point, and the last negative
+    // one before it brackets the minimum, which bisection finds.
+    const auto sign = [&w](double x) { return slopeSign(w, x); };
+    double negative = std::nextafter(w.limit_stretch_excess, kInf), positive = negative;
+    for (int i = 0; i < 200 && !(sign(positive) > 0.0); ++i) {
+      negative = positive;
+      positive = 0.5 * (positive + w.locking_stretch_excess);
+    }
+    if (sign(positive) > 0.0 && !(sign(negative) > 0.0)) {
+      // bisectSignChange returns the end on its first argument's side: the last negative point, the minimum.
+      w.far_turning_stretch_excess = bisectSignChange(sign, negative, positive);
+      w.far_turning_gauge_pa = membraneGaugeForStretchExcess(w, w.far_turning_stretch_excess);
+    }
+  }
   return w;
 }
 
@@ -83,14 +100,12 @@ double membraneLogSlope(const MembraneWall& w, double d) {
   return slope;
 }
 
-double membraneStretchExcess(const MembraneWall& w, double gauge_pa) {
-  if (!(gauge_pa >= 0.0) || !(gauge_pa < w.limit_gauge_pa)) return std::numeric_limits<double>::quiet_NaN();
-  if (gauge_pa == 0.0) return 0.0;
-  // P rises on [0, limit] (on [0, lock) without a limit): Newton steps in delta, kept inside the bracket, halving it
-  // where a step would leave it. Near rest P = 6 (4 mu t/L) delta (1 + O(delta)), the first guess.
-  double lo = 0.0, hi = std::isfinite(w.limit_stretch_excess) ? w.limit_stretch_excess : w.locking_stretch_excess;
-  double d = gauge_pa / (6.0 * w.pressure_scale_pa);
-  if (!(d < hi)) d = std::isfinite(hi) ? 0.5 * hi : 1.0;
+namespace {
+
+// The stretch excess where P = gauge_pa on a rising stretch of the law, bracketed by [lo, hi] (hi may be +inf), from
+// the guess d: Newton steps in ln P, kept inside the bracket, halving it where a step would leave it; they stop when
+// a step is below 2e-16 relative.
+double risingStretchExcess(const MembraneWall& w, double gauge_pa, double lo, double hi, double d) {
   for (int i = 0; i < 200; ++i) {
     const double p = membraneGaugeForStretchExcess(w, d);
     if (p == gauge_pa) return d;
@@ -104,6 +119,27 @@ double membraneStretchExcess(const MembraneWall& w, double gauge_pa) {
   return d;
 }
 
+}  // namespace
+
+double membraneStretchExcess(const MembraneWall& w, double gauge_pa) {
+  if (!(gauge_pa >= 0.0) || !(gauge_pa < w.limit_gauge_pa)) return std::numeric_limits<double>::quiet_NaN();
+  if (gauge_pa == 0.0) return 0.0;
+  // P rises on [0, limit] (on [0, lock) without a limit). Near rest P = 6 (4 mu t/L) delta (1 + O(delta)), the
+  // first guess.
+  const double hi = std::isfinite(w.limit_stretch_excess) ? w.limit_stretch_excess : w.locking_stretch_excess;
+  double d = gauge_pa / (6.0 * w.pressure_scale_pa);
+  if (!(d < hi)) d = std::isfinite(hi) ? 0.5 * hi : 1.0;
+  return risingStretchExcess(w, gauge_pa, 0.0, hi, d);
+}
+
+double membraneFarStretchExcess(const MembraneWall& w, double gauge_pa) {
+  if (!(gauge_pa > w.far_turning_gauge_pa) || !std::isfinite(w.far_turning_gauge_pa) || !std::isfinite(gauge_pa)) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const double lo = w.far_turning_stretch_excess, hi = w.locking_stretch_excess;
+  return risingStretchExcess(w, gauge_pa, lo, hi, 0.5 * (lo + hi));
+}
+
 WallSolution solveMembraneWall(const MembraneWall& w, double gauge_pa, double gap_m, double wall_critical_height_m) {
   WallSolution s;
   const double nan = std::numeric_limits<double>::quiet_NaN();
@@ -113,6 +149,11 @@ WallSolution solveMembraneWall(const MembraneWall& w, double gauge_pa, double ga
     s.half.rad = s.half.cos = s.half.sin = s.half.tan = nan;
     return s;
   }
+  return membraneWallAtStretch(w, delta, gap_m, wall_critical_height_m);
+}
+
+WallSolution membraneWallAtStretch(const MembraneWall& w, double delta, double gap_m, double wall_critical_height_m) {
+  WallSolution s;
   s.stretch_excess = delta;
   s.bulge_m = 0.5 * w.chamber_height_m * delta;
   s.half = halfAngle(s.bulge_m, gap_m, wall_critical_height_m);

@@ -167,7 +167,8 @@ void PressureInputPolicy::noteSolverFailure(const std::string& what, double now_
 void PressureInputPolicy::noteBeyondLimitPoint(double gauge_pa, double limit_gauge_pa, double now_s) {
   ++counters_.beyond_limit_point;
   problem("gauge pressure " + formatMessage(gauge_pa) + " Pa is at or beyond the membrane wall's limit point " +
-              formatMessage(limit_gauge_pa) + " Pa, where the pressure does not determine the shape; last state kept",
+              formatMessage(limit_gauge_pa) + " Pa, where the pressure does not determine the shape: the wall has no far "
+              "branch to snap to and balloons without bound (a risk of bursting); last state kept",
           now_s);
 }
 

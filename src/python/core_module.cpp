@@ -39,7 +39,8 @@ const std::vector<const char*> kEvaluationStatus = {
     pf::evaluationStatusName(pf::EvaluationStatus::kNotFinite),
     pf::evaluationStatusName(pf::EvaluationStatus::kSolverFailure),
     pf::evaluationStatusName(pf::EvaluationStatus::kBeyondLimitPoint),
-    pf::evaluationStatusName(pf::EvaluationStatus::kClamped)};
+    pf::evaluationStatusName(pf::EvaluationStatus::kClamped),
+    pf::evaluationStatusName(pf::EvaluationStatus::kSnappedThrough)};
 const std::vector<const char*> kContactStatus = {"free", "in contact", "overlaps at rest", "solver failure",
                                                  "beyond limit point"};
 

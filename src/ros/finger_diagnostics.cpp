@@ -1,5 +1,5 @@
 // finger_node's report on /diagnostics (task "pressure input"): the input rules' verdict and counters, the model's
-// work, the tip's error bar and the grasp object.
+// work and the walls' branch, the tip's error bar and the grasp object; and the log line of a snap-through.
 #include <string>
 #include <utility>
 
@@ -33,6 +33,12 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   };
   for (const auto& [name, count] : counted) status.add(name, count);
   status.add("model evaluations (unchanged pressures reuse the last)", workspace_->computationCount());
+  // The snap-through (membrane law, a Gent wall): which branch the walls are on, and how often they jumped.
+  status.add("wall branch", on_far_branch_ ? "far (snapped through; back at or below " +
+                                                 formatMessage(model_->farTurningGaugePa()) + " Pa gauge)"
+                                           : std::string("near"));
+  status.add("snaps through (near to far branch)", snaps_through_);
+  status.add("snaps back (far to near branch)", snaps_back_);
   if (!input_.lastProblem().empty()) status.add("last problem", input_.lastProblem());
   status.add("tip error bar", tip_uncertainty_.empty()
                                    ? std::string("none (NaN in finger_state)")
@@ -50,6 +56,24 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   if (!problem.empty()) {
     status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, problem);
     status.add("grasp object problem", problem);
+  }
+}
+
+// The snap-through (docs/MODEL.md): a jump between the walls' branches is logged once and counted for diagnostics.
+void FingerNode::noteBranch(double gauge_pa) {
+  const bool far = workspace_->snappedThrough();
+  if (far == on_far_branch_) return;
+  on_far_branch_ = far;
+  if (far) {
+    ++snaps_through_;
+    ROS_INFO("%s: snapped through at %s Pa gauge: the walls jumped past their limit point (%s Pa) to the far branch, "
+             "where they hold until the pressure falls to %s Pa",
+             log_name_.c_str(), formatMessage(gauge_pa).c_str(), formatMessage(model_->limitGaugePa()).c_str(),
+             formatMessage(model_->farTurningGaugePa()).c_str());
+  } else {
+    ++snaps_back_;
+    ROS_INFO("%s: snapped back at %s Pa gauge: the walls are on the near branch again", log_name_.c_str(),
+             formatMessage(gauge_pa).c_str());
   }
 }
 

@@ -117,6 +117,7 @@ void FingerNode::sizeMessages() {
   }
   finger_state_.backbone.resize(un + 2);
   finger_state_.held_by_contact.resize(un);
+  finger_state_.snapped_through.resize(un);
   finger_state_.first_touch_gauge_pa = NAN;
   finger_state_.touch_gauge_pa = NAN;
   joint_states_pub_ = nh_.advertise<sensor_msgs::JointState>(settings_.joint_states_topic, 10);
@@ -198,6 +199,7 @@ bool FingerNode::publishAt(double gauge_pa, const ros::Time& stamp, bool clamped
     input_.noteVacuum(gauge_pa, now.toSec());
     ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), input_.lastProblem().c_str());
   }
+  noteBranch(gauge_pa);
   have_pressure_ = true;
   last_gauge_pa_ = gauge_pa;
   last_clamped_ = clamped;
@@ -228,6 +230,7 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
     finger_state_.half_angle_rad[k] = state.half_angle_rad[i];
     finger_state_.joint_angle_rad[k] = q;
     finger_state_.held_by_contact[k] = contact && contact->held[k];
+    finger_state_.snapped_through[k] = workspace_->onFarBranch(model_->groupOfChamber(i));
   }
   if (!contact) tip_angle_rad = state.tip_angle_rad;  // the model's own sum, bit for bit
   for (int i = 0; i < n + 2; ++i) {
@@ -245,9 +248,10 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
   finger_state_.supplied_volume_m3 = held ? NAN : model_->suppliedVolumeAt(state.gauge_pa);
   finger_state_.walls_in_contact = state.walls_in_contact;
   finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.input.validated_max_gauge_pa;
-  finger_state_.status = state.status == EvaluationStatus::kVacuum ? FingerModelState::STATUS_VACUUM
-                          : clamped                                  ? FingerModelState::STATUS_CLAMPED
-                                                                     : FingerModelState::STATUS_OK;
+  finger_state_.status = state.status == EvaluationStatus::kVacuum           ? FingerModelState::STATUS_VACUUM
+                          : clamped                                            ? FingerModelState::STATUS_CLAMPED
+                          : state.status == EvaluationStatus::kSnappedThrough ? FingerModelState::STATUS_SNAPPED_THROUGH
+                                                                               : FingerModelState::STATUS_OK;
   finger_state_.object_id = object_ ? object_->id : std::string();
   finger_state_.object_status = toMessage(contact ? grasp_->statusWith(*contact) : grasp_->status());
   finger_state_.touch_gauge_pa = grasp_->touchGaugePa();

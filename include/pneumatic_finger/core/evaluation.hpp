@@ -17,10 +17,13 @@ enum class EvaluationStatus : std::uint8_t {
                       ///< shape, so none is given (evaluate() keeps the previous state; a batch writes NaN)
   kClamped,       ///< above the model's range (pressure_range.hpp): the finger at max_gauge_pa is given. Set by the
                   ///< interfaces that apply the range rule (finger_node, finger_model, Python), never by FingerModel
+  kSnappedThrough,  ///< the membrane law: some wall has snapped through its limit point to the far branch, where it
+                    ///< stays until the pressure falls to the branch's lower turning point (docs/MODEL.md, "The
+                    ///< snap-through"): the shape given is that branch's, and depends on the path
 };
 
-/// "ok", "vacuum", "not finite", "solver failure", "beyond limit point" or "clamped to max_gauge_pa": the names tools
-/// and Python print.
+/// "ok", "vacuum", "not finite", "solver failure", "beyond limit point", "clamped to max_gauge_pa" or "snapped
+/// through": the names tools and Python print.
 const char* evaluationStatusName(EvaluationStatus status);
 
 /// Where FingerModel::evaluateMany writes: row-major arrays the caller owns, for `count` pressures. A null pointer

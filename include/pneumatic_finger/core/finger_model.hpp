@@ -104,10 +104,20 @@ class FingerWorkspace {
   /// How many evaluate() calls did real work (the rest were answered from the cache of the unchanged pressure).
   long computationCount() const { return computations_; }
 
+  /// Whether the walls of chamber group @p group (0-based, as FingerModel numbers them) are on their far branch: they
+  /// snapped through at the limit pressure and hold there until the pressure falls to the branch's lower turning
+  /// point (docs/MODEL.md, "The snap-through"). The path's memory, read and written by evaluate() and evaluateMany().
+  bool onFarBranch(int group) const { return far_branch_.at(static_cast<std::size_t>(group)) != 0; }
+
+  /// Some group is on its far branch.
+  bool snappedThrough() const { return any_far_; }
+
  private:
   friend class FingerModel;
   std::uint64_t shape_;  // the model's chamber and group counts, which size the scratch below
   FingerState state_;
+  std::vector<std::uint8_t> far_branch_;  // per group: 1 on the far branch
+  bool any_far_ = false;
   bool has_last_ = false;
   double last_gauge_pa_ = 0.0;
   // The model last_gauge_pa_'s state belongs to, by its id: not its address, which a model built after another was
@@ -135,9 +145,19 @@ class FingerModel {
   /// @throws std::invalid_argument when @p workspace was sized for a model of another shape
   const FingerState& evaluate(double gauge_pa, FingerWorkspace& workspace) const;
 
+  /// The snap-through (docs/MODEL.md): puts every chamber group that has a far branch on it (@p far true) or back on
+  /// the near branch, in @p workspace, so that the next evaluation starts from there. A far branch exists where a Gent
+  /// wall stiffens again past its limit point (farTurningGaugePa() finite). The next evaluate() recomputes.
+  void startBranch(FingerWorkspace& workspace, bool far) const;
+
+  /// The highest pressure (Pa) at which a wall on its far branch snaps back to the near one: the far branches' lower
+  /// turning points, the largest of them; +inf where no wall has a far branch (paper law, Neo-Hookean walls).
+  double farTurningGaugePa() const { return far_turning_gauge_pa_; }
+
   /// Evaluates @p count pressures into @p out: for each finite pressure the numbers evaluate() gives, bit for bit;
   /// for a NaN or infinite one, NaN in every output and status kNotFinite (a batch has no "previous state"). The
-  /// workspace's state and unchanged-pressure cache are neither read nor written. With the robust solver and
+  /// workspace's state and unchanged-pressure cache are neither read nor written; its walls' branches (membrane law)
+  /// are the sequence's start, followed through it in order and left where it ends, as evaluate() leaves them. With the robust solver and
   /// identical chambers the pressures go through in packs of 4 or 8 (SIMD across pressures, src/core/batch_kernel.hpp);
   /// otherwise one at a time. Used by the Python API and the design sweeps, so that a whole array costs one call.
   /// The one-at-a-time path uses @p workspace's scratch.
@@ -170,6 +190,9 @@ class FingerModel {
   const FingerParameters& parameters() const { return parameters_; }
   const ModelOptions& options() const { return options_; }
   int chamberCount() const { return parameters_.chamber_count; }
+
+  /// The chamber group (0-based, as FingerWorkspace::onFarBranch() takes it) of chamber @p chamber (0-based).
+  int groupOfChamber(int chamber) const { return group_of_chamber_.at(static_cast<std::size_t>(chamber)); }
 
   /// Number of distinct chamber geometries solved per pressure (1 for identical chambers).
   int distinctChamberCount() const { return static_cast<int>(groups_.size()); }
@@ -307,6 +330,15 @@ class FingerModel {
   /// The moment (N m) at joint @p joint (0-based) at @p gauge_pa (not NaN), from each group's strip (indexed by
   /// group).
   double jointMomentNm(std::size_t joint, double gauge_pa, const double* strip_m) const;
+  /// The walls' branches at @p gauge_pa (snap_through.cpp): each group on the near branch jumps to its far branch at
+  /// or above its limit pressure, and one on the far branch falls back at or below its far turning point. Returns
+  /// kBeyondLimitPoint (branches unchanged) where a wall passes its limit without a far branch, kSnappedThrough where
+  /// some group is on its far branch, else kOk.
+  EvaluationStatus followBranches(double gauge_pa, FingerWorkspace& workspace) const;
+  /// The state with some group on its far branch into @p out (gauge_pa included); false for a non-finite answer.
+  bool writeBranchState(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const;
+  /// evaluate()'s far-branch path: writeBranchState into the workspace's state, with status and cache.
+  const FingerState& evaluateFarBranch(double gauge_pa, FingerWorkspace& workspace) const;
   /// The volume model's constants (finger_volume.cpp): each group's volume coefficient and the volume's limit.
   void buildVolumeModel();
   /// The supplied volume (m^3) of identical membrane chambers at stretch excess @p delta (>= 0, below the lock).
@@ -332,6 +364,7 @@ class FingerModel {
   std::vector<int> group_of_chamber_;
   double contact_gauge_pa_ = 0.0;
   double limit_gauge_pa_ = 0.0;
+  double far_turning_gauge_pa_ = 0.0;  // farTurningGaugePa()
   // The force model (buildForceModel): per joint, the chambers whose walls push at it (joint 1: chamber 1 and the
   // base face, so both are chamber 0), its distance to the tip (m) and its compliance weight; per chamber e b (m^2),
   // the strip's width times its lever. For identical chambers the tip force is one product with

@@ -24,6 +24,12 @@ struct MembraneWall {
   double locking_stretch_excess;   ///< delta where I1 - 3 = J_m (the wall locks; +inf for J_m = 0)
   double limit_stretch_excess;     ///< delta at the first pressure maximum (+inf: P rises to the lock)
   double limit_gauge_pa;           ///< P there (Pa; +inf without a maximum)
+  /// The far branch (docs/MODEL.md, "The snap-through"): a Gent wall with a limit point stiffens again before its
+  /// lock, so P falls from the limit to a minimum and rises again. The far branch is the rising part past that
+  /// minimum, where a wall snaps to at the limit pressure and holds until the pressure falls to the minimum, its
+  /// lower turning point. +inf for both when there is no far branch (Neo-Hookean: the wall balloons without bound).
+  double far_turning_stretch_excess;  ///< delta at the pressure minimum past the limit point
+  double far_turning_gauge_pa;        ///< P there (Pa): the far branch holds down to it, then snaps back
 };
 
 /// The membrane of a wall of height @p chamber_height_m (L), thickness @p wall_thickness_m (t), shear modulus
@@ -43,10 +49,19 @@ double membraneLogSlope(const MembraneWall& wall, double delta);
 /// bracketed by [0, limit_stretch_excess]. NaN for a pressure at or beyond the limit point, negative or NaN.
 double membraneStretchExcess(const MembraneWall& wall, double gauge_pa);
 
+/// The stretch excess on the far branch for @p gauge_pa in (far_turning_gauge_pa, +inf): the same safeguarded Newton
+/// steps, bracketed by [far_turning_stretch_excess, locking_stretch_excess]. NaN where there is no far branch or the
+/// pressure is at or below its turning point.
+double membraneFarStretchExcess(const MembraneWall& wall, double gauge_pa);
+
 /// Stages 1-4 under the membrane law: delta, h = (L/2) delta, then Wang's half angle (halfAngle). At or beyond the
 /// limit point every field is NaN.
 WallSolution solveMembraneWall(const MembraneWall& wall, double gauge_pa, double gap_m,
                                double wall_critical_height_m);
+
+/// Stages 3-4 from a stretch excess @p delta (any branch): h = (L/2) delta, then Wang's half angle.
+WallSolution membraneWallAtStretch(const MembraneWall& wall, double delta, double gap_m,
+                                   double wall_critical_height_m);
 
 /// The inverse: the gauge pressure (Pa) that gives bulge @p bulge_m, or NaN when that bulge lies beyond the limit
 /// point (no pressure holds it).

@@ -56,6 +56,8 @@ class FingerNode {
   /// Publishes the finger at a pressure the input rules accepted: the free model, then the contact rule when an
   /// object is within reach. False (nothing published) when a solver found no finite answer.
   bool publishAt(double gauge_pa, const ros::Time& stamp, bool clamped);
+  /// Logs and counts a jump between the walls' branches (the snap-through) after an evaluation at @p gauge_pa.
+  void noteBranch(double gauge_pa);
   void publish(const FingerState& state, const ContactState* contact, const ros::Time& stamp, bool clamped);
 
   // The grasp object (docs/GRASP.md).
@@ -122,6 +124,8 @@ class FingerNode {
   static constexpr double kTransformGraceS = 3.0;
   // The last accepted pressure: an object that moves re-publishes the finger at it.
   bool have_pressure_ = false, last_clamped_ = false;
+  bool on_far_branch_ = false;              // the walls' branch after the last evaluation (the snap-through)
+  long snaps_through_ = 0, snaps_back_ = 0;  // jumps between the branches, for diagnostics
   double last_gauge_pa_ = 0.0;
 };
 
