@@ -152,3 +152,26 @@ TEST(Description, UnderTheMembraneLawTheUpperLimitsAreTheAnglesBelowTheLimitPoin
     EXPECT_GT(joint->limits->upper, 0.01) << i;
   }
 }
+
+// A Gent wall that snaps through: past its limit it bends on, on its far branch, up to the range's top, so the upper
+// limits are the far branch's angles there (docs/MODEL.md, "The snap-through").
+TEST(Description, WallsThatSnapThroughReachTheFarBranchsAnglesAtTheTopOfTheRange) {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/marchese2015_ribbed.yaml", raw);
+  raw["wall_locking_jm"] = {{50.0}, false};
+  const pf::FingerParameters p = pf::FingerParameters::fromRaw(raw);
+  const pf::FingerModel model(p);
+  pf::FingerUrdfOptions options;
+  options.max_gauge_pa = 2.0 * model.limitGaugePa();
+  ASSERT_TRUE(std::isfinite(model.farTurningGaugePa()));
+  pf::FingerWorkspace ws(model);
+  model.startBranch(ws, true);
+  const pf::FingerState& far = model.evaluate(options.max_gauge_pa, ws);
+  ASSERT_EQ(far.status, pf::EvaluationStatus::kSnappedThrough);
+  const urdf::ModelInterface m = pf::fingerUrdfModel(p, options);
+  for (int i = 1; i <= p.chamber_count; ++i) {
+    const auto joint = m.joints_.at(pf::jointName(options.prefix, i));
+    EXPECT_EQ(joint->limits->upper, far.joint_angle_rad[i - 1]) << i;
+    EXPECT_GT(joint->limits->upper, model.tipAngleBelowLimit() / p.chamber_count) << i;
+  }
+}

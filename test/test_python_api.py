@@ -285,3 +285,29 @@ def test_evaluate_volume_refuses_bad_input_naming_it():
     drawn = model.evaluate_volume(-1e-6)
     assert pf.STATUS[drawn["status"]] == "vacuum" and math.isnan(drawn["gauge_pa"])
     assert drawn["tip_angle_rad"] == 0.0
+
+
+GENT = {"wall_law": "membrane", "shear_modulus_pa": 2e4, "wall_locking_jm": 50.0}
+GENT_ARGS = ["--set", "wall_law=membrane", "--set", "shear_modulus_pa=2e4", "--set", "wall_locking_jm=50"]
+
+
+def test_a_ramp_snaps_through_and_back_as_the_cli_prints_it():
+    model = pf.FingerModel(overrides=GENT)
+    limit, turning = model.limit_gauge_pa, model.far_turning_gauge_pa
+    assert turning < limit
+    middle = 0.5 * (limit + turning)
+    ramp = [0.5 * limit, middle, 1.1 * limit, middle, 0.9 * turning]
+    state = model.evaluate(numpy.array(ramp))
+    assert [pf.STATUS[c] for c in state["status"]] == ["ok", "ok", "snapped through", "snapped through", "ok"]
+    assert state["tip_angle_rad"][3] > state["tip_angle_rad"][1] + 0.5, "two shapes at one pressure"
+    for i, row in enumerate(cli(*GENT_ARGS, *gauge_args(ramp))):
+        assert float(row["tip_x_m"]) == state["backbone_m"][i, -1, 0]
+        for n in range(7):
+            assert float(row[f"joint_{n + 1}_rad"]) == state["joint_angle_rad"][i, n]
+    far = model.evaluate(middle, start_branch="far")
+    assert pf.STATUS[far["status"]] == "snapped through" and far["tip_angle_rad"] == state["tip_angle_rad"][3]
+    far_row = cli(*GENT_ARGS, "--start-branch", "far", "--gauge-pa", repr(middle))[0]
+    assert float(far_row["tip_x_m"]) == far["backbone_m"][-1, 0]
+    with pytest.raises(ValueError, match="start_branch = 'up' is not one of near, far"):
+        model.evaluate(middle, start_branch="up")
+    assert pf.FingerModel().far_turning_gauge_pa == math.inf

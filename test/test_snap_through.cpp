@@ -174,3 +174,30 @@ TEST(SnapThrough, UnequalChambersSnapOneGroupAtATime) {
   EXPECT_FALSE(ws.onFarBranch(1));
   EXPECT_GT(s.half_angle_rad[0], s.half_angle_rad[6]);
 }
+
+// The inverse past the near branch: a tip angle of the far branch is the far branch's pressure, with the way there
+// in the message; one between the branches is refused.
+TEST(SnapThrough, TheInverseReachesTheFarBranchBySnapping) {
+  const pf::FingerModel model(membraneFinger(kJm));
+  pf::FingerWorkspace ws(model);
+  model.startBranch(ws, true);
+  for (double share : {0.9, 1.2, 3.0}) {
+    const double p = share * model.limitGaugePa();
+    const double tip = model.evaluate(p, ws).tip_angle_rad;
+    ASSERT_EQ(ws.state().status, pf::EvaluationStatus::kSnappedThrough);
+    double gauge = 0.0;
+    std::string message;
+    ASSERT_TRUE(model.gaugeForTipAngle(tip, 1e6, gauge, message)) << message;
+    EXPECT_LT(std::fabs(gauge - p) / p, 1e-12) << share;
+    EXPECT_NE(message.find("far branch: raise the pressure to at least"), std::string::npos) << message;
+  }
+  // Just past the near branch's largest angle: between the branches.
+  double gauge = 0.0;
+  std::string message;
+  EXPECT_FALSE(model.gaugeForTipAngle(model.tipAngleBelowLimit() * 1.001, 1e6, gauge, message));
+  EXPECT_NE(message.find("between the walls' branches"), std::string::npos) << message;
+  // A far target beyond the allowed range is refused with the numbers.
+  EXPECT_FALSE(model.gaugeForTipAngle(model.evaluate(3.0 * model.limitGaugePa(), ws).tip_angle_rad,
+                                      2.0 * model.limitGaugePa(), gauge, message));
+  EXPECT_NE(message.find("needs more than the allowed"), std::string::npos) << message;
+}

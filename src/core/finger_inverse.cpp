@@ -51,6 +51,10 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
     gauge_pa = 0.0;
     return true;
   }
+  if (std::isfinite(limit_gauge_pa_) && tip_angle_rad >= tipAngleBelowLimit() && std::isfinite(far_turning_gauge_pa_) &&
+      groups_.size() == 1) {
+    return gaugeOnFarBranch(tip_angle_rad / turns, tip_angle_rad, max_gauge_pa, gauge_pa, message);
+  }
   if (std::isfinite(limit_gauge_pa_) && tip_angle_rad >= tipAngleBelowLimit()) {
     why << "tip angle " << formatMessage(tip_angle_rad) << " rad lies beyond the wall's limit point: the largest the "
         << "membrane law holds is " << formatMessage(tipAngleBelowLimit()) << " rad, just below "
@@ -84,6 +88,40 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
     return false;
   }
   gauge_pa = answer;
+  return true;
+}
+
+// A tip angle past the near branch's, for identical chambers whose walls have a far branch (docs/MODEL.md, "The
+// snap-through"): Wang's relation inverted gives the bulge, the membrane's stretch follows, and the law its pressure.
+// The far branch holds it at that pressure once the walls have snapped (the message says how); the part of the law
+// between the branches holds no state under pressure control.
+bool FingerModel::gaugeOnFarBranch(double half_angle_rad, double tip_angle_rad, double max_gauge_pa, double& gauge_pa,
+                                   std::string& message) const {
+  const ChamberGroup& g = groups_[0];
+  const MembraneWall& w = g.membrane;
+  const double delta = 2.0 * bulgeForHalfAngle(half_angle_rad, g.chamber_gap_m, g.wall_critical_height_m) /
+                       g.chamber_height_m;
+  std::ostringstream why;
+  why << "tip angle " << formatMessage(tip_angle_rad) << " rad ";
+  if (!(delta > w.far_turning_stretch_excess)) {
+    why << "lies between the walls' branches, past the limit point (" << formatMessage(limit_gauge_pa_)
+        << " Pa) and short of the far branch's turning point: no pressure holds it; the finger snaps past it";
+    message = why.str();
+    return false;
+  }
+  const double p = delta < w.locking_stretch_excess ? membraneGaugeForStretchExcess(w, delta)
+                                                    : std::numeric_limits<double>::infinity();
+  if (!(p <= max_gauge_pa) || !(limit_gauge_pa_ <= max_gauge_pa)) {
+    why << "lies on the far branch and needs more than the allowed " << formatMessage(max_gauge_pa) << " Pa gauge ("
+        << formatMessage(std::max(p, limit_gauge_pa_)) << " Pa, with the snap at " << formatMessage(limit_gauge_pa_)
+        << " Pa)";
+    message = why.str();
+    return false;
+  }
+  gauge_pa = p;
+  why << "lies on the far branch: raise the pressure to at least " << formatMessage(limit_gauge_pa_)
+      << " Pa (the snap-through), then set " << formatMessage(p) << " Pa";
+  message = why.str();
   return true;
 }
 

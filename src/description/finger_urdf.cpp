@@ -143,8 +143,16 @@ urdf::ModelInterface fingerUrdfModel(const FingerParameters& p, const FingerUrdf
   // there); lower limits 0: vacuum is outside the model, which then shows the straight finger.
   FingerModel model(p);
   FingerWorkspace ws(model);
-  // Under the membrane law the limit point may come first: the joints reach the most the model holds just below it.
-  const FingerState& at_max = model.evaluate(std::min(o.max_gauge_pa, model.belowLimitGaugePa()), ws);
+  // Under the membrane law the limit point may come first. Where the walls have a far branch they snap to it and bend
+  // on up to the range's top; otherwise the joints reach the most the model holds just below the limit.
+  const bool far = std::isfinite(model.farTurningGaugePa()) && o.max_gauge_pa >= model.limitGaugePa();
+  model.startBranch(ws, far);
+  const double top_pa = far ? o.max_gauge_pa : std::min(o.max_gauge_pa, model.belowLimitGaugePa());
+  const FingerState* at_max = &model.evaluate(top_pa, ws);
+  if (at_max->status == EvaluationStatus::kBeyondLimitPoint) {  // a group without a far branch passed its limit
+    model.startBranch(ws, false);
+    at_max = &model.evaluate(model.belowLimitGaugePa(), ws);
+  }
 
   urdf::ModelInterface m;
   m.name_ = o.prefix + "pneumatic_finger";
@@ -181,7 +189,7 @@ urdf::ModelInterface fingerUrdfModel(const FingerParameters& p, const FingerUrdf
     j->limits = std::make_shared<urdf::JointLimits>();
     j->limits->lower = 0.0;
     // A revolute joint needs upper > lower even where the walls never touch within the range.
-    j->limits->upper = std::max(at_max.joint_angle_rad[i - 1], 1e-6);
+    j->limits->upper = std::max(at_max->joint_angle_rad[i - 1], 1e-6);
     j->limits->effort = 0.0;    // not actuated by torque: the angle follows from the pressure
     j->limits->velocity = 10.0;  // rad/s, above what a regulator fill (about 1 s) produces
     m.joints_[j->name] = j;

@@ -111,7 +111,11 @@ class PyFingerModel {
 
   // A scalar gives arrays without the leading pressure axis; an array of P pressures gives (P, ...). Only the outputs
   // asked for are allocated, written and, where the batch kernel can leave them out, computed.
-  py::dict evaluate(const py::object& gauge_pa, const py::object& outputs, const py::object& out) const {
+  py::dict evaluate(const py::object& gauge_pa, const py::object& outputs, const py::object& out,
+                    const std::string& start_branch) const {
+    if (start_branch != "near" && start_branch != "far") {
+      throw py::value_error("start_branch = '" + start_branch + "' is not one of near, far");
+    }
     bool scalar = false;
     const Array p = pressures(gauge_pa, scalar);
     if (scalar && !out.is_none()) throw py::value_error("out= needs gauge_pa as a 1-D array");
@@ -132,6 +136,7 @@ class PyFingerModel {
       // several Python threads run at once.
       py::gil_scoped_release release;
       pf::FingerWorkspace workspace(*model_);
+      model_->startBranch(workspace, start_branch == "far");  // the walls' branch the sequence starts from
       // The range rule of every interface (pressure_range.hpp); a copy only when some pressure is above the range.
       std::vector<double> in_range;
       const double* evaluated = p.data();
@@ -320,6 +325,7 @@ class PyFingerModel {
   double maxGaugePa() const { return range_.max_gauge_pa; }
   double limitGaugePa() const { return model_->limitGaugePa(); }
   double volumeLimitM3() const { return model_->volumeLimitM3(); }
+  double farTurning() const { return model_->farTurningGaugePa(); }
   double suppliedVolume(double gauge_pa) const { return model_->suppliedVolumeAt(gauge_pa); }
   std::string solver() const { return pf::solverName(model_->options().solver); }
 
@@ -431,12 +437,15 @@ PYBIND11_MODULE(_core, m) {
       .def(py::init<const std::string&, const py::dict&, const std::string&, const py::object&>(), py::arg("config"),
            py::arg("overrides") = py::dict(), py::arg("solver") = "robust", py::arg("max_gauge_pa") = py::none())
       .def("evaluate", &PyFingerModel::evaluate, py::arg("gauge_pa"), py::arg("outputs") = py::none(),
-           py::arg("out") = py::none(),
+           py::arg("out") = py::none(), py::arg("start_branch") = "near",
            "The free finger at a gauge pressure (Pa) or a 1-D array of them: a dict of numpy arrays stretch, bulge_m, "
            "half_angle_rad, joint_angle_rad (P, N), backbone_m (P, N+2, 2), tip_angle_rad (P,) and status (P,) uint8 "
            "codes (STATUS names them; a scalar call gives one code). A pressure above max_gauge_pa is clamped to it "
-           "(status 'clamped to max_gauge_pa', a RuntimeWarning). outputs: the names to compute (None: all); "
-           "out: a dict of arrays to fill (float64, uint8 for status, C-contiguous, of the shapes above)")
+           "(status 'clamped to max_gauge_pa', a RuntimeWarning). The pressures are a path: under the membrane law a Gent "
+           "wall snaps through at its limit pressure to its far branch (status 'snapped through') and back at that "
+           "branch's turning point, in order, starting from start_branch ('near' or 'far'). outputs: the names to "
+           "compute (None: all); out: a dict of arrays to fill (float64, uint8 for status, C-contiguous, of the "
+           "shapes above)")
       .def("blocked_tip_force", &PyFingerModel::blockedTipForce, py::arg("gauge_pa"),
            "The blocked tip force (N) at a gauge pressure (Pa) or a 1-D array of them: the finger held straight by a "
            "plate at its tip (docs/MODEL.md, Force); 0 before the walls touch and for a vacuum; ValueError for a "
@@ -463,6 +472,9 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("limit_gauge_pa", &PyFingerModel::limitGaugePa,
                              "the membrane wall's limit point (Pa gauge): at or above it the status is 'beyond limit "
                              "point' and no shape is given; inf under the paper law")
+      .def_property_readonly("far_turning_gauge_pa", [](const PyFingerModel& self) { return self.farTurning(); },
+                             "the pressure (Pa gauge) at or below which a wall on its far branch snaps back to the near "
+                             "one (the largest over the chamber groups); inf where no wall has a far branch")
       .def_property_readonly("solver", &PyFingerModel::solver)
       .def_property_readonly("max_gauge_pa", &PyFingerModel::maxGaugePa,
                              "the top of the model's range (Pa gauge): evaluate() clamps a pressure above it to it, "

@@ -12,7 +12,7 @@ bool FingerNode::onInverse(PressureForTipAngle::Request& req, PressureForTipAngl
   res.success = model_->gaugeForTipAngle(req.tip_angle_rad, settings_.urdf.max_gauge_pa, gauge, why);
   res.gauge_pa = res.success ? gauge : 0.0;
   res.absolute_pa = res.success ? gauge + settings_.finger.atmospheric_pressure_pa : 0.0;
-  res.message = res.success ? "" : why;
+  res.message = why;  // empty, or why not, or (a target on the far branch) how to reach it
   return true;  // a refused request is an answer, not a transport failure
 }
 

@@ -65,6 +65,7 @@ void printParameterTable() {
 // tip force last.
 struct CsvColumns {
   pf::PressureRange range;  // the model's range, applied to every row as finger_node applies it
+  bool start_far = false;   // --start-branch far: the first row starts from the walls' far branch
   const pf::Obstacle* obstacle = nullptr;
   std::vector<double> times;
   bool blocked_tip_force = false;
@@ -101,6 +102,8 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
     out << '\n';
   };
   bool warned = false, warned_failure = false, warned_limit = false, warned_clamp = false, warned_extrapolated = false;
+  bool told_snap = false;
+  model.startBranch(ws, columns.start_far);
   for (std::size_t row = 0; row < pressures.size(); ++row) {
     // The range rule of every interface: the row is the finger at the pressure the model was given.
     const pf::RangeCheck range = pf::checkGaugeRange(pressures[row], columns.range);
@@ -119,6 +122,13 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
       std::cerr << "finger_model: warning: " << pf::aboveValidatedMessage(p, columns.range) << "\n";
       warned_extrapolated = true;
     }
+    if (s.status == pf::EvaluationStatus::kSnappedThrough && !told_snap) {
+      std::cerr << "finger_model: note: at " << pf::formatMessage(p) << " Pa the walls are on their far branch "
+                << "(snapped through past the limit point, " << pf::formatMessage(model.limitGaugePa())
+                << " Pa; back at or below " << pf::formatMessage(model.farTurningGaugePa())
+                << " Pa): the rows follow the path, in order\n";
+      told_snap = true;
+    }
     const bool beyond_limit = s.status == pf::EvaluationStatus::kBeyondLimitPoint;
     if (s.status == pf::EvaluationStatus::kSolverFailure || beyond_limit) {
       // The model kept its previous state; printing it would put a wrong shape on this row.
@@ -126,7 +136,8 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
       if (!warned_now && beyond_limit) {
         std::cerr << "finger_model: warning: gauge pressure " << pf::formatExact(p) << " Pa is at or beyond the "
                   << "membrane wall's limit point, " << pf::formatExact(model.limitGaugePa())
-                  << " Pa, where the pressure does not determine the shape; such rows are nan\n";
+                  << " Pa, where the pressure does not determine the shape: the wall has no far branch and balloons "
+                  << "without bound (a risk of bursting); such rows are nan\n";
       } else if (!warned_now) {
         std::cerr << "finger_model: warning: solver '" << pf::solverName(model.options().solver)
                   << "' found no finite answer at " << pf::formatExact(p) << " Pa gauge; such rows are nan\n";
@@ -271,6 +282,11 @@ int main(int argc, char** argv) {
   app.add_option("--max-gauge-pa", max_gauge,
                  "top of the model's range (Pa, default 294199.5 = 3 kg/cm2): a pressure above it is clamped to it, "
                  "with a warning, as finger_node's ~max_gauge_pa does");
+  std::string start_branch = "near";
+  app.add_option("--start-branch", start_branch,
+                 "near (default) or far: the walls' branch the first row starts from (membrane law, a Gent wall that "
+                 "snaps through; docs/MODEL.md); the rows then follow the path in order")
+      ->check(CLI::IsMember({"near", "far"}));
   app.add_flag("--blocked-tip-force", columns.blocked_tip_force,
                "add blocked_tip_force_n: the tip force (N) of the finger held straight by a plate at its tip");
   std::string flow_lpm, duration_s, step_s;
@@ -305,6 +321,7 @@ int main(int argc, char** argv) {
                                "a finger held by an object or a plate changes its volume, which is not modelled, "
                                "and the pressure is an output there");
     }
+    columns.start_far = start_branch == "far";
     if (!max_gauge.empty()) columns.range = pf::PressureRange::upTo(pf::parseFiniteOption("--max-gauge-pa", max_gauge));
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);

@@ -213,9 +213,11 @@ class FingerModel {
   /// Segments per distinct chamber in the table (0 for other solvers).
   int tableSegmentCount() const;
 
-  /// Inverse model: the gauge pressure (Pa) at which the tip direction Theta_N reaches @p tip_angle_rad.
+  /// Inverse model: the gauge pressure (Pa) at which the tip direction Theta_N reaches @p tip_angle_rad. Past the
+  /// near branch of identical membrane chambers with a far branch (docs/MODEL.md, "The snap-through"), the far
+  /// branch's pressure, with @p message saying how to reach it (the snap first).
   /// @param[out] gauge_pa the pressure, when reachable
-  /// @param[out] message why not, otherwise
+  /// @param[out] message why not, otherwise; how, for a target on the far branch
   /// @return false when the angle is negative, not finite, or beyond what any pressure up to @p max_gauge_pa gives
   bool gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, double& gauge_pa, std::string& message) const;
 
@@ -339,6 +341,9 @@ class FingerModel {
   bool writeBranchState(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const;
   /// evaluate()'s far-branch path: writeBranchState into the workspace's state, with status and cache.
   const FingerState& evaluateFarBranch(double gauge_pa, FingerWorkspace& workspace) const;
+  /// gaugeForTipAngle past the near branch, for identical chambers with a far branch (finger_inverse.cpp).
+  bool gaugeOnFarBranch(double half_angle_rad, double tip_angle_rad, double max_gauge_pa, double& gauge_pa,
+                        std::string& message) const;
   /// The volume model's constants (finger_volume.cpp): each group's volume coefficient and the volume's limit.
   void buildVolumeModel();
   /// The supplied volume (m^3) of identical membrane chambers at stretch excess @p delta (>= 0, below the lock).
