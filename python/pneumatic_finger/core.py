@@ -75,7 +75,7 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
     data: a CSV path, or a mapping of column names to arrays: gauge_pa and any of joint_1_rad..joint_N_rad,
     tip_angle_rad, tip_x_m,tip_y_m (None: the package's data). keys: one to three keys, a list or "a,b" (None: the
     tool's default). compare: "joints", "average", "joint_1", "tip_angle" or "tip_position" (None: what the data
-    has). wall_law: "auto" (fit both laws, keep the better leave-one-out prediction), "paper" or "membrane" (None:
+    has). wall_law: "auto" (fit each law, keep the best leave-one-out prediction), "paper", "membrane" or "thick" (None:
     the parameter file's).
 
     Returns a dict: fitted (key -> value), wall_law, compared, objective_value, residuals (a dict of arrays, a row

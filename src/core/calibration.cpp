@@ -53,7 +53,7 @@ CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data) {
 std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity, WallLaw law) {
   if (quantity == CalibrationQuantity::kEveryJoint) return {"shear_modulus_pa", "chamber_gap_m", "base_wall_share"};
   if (quantity == CalibrationQuantity::kFirstJoint) return {"base_wall_share"};
-  if (law == WallLaw::kMembrane) return {"shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"};
+  if (law != WallLaw::kPaper) return {"shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"};
   return {"shear_modulus_pa", "chamber_gap_m"};
 }
 

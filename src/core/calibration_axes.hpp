@@ -22,9 +22,10 @@ inline constexpr const char* kFittable[] = {"shear_modulus_pa", "chamber_gap_m",
                                             "chamber_height_m", "base_wall_share", "wall_locking_jm"};
 
 inline SearchAxis axisFor(const std::string& key, const FingerParameters& base) {
-  // mu: the paper law's effective modulus over [1e5, 1e12] Pa; the membrane law's is a silicone's, 10 kPa to 10 MPa.
+  // mu: the paper law's effective modulus over [1e5, 1e12] Pa; the membrane's and the thick wall's is a silicone's,
+  // 10 kPa to 10 MPa.
   if (key == "shear_modulus_pa") {
-    return base.wall_law == WallLaw::kMembrane ? SearchAxis{key, true, 4.0, 7.0} : SearchAxis{key, true, 5.0, 12.0};
+    return base.wall_law != WallLaw::kPaper ? SearchAxis{key, true, 4.0, 7.0} : SearchAxis{key, true, 5.0, 12.0};
   }
   if (key == "base_wall_share") return {key, false, 0.0, 1.0};
   // J_m logarithmically over [1, 1e4]: from a wall that locks at lambda = 1.5 to one that behaves as Neo-Hookean.

@@ -9,11 +9,12 @@
 namespace pneumatic_finger {
 
 std::vector<WallLaw> parseWallLawChoice(const std::string& name) {
-  if (name == "auto") return {WallLaw::kPaper, WallLaw::kMembrane};
-  if (name == wallLawName(WallLaw::kPaper)) return {WallLaw::kPaper};
-  if (name == wallLawName(WallLaw::kMembrane)) return {WallLaw::kMembrane};
-  throw ParameterError("unknown wall law '" + name + "'; known: auto (fit both, keep the better prediction), paper, "
-                       "membrane");
+  if (name == "auto") return {WallLaw::kPaper, WallLaw::kMembrane, WallLaw::kThick};
+  for (WallLaw law : {WallLaw::kPaper, WallLaw::kMembrane, WallLaw::kThick}) {
+    if (name == wallLawName(law)) return {law};
+  }
+  throw ParameterError("unknown wall law '" + name + "'; known: auto (fit each, keep the best prediction), paper, "
+                       "membrane, thick");
 }
 
 std::vector<WallLawFit> calibrateWallLaws(const FingerParameters& base, const std::vector<WallLaw>& laws,

@@ -7,7 +7,9 @@
 namespace pneumatic_finger {
 
 FingerParameters calibrationBase(RawParameterMap raw, const std::string& wall_law) {
-  const bool membrane_considered = wall_law == "auto" || wall_law == wallLawName(WallLaw::kMembrane);
+  // The membrane's and the thick wall's geometry rules are the same (b may exceed L).
+  const bool membrane_considered = wall_law == "auto" || wall_law == wallLawName(WallLaw::kMembrane) ||
+                                   wall_law == wallLawName(WallLaw::kThick);
   // Each law's fit sets its own wall_law (calibrateWallLaws), so the file's is only the validation's.
   if (membrane_considered) {
     const ParameterSpec& spec = *findParameterSpec("wall_law");

@@ -16,7 +16,7 @@ namespace pneumatic_finger {
 // The free wall's bulge at @p gauge_pa (m): stages 1-3 of its law (NaN beyond the membrane law's limit point).
 double FingerModel::freeBulgeM(const ChamberGroup& g, double gauge_pa) const {
   if (!(gauge_pa > 0)) return 0.0;
-  if (membrane_) return 0.5 * g.chamber_height_m * membraneStretchExcess(g.membrane, gauge_pa);
+  if (membrane_) return membraneBulgeM(g.membrane, membraneStretchExcess(g.membrane, gauge_pa));
   return bulge(stretchExcess(energyGroup(gauge_pa, parameters_.atmospheric_pressure_pa, g.shear_modulus_pa)),
                g.chamber_height_m);
 }

@@ -99,8 +99,8 @@ bool FingerModel::gaugeOnFarBranch(double half_angle_rad, double tip_angle_rad, 
                                    std::string& message) const {
   const ChamberGroup& g = groups_[0];
   const MembraneWall& w = g.membrane;
-  const double delta = 2.0 * bulgeForHalfAngle(half_angle_rad, g.chamber_gap_m, g.wall_critical_height_m) /
-                       g.chamber_height_m;
+  const double delta = membraneStretchForBulge(w, bulgeForHalfAngle(half_angle_rad, g.chamber_gap_m,
+                                                                     g.wall_critical_height_m));
   std::ostringstream why;
   why << "tip angle " << formatMessage(tip_angle_rad) << " rad ";
   if (!(delta > w.far_turning_stretch_excess)) {

@@ -37,7 +37,7 @@ SolverKind parseSolverName(const std::string& name) {
 FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions& options)
     : parameters_(parameters), options_(options), first_joint_series_(firstJointSeries(parameters.base_wall_share)) {
   const int n = parameters_.chamber_count;
-  membrane_ = parameters_.wall_law == WallLaw::kMembrane;
+  membrane_ = parameters_.wall_law != WallLaw::kPaper;  // the membrane and the thick wall share its code
   if (membrane_ && options_.solver == SolverKind::kPaper) {
     throw ParameterError("the paper solver evaluates the paper's closed forms (eq 10-35), which the membrane wall law "
                          "does not have; use the robust or the table solver with wall_law: membrane");
@@ -89,7 +89,8 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
 void FingerModel::addGroup(ChamberGroup g) {
   const double p_o = parameters_.atmospheric_pressure_pa;
   if (membrane_) {
-    g.membrane = membraneWall(g.shear_modulus_pa, g.wall_thickness_m, g.chamber_height_m, parameters_.wall_locking_jm);
+    g.membrane = membraneWall(g.shear_modulus_pa, g.wall_thickness_m, g.chamber_height_m, parameters_.wall_locking_jm,
+                              parameters_.wall_law == WallLaw::kThick);
     const double p = membraneGaugeForBulge(g.membrane, g.chamber_gap_m);
     g.contact_gauge_pa = std::isnan(p) ? std::numeric_limits<double>::infinity() : p;
   } else {

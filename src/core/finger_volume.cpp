@@ -46,8 +46,7 @@ void FingerModel::buildVolumeModel() {
     // dV/ddelta = 3 V_o lambda^2 + V_g P_o P'/(P_o + P)^2. The second term is negative only past the pressure's
     // limit point. A Neo-Hookean wall has |P'| <= (4 mu t/L)/lambda^2 there, so beyond
     // lambda^4 = V_g (4 mu t/L) / (3 V_o P_o) the chambers' growth wins for good: the scan ends there (or at the lock).
-    const double slope_end =
-        std::pow(v_g * wall.pressure_scale_pa / (3.0 * volume_coefficient_[0] * p_o), 0.25) - 1.0;
+    const double slope_end = std::pow(v_g * wall.decay_scale_pa / (3.0 * volume_coefficient_[0] * p_o), 0.25) - 1.0;
     if (!std::isfinite(end)) end = 1.01 * std::max(slope_end, wall.limit_stretch_excess);
     const auto slope = [this, &wall, v_g, p_o](double d) {
       const double p = membraneGaugeForStretchExcess(wall, d);
@@ -96,7 +95,7 @@ double FingerModel::suppliedVolumeAtStretch(double delta) const {
 
 bool FingerModel::writeStretchState(double delta, FingerState& out) const {
   const ChamberGroup& group = groups_[0];
-  const double bulge_m = 0.5 * group.chamber_height_m * delta;
+  const double bulge_m = membraneBulgeM(group.membrane, delta);
   const HalfAngle half = halfAngle(bulge_m, group.chamber_gap_m, group.wall_critical_height_m);
   if (!std::isfinite(half.rad)) return false;
   uniformWriterFor(parameters_.chamber_count)(parameters_, first_joint_series_, options_.chamber_detail, 1.0 + delta,

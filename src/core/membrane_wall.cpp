@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "first_zero.hpp"
+#include "thick_wall.hpp"
 
 namespace pneumatic_finger {
 
@@ -23,6 +24,7 @@ double firstInvariantExcess(double d) {
 // The sign of d P / d lambda, times positive factors: (J_m - e)(7 - lambda^6) lambda^4 + 4 (lambda^6 - 1)^2 for a
 // Gent wall (the log slope times lambda (lambda^6 - 1) lambda^4 (J_m - e)); 7 - lambda^6 for a Neo-Hookean one.
 double slopeSign(const MembraneWall& w, double d) {
+  if (w.thick) return thickGaugeSlope(w, d);
   const double lam = 1.0 + d, u = sixthPowerMinusOne(d);
   if (w.locking_jm == 0.0) return 6.0 - u;
   const double lam4 = lam * lam * lam * lam;
@@ -44,10 +46,16 @@ double gentLimitStretchExcess(const MembraneWall& w) {
 }  // namespace
 
 MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, double chamber_height_m,
-                          double locking_jm) {
+                          double locking_jm, bool thick) {
   MembraneWall w;
   w.chamber_height_m = chamber_height_m;
-  w.pressure_scale_pa = 4.0 * shear_modulus_pa * wall_thickness_m / chamber_height_m;
+  w.thick = thick;
+  w.pressure_scale_pa = thick ? shear_modulus_pa : 4.0 * shear_modulus_pa * wall_thickness_m / chamber_height_m;
+  if (thick) {
+    w.outer_inner_ratio = 1.0 + 2.0 * wall_thickness_m / chamber_height_m;  // B/A, A = L/2
+    w.inner_outer_volume_ratio = 1.0 / (w.outer_inner_ratio * w.outer_inner_ratio * w.outer_inner_ratio);
+  }
+  w.decay_scale_pa = thick ? 4.0 * shear_modulus_pa * w.outer_inner_ratio : w.pressure_scale_pa;
   w.locking_jm = locking_jm;
   w.locking_stretch_excess = kInf;
   if (locking_jm > 0.0) {
@@ -57,7 +65,14 @@ MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, doub
     w.locking_stretch_excess =
         bisectSignChange([locking_jm](double d) { return firstInvariantExcess(d) - locking_jm; }, 0.0, hi);
   }
-  w.limit_stretch_excess = locking_jm == 0.0 ? std::pow(7.0, 1.0 / 6.0) - 1.0 : gentLimitStretchExcess(w);
+  if (thick) {
+    // No closed form: the first fall of dP/ddelta below zero, from rest to the lock (a Neo-Hookean thick wall's
+    // maximum comes later the thicker the wall; past delta = 100 a wall would have burst long before).
+    const double end = std::isfinite(w.locking_stretch_excess) ? w.locking_stretch_excess : 100.0;
+    w.limit_stretch_excess = firstFallBelowZero([&w](double x) { return slopeSign(w, x); }, 1e-9, end);
+  } else {
+    w.limit_stretch_excess = locking_jm == 0.0 ? std::pow(7.0, 1.0 / 6.0) - 1.0 : gentLimitStretchExcess(w);
+  }
   w.limit_gauge_pa = std::isfinite(w.limit_stretch_excess)
                          ? membraneGaugeForStretchExcess(w, w.limit_stretch_excess)
                          : kInf;
@@ -82,6 +97,7 @@ MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, doub
 }
 
 double membraneGaugeForStretchExcess(const MembraneWall& w, double d) {
+  if (w.thick) return thickGaugeForStretchExcess(w, d);
   const double lam = 1.0 + d, lam2 = lam * lam, lam7 = lam2 * lam2 * lam2 * lam;
   const double neo_hookean = w.pressure_scale_pa * (sixthPowerMinusOne(d) / lam7);
   if (w.locking_jm == 0.0) return neo_hookean;
@@ -90,6 +106,7 @@ double membraneGaugeForStretchExcess(const MembraneWall& w, double d) {
 }
 
 double membraneLogSlope(const MembraneWall& w, double d) {
+  if (w.thick) return thickGaugeSlope(w, d) / thickGaugeForStretchExcess(w, d);
   // d ln P / d lambda = (7 - lambda^6) / (lambda (lambda^6 - 1)) + e'(lambda) / (J_m - e), e' = 4 (lambda^6 - 1)/lambda^5.
   const double lam = 1.0 + d, u = sixthPowerMinusOne(d);
   double slope = (6.0 - u) / (lam * u);
@@ -127,7 +144,8 @@ double membraneStretchExcess(const MembraneWall& w, double gauge_pa) {
   // P rises on [0, limit] (on [0, lock) without a limit). Near rest P = 6 (4 mu t/L) delta (1 + O(delta)), the
   // first guess.
   const double hi = std::isfinite(w.limit_stretch_excess) ? w.limit_stretch_excess : w.locking_stretch_excess;
-  double d = gauge_pa / (6.0 * w.pressure_scale_pa);
+  // (The thick wall's P ~ 6 mu (1 - (A/B)^3) delta near rest: the same guess is a start, not an answer.)
+  double d = gauge_pa / (6.0 * (w.thick ? w.pressure_scale_pa * (1.0 - w.inner_outer_volume_ratio) : w.pressure_scale_pa));
   if (!(d < hi)) d = std::isfinite(hi) ? 0.5 * hi : 1.0;
   return risingStretchExcess(w, gauge_pa, 0.0, hi, d);
 }
@@ -155,17 +173,30 @@ WallSolution solveMembraneWall(const MembraneWall& w, double gauge_pa, double ga
 WallSolution membraneWallAtStretch(const MembraneWall& w, double delta, double gap_m, double wall_critical_height_m) {
   WallSolution s;
   s.stretch_excess = delta;
-  s.bulge_m = 0.5 * w.chamber_height_m * delta;
+  s.bulge_m = membraneBulgeM(w, delta);
   s.half = halfAngle(s.bulge_m, gap_m, wall_critical_height_m);
   return s;
 }
 
 double membraneGaugeForBulge(const MembraneWall& w, double bulge_m) {
   if (!(bulge_m > 0.0)) return 0.0;
-  const double delta = 2.0 * bulge_m / w.chamber_height_m;
+  const double delta = membraneStretchForBulge(w, bulge_m);
   const double top = std::isfinite(w.limit_stretch_excess) ? w.limit_stretch_excess : w.locking_stretch_excess;
   if (!(delta < top)) return std::numeric_limits<double>::quiet_NaN();
   return membraneGaugeForStretchExcess(w, delta);
+}
+
+double membraneBulgeM(const MembraneWall& w, double delta) {
+  if (!w.thick) return 0.5 * w.chamber_height_m * delta;
+  return 0.5 * w.chamber_height_m * w.outer_inner_ratio * thickOuterStretchExcess(w, delta);
+}
+
+double membraneStretchForBulge(const MembraneWall& w, double bulge_m) {
+  if (!w.thick) return 2.0 * bulge_m / w.chamber_height_m;
+  // The outer face's stretch excess, then lambda_a^3 - 1 = (lambda_b^3 - 1) (B/A)^3.
+  const double db = 2.0 * bulge_m / (w.chamber_height_m * w.outer_inner_ratio);
+  const double ub = db * (3.0 + db * (3.0 + db));
+  return std::expm1(std::log1p(ub / w.inner_outer_volume_ratio) / 3.0);
 }
 
 }  // namespace pneumatic_finger

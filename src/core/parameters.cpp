@@ -50,13 +50,14 @@ const std::vector<ParameterSpec> kSpecs = {
      "density of the elastomer, for the URDF's link masses and inertias (not used by the model)"},
     // The membrane law (docs/MODEL.md, "The membrane law"). Its shear modulus is a real silicone's, 10 kPa to 10 MPa
     // (the key's range stays wide because the paper law's effective mu is 2.2e8 Pa).
-    {"wall_law", "-", "-", 0, 0, true, 1, ParameterShape::kChoice,
-     "stages 1-3: 'paper' (the paper's air-spring energy and Neo-Hookean strip) or 'membrane' (an inflated "
-     "Neo-Hookean or Gent membrane, with a limit point)", "paper|membrane"},
+    {"wall_law", "-", "-", 0, 0, true, 2, ParameterShape::kChoice,
+     "stages 1-3: 'paper' (the paper's air-spring energy and Neo-Hookean strip), 'membrane' (an inflated thin "
+     "Neo-Hookean or Gent membrane, with a limit point) or 'thick' (the same sphere with a wall as thick as it is)",
+     "paper|membrane|thick"},
     {"wall_thickness_m", "t", "m", 0.002, 0, false, 0.5, ParameterShape::kPerChamber,
-     "membrane law: thickness of a chamber's wall at rest (the paper law does not use it)"},
+     "membrane and thick laws: thickness of a chamber's wall at rest (the paper law does not use it)"},
     {"wall_locking_jm", "J_m", "-", 0, 0, true, 1e4, ParameterShape::kScalar,
-     "membrane law: Gent's locking invariant, the I1 - 3 at which the elastomer locks; 0: no locking "
+     "membrane and thick laws: Gent's locking invariant, the I1 - 3 at which the elastomer locks; 0: no locking "
      "(Neo-Hookean)"},
     // docs/MODEL.md "Volume": the gas the supply compresses besides growing the chambers. Up to a cubic metre: a
     // lab's cylinder, tubes and reservoir, with a unit mistake (mL for m^3) refused.
@@ -227,7 +228,7 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& raw) {
   // docs/MODEL.md stage 3-4: under the paper law b is a height on the wall, so it cannot exceed the wall (chamber)
   // height L. Under the membrane law b is where the walls push, measured from the bending axis: the chamber need not
   // sit on the base layer, so b may exceed L ("The membrane law").
-  for (int i = 0; i < n && p.wall_law == WallLaw::kPaper; ++i) {
+  for (int i = 0; i < n && p.wall_law == WallLaw::kPaper; ++i) {  // (the thick wall's b is the membrane's)
     const auto k = static_cast<std::size_t>(i);
     if (p.wall_critical_height_m[k] > p.chamber_height_m[k]) {
       std::ostringstream s;
@@ -327,7 +328,9 @@ std::string formatParameterValue(const ParameterSpec& spec, double value) {
   return value >= 0 && k < names.size() ? names[k] : formatExact(value);
 }
 
-const char* wallLawName(WallLaw law) { return law == WallLaw::kMembrane ? "membrane" : "paper"; }
+const char* wallLawName(WallLaw law) {
+  return law == WallLaw::kMembrane ? "membrane" : law == WallLaw::kThick ? "thick" : "paper";
+}
 
 double FingerParameters::lengthM() const {
   double length_m = base_segment_length_m;

@@ -19,7 +19,15 @@ namespace pneumatic_finger {
 /// One chamber group's membrane: its constants and its limit point, computed once (a model builds it).
 struct MembraneWall {
   double chamber_height_m = 0.0;   ///< L (m): the rest radius is L/2
-  double pressure_scale_pa = 0.0;  ///< 4 mu t / L (Pa)
+  double pressure_scale_pa = 0.0;  ///< 4 mu t / L (Pa); thick wall: mu
+  /// The thick wall (wall_law: thick; docs/MODEL.md "The thick wall"): an incompressible sphere of inner radius
+  /// A = L/2 and outer radius B = A + t, delta the inner surface's stretch excess. false: the thin membrane.
+  bool thick = false;
+  double inner_outer_volume_ratio = 1.0;  ///< (A/B)^3: lambda_b^3 - 1 = (A/B)^3 (lambda_a^3 - 1)
+  double outer_inner_ratio = 1.0;         ///< B/A: the outer face's bulge is B (lambda_b - 1)
+  /// Past the limit point |dP/ddelta| <= decay_scale_pa / lambda^2 (the supplied volume's snap search ends by it):
+  /// 4 mu t/L for the membrane, 4 mu B/A for the thick wall.
+  double decay_scale_pa = 0.0;
   double locking_jm = 0.0;         ///< J_m (-); 0: Neo-Hookean
   double locking_stretch_excess;   ///< delta where I1 - 3 = J_m (the wall locks; +inf for J_m = 0)
   double limit_stretch_excess;     ///< delta at the first pressure maximum (+inf: P rises to the lock)
@@ -35,7 +43,14 @@ struct MembraneWall {
 /// The membrane of a wall of height @p chamber_height_m (L), thickness @p wall_thickness_m (t), shear modulus
 /// @p shear_modulus_pa (mu) and Gent locking invariant @p locking_jm (J_m, 0 for none), with its limit point.
 MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, double chamber_height_m,
-                          double locking_jm);
+                          double locking_jm, bool thick = false);
+
+/// The bulge h (m) of the wall's outer face at stretch excess @p delta: (L/2) delta for the membrane, B (lambda_b - 1)
+/// for the thick wall.
+double membraneBulgeM(const MembraneWall& wall, double delta);
+
+/// The stretch excess at which the wall's outer face has bulged by @p bulge_m (>= 0): membraneBulgeM inverted.
+double membraneStretchForBulge(const MembraneWall& wall, double bulge_m);
 
 /// The law itself: the gauge pressure (Pa) at stretch excess @p delta >= 0, without cancellation near rest
 /// (1/lambda - 1/lambda^7 = (lambda^6 - 1)/lambda^7 with lambda^6 - 1 a polynomial in delta). +inf at or beyond the

@@ -36,9 +36,10 @@ enum class ParameterShape {
 enum class WallLaw : int {
   kPaper = 0,     ///< the paper's chain: air-spring energy, uniaxial Neo-Hookean strip, elliptical bulge
   kMembrane = 1,  ///< an inflated thin Neo-Hookean (or Gent) membrane: a balloon with a limit point
+  kThick = 2,     ///< the membrane's sphere with a wall as thick as it is (a thick incompressible sphere)
 };
 
-/// "paper" or "membrane".
+/// "paper", "membrane" or "thick".
 const char* wallLawName(WallLaw law);
 
 /// The definition of one key: everything the library, the tools, the node and the docs know about it.

@@ -1,0 +1,151 @@
+// The thick wall (wall_law: thick; docs/MODEL.md "The thick wall") against a reference that writes its pressure
+// literally from the elastomer's energy: P = int_{lambda_b}^{lambda_a} W'(lambda)/(lambda^3 - 1) dlambda, W the
+// equibiaxial Neo-Hookean or Gent energy differentiated by hand, lambda_b from the wall's volume by a cube root, the
+// integral by Simpson's rule with Richardson's correction, all in __float128. None of the library's forms (the closed
+// Neo-Hookean antiderivative, Gauss-Legendre panels, the cancellation-free differences) appear in it.
+#include <gtest/gtest.h>
+
+#include <quadmath.h>
+
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/membrane_wall.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+using quad = __float128;
+
+constexpr double kMu = 2e4, kHeight = 0.0115;
+
+// dW/dlambda of W(lambda, lambda, lambda^-2): Neo-Hookean (mu/2)(I1 - 3), Gent -(mu J/2) ln(1 - (I1 - 3)/J).
+quad energySlope(quad lam, quad jm) {
+  const quad i1_m3 = 2 * lam * lam + 1 / (lam * lam * lam * lam) - 3;
+  const quad di1 = 4 * lam - 4 / (lam * lam * lam * lam * lam);
+  const quad neo = quad(kMu) / 2 * di1;
+  return jm == 0 ? neo : neo * jm / (jm - i1_m3);
+}
+
+quad simpson(quad a, quad b, quad jm, int panels) {
+  const quad h = (b - a) / panels;
+  quad sum = 0;
+  for (int i = 0; i <= panels; ++i) {
+    const quad lam = a + h * i;
+    const quad f = energySlope(lam, jm) / (lam * lam * lam - 1);
+    sum += f * (i == 0 || i == panels ? 1 : (i % 2 ? 4 : 2));
+  }
+  return sum * h / 3;
+}
+
+double referenceGauge(double delta, double thickness, double jm) {
+  const quad a = quad(kHeight) / 2, b = a + quad(thickness);
+  const quad la = 1 + quad(delta);
+  const quad lb = cbrtq(1 + (a * a * a) / (b * b * b) * (la * la * la - 1));
+  const quad coarse = simpson(lb, la, quad(jm), 1024), fine = simpson(lb, la, quad(jm), 2048);
+  return static_cast<double>(fine + (fine - coarse) / 15);
+}
+
+pf::FingerParameters thickFinger(double thickness, double jm) {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlText("wall_law: thick\nshear_modulus_pa: 2e4\nwall_thickness_m: " +
+                                        pf::formatExact(thickness) + "\nwall_locking_jm: " + std::to_string(jm) + "\n",
+                                    "test", raw);
+  return pf::FingerParameters::fromRaw(raw);
+}
+
+struct Case {
+  double thickness, jm;
+};
+// Walls from a fifth of the chamber's radius to three times it (the cylindrical segment's), Neo-Hookean and Gent.
+const Case kCases[] = {{0.2 * kHeight / 2, 0.0}, {kHeight / 2, 0.0}, {3 * kHeight / 2, 0.0},
+                       {0.2 * kHeight / 2, 50.0}, {kHeight / 2, 50.0}, {3 * kHeight / 2, 50.0}};
+
+}  // namespace
+
+TEST(ThickWall, PressureMatchesTheQuadReferenceFromRestToNearTheLock) {
+  for (const Case& c : kCases) {
+    SCOPED_TRACE("t " + std::to_string(c.thickness) + " J_m " + std::to_string(c.jm));
+    const pf::MembraneWall w = pf::membraneWall(kMu, c.thickness, kHeight, c.jm, true);
+    const double top = c.jm > 0 ? 0.95 * w.locking_stretch_excess : 5.0;
+    for (double d = 1e-6; d < top; d *= 1.4) {
+      const double ref = referenceGauge(d, c.thickness, c.jm);
+      EXPECT_LT(std::fabs(pf::membraneGaugeForStretchExcess(w, d) - ref) / ref, 1e-12) << d;
+    }
+  }
+}
+
+TEST(ThickWall, TheTurningPointsMatchTheQuadReference) {
+  for (const Case& c : kCases) {
+    SCOPED_TRACE("t " + std::to_string(c.thickness) + " J_m " + std::to_string(c.jm));
+    const pf::MembraneWall w = pf::membraneWall(kMu, c.thickness, kHeight, c.jm, true);
+    ASSERT_TRUE(std::isfinite(w.limit_gauge_pa));
+    // The reference's maximum (and, for Gent, its minimum past it) by golden-section search: values, not places,
+    // are well conditioned there.
+    auto extremum = [&](double a, double b, bool maximum) {
+      for (int i = 0; i < 100; ++i) {
+        const double x1 = b - 0.618 * (b - a), x2 = a + 0.618 * (b - a);
+        const double f1 = referenceGauge(x1, c.thickness, c.jm), f2 = referenceGauge(x2, c.thickness, c.jm);
+        ((f1 > f2) == maximum ? b : a) = (x1 + x2) / 2;
+      }
+      return referenceGauge(0.5 * (a + b), c.thickness, c.jm);
+    };
+    const double peak = extremum(0.5 * w.limit_stretch_excess, 1.5 * w.limit_stretch_excess, true);
+    EXPECT_LT(std::fabs(w.limit_gauge_pa - peak) / peak, 1e-12);
+    if (c.jm > 0) {
+      ASSERT_TRUE(std::isfinite(w.far_turning_gauge_pa));
+      const double low = extremum(w.limit_stretch_excess, 0.95 * w.locking_stretch_excess, false);
+      EXPECT_LT(std::fabs(w.far_turning_gauge_pa - low) / low, 1e-12);
+    } else {
+      EXPECT_EQ(w.far_turning_gauge_pa, std::numeric_limits<double>::infinity());
+    }
+  }
+}
+
+// A thin wall is the membrane: the two laws differ by O(t/R). A thick one's limit pressure grows more slowly than
+// the membrane's mu t/L: twice the wall is less than twice the limit.
+TEST(ThickWall, ThinItIsTheMembraneAndThickItsLimitGrowsSlowerThanTheWall) {
+  for (double jm : {0.0, 50.0}) {
+    const double t = 1e-6 * kHeight;
+    const pf::MembraneWall thick = pf::membraneWall(kMu, t, kHeight, jm, true);
+    const pf::MembraneWall thin = pf::membraneWall(kMu, t, kHeight, jm, false);
+    EXPECT_NEAR(thick.limit_gauge_pa / thin.limit_gauge_pa, 1.0, 1e-5);
+    EXPECT_NEAR(pf::membraneGaugeForStretchExcess(thick, 0.2) / pf::membraneGaugeForStretchExcess(thin, 0.2), 1.0,
+                1e-5);
+  }
+  double previous = 0.0;
+  for (double ratio : {0.25, 0.5, 1.0, 2.0, 4.0}) {
+    const pf::MembraneWall w = pf::membraneWall(kMu, ratio * kHeight / 2, kHeight, 0.0, true);
+    const pf::MembraneWall m = pf::membraneWall(kMu, ratio * kHeight / 2, kHeight, 0.0, false);
+    EXPECT_LT(w.limit_gauge_pa, m.limit_gauge_pa) << ratio;
+    if (previous > 0.0) {
+      EXPECT_LT(w.limit_gauge_pa, 2.0 * previous) << ratio;
+    }
+    EXPECT_GT(w.limit_gauge_pa, previous) << ratio;
+    previous = w.limit_gauge_pa;
+  }
+}
+
+// The finger under the thick law: its stretch solves the law, its bulge is the outer face's, the volume input and
+// the snap-through work as for the membrane.
+TEST(ThickWall, TheFingerSolvesItAndFollowsItsVolumeAndItsSnap) {
+  const pf::FingerModel model(thickFinger(kHeight / 2, 50.0));
+  pf::FingerWorkspace ws(model);
+  const double p = 0.6 * model.limitGaugePa();
+  const pf::FingerState& s = model.evaluate(p, ws);
+  ASSERT_EQ(s.status, pf::EvaluationStatus::kOk);
+  const double delta = s.stretch[0] - 1.0;
+  EXPECT_LT(std::fabs(referenceGauge(delta, kHeight / 2, 50.0) - p) / p, 1e-12);
+  const quad la = 1 + quad(delta), lb = cbrtq(1 + (la * la * la - 1) / 8);  // B/A = 2
+  EXPECT_NEAR(s.bulge_m[0], static_cast<double>(quad(kHeight) * (lb - 1)), 1e-15);
+  const double v = model.suppliedVolumeAt(p);
+  pf::FingerWorkspace by_volume(model);
+  EXPECT_LT(std::fabs(model.evaluateVolume(v, by_volume).gauge_pa - p) / p, 1e-12);
+  EXPECT_EQ(model.evaluate(1.01 * model.limitGaugePa(), ws).status, pf::EvaluationStatus::kSnappedThrough);
+  EXPECT_EQ(model.evaluate(0.99 * model.farTurningGaugePa(), ws).status, pf::EvaluationStatus::kOk);
+  EXPECT_STREQ(pf::wallLawName(pf::WallLaw::kThick), "thick");
+}
