@@ -215,10 +215,11 @@ void benchVariant(benchmark::State& state, const std::string& name, bool hard) {
 
 // The membrane wall law (docs/MODEL.md): the paper's finger with a silicone wall (mu = 20 kPa, t = 2 mm, Gent
 // J_m = 50, so a limit point), 64 pressures from rest to 0.99 of the limit point, one at a time as the node runs
-// them; its error against the quad reference (the law by bisection, Wang's half angle by bisection) as counters.
-void benchMembrane(benchmark::State& state) {
+// them; under the membrane law its error against the quad reference (the law by bisection, Wang's half angle by
+// bisection) as a counter. @p law: the membrane or the thick wall (the same finger, its wall's real thickness).
+void benchMembrane(benchmark::State& state, pf::WallLaw law) {
   pf::FingerParameters params = kParams;
-  params.wall_law = pf::WallLaw::kMembrane;
+  params.wall_law = law;
   params.shear_modulus_pa.assign(params.shear_modulus_pa.size(), 2e4);
   params.wall_thickness_m.assign(params.wall_thickness_m.size(), 0.002);
   params.wall_locking_jm = 50.0;
@@ -226,12 +227,15 @@ void benchMembrane(benchmark::State& state) {
   pf::FingerWorkspace ws(model);
   std::vector<double> pressures;
   for (int i = 1; i <= 64; ++i) pressures.push_back(0.99 * model.limitGaugePa() * i / 64.0);
-  double worst = 0.0;
-  const reference::Membrane wall{2e4, 0.002, params.chamber_height_m[0], 50.0};
-  for (double p : pressures) {
-    const double h = 0.5 * params.chamber_height_m[0] * reference::membraneStretchExcess(wall, p);
-    const double theta = reference::halfAngleForBulge(h, params.chamber_gap_m[0], params.wall_critical_height_m[0]);
-    worst = std::max(worst, std::fabs(model.evaluate(p, ws).half_angle_rad[0] - theta));
+  if (law == pf::WallLaw::kMembrane) {
+    double worst = 0.0;
+    const reference::Membrane wall{2e4, 0.002, params.chamber_height_m[0], 50.0};
+    for (double p : pressures) {
+      const double h = 0.5 * params.chamber_height_m[0] * reference::membraneStretchExcess(wall, p);
+      const double theta = reference::halfAngleForBulge(h, params.chamber_gap_m[0], params.wall_critical_height_m[0]);
+      worst = std::max(worst, std::fabs(model.evaluate(p, ws).half_angle_rad[0] - theta));
+    }
+    state.counters["max_theta_error_rad"] = worst;
   }
   std::size_t i = 0;
   for (auto _ : state) {
@@ -240,8 +244,7 @@ void benchMembrane(benchmark::State& state) {
     benchmark::ClobberMemory();
     if (++i == pressures.size()) i = 0;
   }
-  state.counters["max_theta_error_rad"] = worst;
-  state.SetLabel("membrane wall law, Gent, up to 0.99 of the limit point");
+  state.SetLabel(std::string(pf::wallLawName(law)) + " wall law, Gent, up to 0.99 of the limit point");
 }
 
 // Volume as the input (docs/MODEL.md, "Volume"), beside membrane/validated: the same finger with 10 mL of gas in the
@@ -544,7 +547,8 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("robust_pair/validated", benchPair);
   benchmark::RegisterBenchmark("force/blocked_tip", benchBlockedForce);
   benchmark::RegisterBenchmark("force/contact", benchContactForce);
-  benchmark::RegisterBenchmark("membrane/validated", benchMembrane);
+  benchmark::RegisterBenchmark("membrane/validated", benchMembrane, pf::WallLaw::kMembrane);
+  benchmark::RegisterBenchmark("thick/validated", benchMembrane, pf::WallLaw::kThick);
   benchmark::RegisterBenchmark("membrane/volume", benchMembraneVolume);
   for (int stage = 1; stage <= 5; ++stage) {
     benchmark::RegisterBenchmark(("robust_stage/" + std::to_string(stage)).c_str(),

@@ -1,4 +1,4 @@
-"""Both wall laws on every data set: fit, leave-one-out, and a fit to half the points predicting the other half.
+"""Every wall law on every data set: fit, leave-one-out, and a fit to half the points predicting the other half.
 
 usage: python3 scripts/accuracy_laws.py [--plot FILE]   (needs the built package: source devel/setup.bash)
 
@@ -38,17 +38,21 @@ SETS = [
      "compare": "average", "column": "avg", "laws": {
          "paper": {"start": {}, "keys": [MU, GAP], "half_keys": [MU], "half_start": {GAP: 0.0}},
          "membrane": {"start": {"wall_law": "membrane", MU: 2e4}, "keys": [MU, GAP], "half_keys": [MU],
-                      "half_start": {GAP: 0.0}}}},
+                      "half_start": {GAP: 0.0}},
+         "thick": {"start": {"wall_law": "thick", MU: 2e4}, "keys": [MU, GAP], "half_keys": [MU],
+                   "half_start": {GAP: 0.0}}}},
     {"name": "Marchese 2015 ribbed segment", "data": "data/marchese2015_ribbed_bending.csv",
      "config": "config/marchese2015_ribbed.yaml", "compare": "tip_angle", "column": "bend_angle_rad", "laws": {
          "paper": {"start": {"wall_law": "paper", "wall_critical_height_m": 0.00155}, "keys": [MU, GAP]},
          "membrane, Neo-Hookean": {"start": {JM: 0.0}, "keys": [MU, GAP], "variant": True},
-         "membrane": {"start": {}, "keys": [MU, GAP, JM]}}},
+         "membrane": {"start": {}, "keys": [MU, GAP, JM]},
+         "thick": {"start": {"wall_law": "thick"}, "keys": [MU, GAP, JM]}}},
     {"name": "Marchese 2015 cylindrical segment", "data": "data/marchese2015_cylindrical_bending.csv",
      "config": "config/marchese2015_cylindrical.yaml", "compare": "tip_angle", "column": "bend_angle_rad", "laws": {
          "paper": {"start": {"wall_law": "paper", "wall_critical_height_m": 0.0014}, "keys": [MU, GAP]},
          "membrane, Neo-Hookean": {"start": {JM: 0.0}, "keys": [MU, GAP], "variant": True},
-         "membrane": {"start": {}, "keys": [MU, GAP, JM]}}},
+         "membrane": {"start": {}, "keys": [MU, GAP, JM]},
+         "thick": {"start": {"wall_law": "thick"}, "keys": [MU, GAP, JM]}}},
 ]
 
 
@@ -75,7 +79,8 @@ def write_rows(rows, directory, name):
 def predict(config, overrides, pressures, column):
     """The model's compared quantity at each pressure (NaN where it has no shape: beyond the limit point)."""
     out = pf.FingerModel(str(ROOT / config), overrides).evaluate(np.asarray(pressures, dtype=float))
-    shaped = np.isin(out["status"], [pf.STATUS.index("ok"), pf.STATUS.index("vacuum")])
+    # In pressure order, as a ramp: a wall past its limit point is on its far branch ("snapped through"), a shape too.
+    shaped = np.isin(out["status"], [pf.STATUS.index(s) for s in ("ok", "vacuum", "snapped through")])
     value = out["joint_angle_rad"][:, 1:].mean(axis=1) if column == "avg" else out["tip_angle_rad"]
     return np.where(shaped, value, np.nan)
 
@@ -160,7 +165,7 @@ def table(results):
 
 def plot(results, path):
     fig, axes = plt.subplots(1, len(SETS), figsize=(5.2 * len(SETS), 4.4))
-    colors = {"paper": "tab:blue", "membrane": "tab:red", "membrane, Neo-Hookean": "tab:orange"}
+    colors = {"paper": "tab:blue", "membrane": "tab:red", "membrane, Neo-Hookean": "tab:orange", "thick": "tab:green"}
     for ax, s, r in zip(axes, SETS, results):
         p = np.array(r["p"]) / 1e3
         truth = np.degrees(r["truth"])

@@ -12,7 +12,7 @@ bad = [(r["name"], k) for r in runs for k, v in r.items() if isinstance(v, float
 names = {r["name"] for r in runs}
 expected = {f"{v}/{s}" for v in ("robust", "table", "paper", "eigen_companion", "gsl_complex")
             for s in ("validated", "hard")} | {"robust_pair/validated"} | {f"robust_stage/{i}" for i in range(1, 6)} | {f"latency/{i}" for i in range(4)} | {f"contact/{i}" for i in range(4)} \
-    | {"membrane/validated", "membrane/volume"} \
+    | {"membrane/validated", "membrane/volume", "thick/validated"} \
     | {f"{b}/{p}" for b in ("batch", "batch_backbone") for p in ("scalar", "generic", "avx2", "avx512")}
 missing = expected - names
 # Only the batch paths of an instruction set the CPU lacks may be skipped.

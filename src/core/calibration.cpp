@@ -119,8 +119,11 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
   none.backbone_m.setConstant(nan);
   none.tip_angle_rad = nan;
   for (const Measurement& m : data) {
+    // The rows in order, as a path: a wall past its limit point snaps to its far branch where it has one, and such a
+    // row is data like any other (docs/MODEL.md, "The snap-through").
     const FingerState& evaluated = model.evaluate(m.gauge_pa, ws);
-    const bool shaped = evaluated.status == EvaluationStatus::kOk || evaluated.status == EvaluationStatus::kVacuum;
+    const bool shaped = evaluated.status == EvaluationStatus::kOk || evaluated.status == EvaluationStatus::kVacuum ||
+                        evaluated.status == EvaluationStatus::kSnappedThrough;
     const FingerState& s = shaped ? evaluated : none;
     Residual r;
     r.gauge_pa = m.gauge_pa;

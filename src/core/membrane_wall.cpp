@@ -128,7 +128,9 @@ double risingStretchExcess(const MembraneWall& w, double gauge_pa, double lo, do
     if (p == gauge_pa) return d;
     (p < gauge_pa ? lo : hi) = d;
     // Newton in ln P: ln P is concave enough near the limit that the step stays on the bracket's inside.
-    double next = d - (std::log(p) - std::log(gauge_pa)) / membraneLogSlope(w, d);
+    // (The thick wall's slope over the p in hand: its membraneLogSlope would integrate p again.)
+    const double log_slope = w.thick ? thickGaugeSlope(w, d) / p : membraneLogSlope(w, d);
+    double next = d - (std::log(p) - std::log(gauge_pa)) / log_slope;
     if (!(next > lo && next < hi)) next = std::isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * d;
     if (std::fabs(next - d) <= 2e-16 * d) return next;
     d = next;
