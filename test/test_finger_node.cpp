@@ -189,7 +189,7 @@ TEST_F(FingerNodeTest, FingerStateCarriesTheModel) {
       EXPECT_EQ(s.backbone[static_cast<std::size_t>(n)].y, want.backbone_m(1, n)) << n;
     }
     EXPECT_EQ(s.tip_angle_rad, want.tip_angle_rad);
-    EXPECT_EQ(s.supplied_volume_m3, model.suppliedVolumeAt(p));
+    EXPECT_EQ(s.supplied_volume_m3, model.suppliedVolumeOf(want));
     EXPECT_GT(s.supplied_volume_m3, 0.0);
     for (int i = 0; i < 7; ++i) {
       const auto k = static_cast<std::size_t>(i);

@@ -3,12 +3,15 @@
 // new shape, finger_state repeats the last one with STATUS_BEYOND_LIMIT_POINT, diagnostics WARN and say why; a pressure
 // below the limit brings the shape back. A Gent wall (namespace gent) snaps through at its limit pressure to its far
 // branch, publishes that shape with STATUS_SNAPPED_THROUGH, and snaps back at the far branch's lower turning point.
+// Driven by volume (namespace volume, ~volume_topic), the Neo-Hookean wall is followed past its limit point.
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
 #include <sensor_msgs/FluidPressure.h>
 #include <sensor_msgs/JointState.h>
+#include <std_msgs/Float64.h>
 
+#include <limits>
 #include <mutex>
 #include <string>
 #include <vector>
@@ -189,6 +192,66 @@ TEST(FingerNodeLimitPoint, AGentWallSnapsThroughAndBackAndBothJumpsArePublished)
     }
     previous_tip = got.tip_angle_rad;
   }
+}
+
+std::vector<sensor_msgs::JointState> volume_joints;
+std::vector<pf::FingerModelState> volume_states;
+
+void onVolumeJoints(const sensor_msgs::JointState::ConstPtr& m) {
+  std::lock_guard<std::mutex> lock(mutex);
+  volume_joints.push_back(*m);
+}
+
+void onVolumeState(const pf::FingerModelState::ConstPtr& m) {
+  std::lock_guard<std::mutex> lock(mutex);
+  volume_states.push_back(*m);
+}
+
+// Volume in: each accepted volume's finger is the core's evaluateVolume, its pressure the answer, past the pressure's
+// limit point too (where a pressure gets STATUS_BEYOND_LIMIT_POINT); a NaN volume is refused and nothing published.
+TEST(FingerNodeLimitPoint, DrivenByVolumeTheNeoHookeanWallIsFollowedPastItsLimitPoint) {
+  ros::NodeHandle nh;
+  const ros::Subscriber sub_j = nh.subscribe("volume/joint_states", 100, onVolumeJoints);
+  const ros::Subscriber sub_s = nh.subscribe("volume/finger_state", 100, onVolumeState);
+  ros::Publisher pub = nh.advertise<std_msgs::Float64>("volume/supplied_volume", 10);
+  ASSERT_TRUE(waitFor([&] { return pub.getNumSubscribers() > 0 && sub_j.getNumPublishers() > 0; }, 30));
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/marchese2015_ribbed.yaml", raw);
+  raw["dead_volume_m3"] = {{1e-5}, false};
+  const pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
+  pf::FingerWorkspace ws(model);
+  const double at_limit = model.suppliedVolumeAt(model.belowLimitGaugePa());
+  ASSERT_EQ(model.volumeLimitM3(), std::numeric_limits<double>::infinity()) << "10 mL of gas: no volume snap";
+  double previous_tip = 0.0;
+  for (double share : {0.5, 1.5, 3.0}) {
+    SCOPED_TRACE(share);
+    const std::size_t before = countOf(volume_joints);
+    std_msgs::Float64 m;
+    m.data = share * at_limit;
+    pub.publish(m);
+    ASSERT_TRUE(waitFor([&] { return countOf(volume_joints) > before && countOf(volume_states) > 0; }, 10));
+    ros::WallDuration(0.05).sleep();
+    const pf::FingerState& want = model.evaluateVolume(m.data, ws);
+    const pf::FingerModelState got = lastOf(volume_states);
+    EXPECT_EQ(got.status, pf::FingerModelState::STATUS_OK);
+    EXPECT_EQ(got.gauge_pa, want.gauge_pa);
+    EXPECT_EQ(got.supplied_volume_m3, m.data);
+    EXPECT_EQ(got.tip_angle_rad, want.tip_angle_rad);
+    const sensor_msgs::JointState shown = lastOf(volume_joints);
+    for (int i = 0; i < model.chamberCount(); ++i) EXPECT_EQ(shown.position[i], want.joint_angle_rad[i]) << i;
+    if (share > 1.0) {
+      EXPECT_LT(got.gauge_pa, model.limitGaugePa()) << "past the limit the pressure has fallen";
+    }
+    EXPECT_GT(got.tip_angle_rad, previous_tip) << "and the finger bends on";
+    previous_tip = got.tip_angle_rad;
+  }
+  const std::size_t joints_before = countOf(volume_joints), states_before = countOf(volume_states);
+  std_msgs::Float64 nan;
+  nan.data = std::numeric_limits<double>::quiet_NaN();
+  pub.publish(nan);
+  ros::WallDuration(0.5).sleep();
+  EXPECT_EQ(countOf(volume_joints), joints_before) << "a NaN volume is refused";
+  EXPECT_EQ(countOf(volume_states), states_before);
 }
 
 int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "finger_node_limit_test", 2); }

@@ -252,7 +252,8 @@ def test_supplied_volume_equals_the_cli_and_is_computed_only_when_asked():
     assert list(state) == ["supplied_volume_m3"]
     for i, row in enumerate(cli(*MEMBRANE_ARGS, *gauge_args(p))):
         assert float(row["supplied_volume_m3"]) == state["supplied_volume_m3"][i]
-        assert model.supplied_volume(p[i]) == state["supplied_volume_m3"][i]
+        # supplied_volume solves the wall again (another path to the same bulge): equal to its rounding.
+        assert model.supplied_volume(p[i]) == pytest.approx(state["supplied_volume_m3"][i], rel=1e-14, abs=0)
     assert "supplied_volume_m3" not in model.evaluate(1000.0, outputs=["tip_angle_rad"])
 
 

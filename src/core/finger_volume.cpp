@@ -1,5 +1,6 @@
 // The chambers' volume, the supplied volume, and volume as the input (docs/MODEL.md, "Volume").
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -68,22 +69,41 @@ void FingerModel::buildVolumeModel() {
   }
 }
 
+double FingerModel::groupGrowthM3(std::size_t group, double bulge_m) const {
+  if (!membrane_) return volume_coefficient_[group] * bulge_m;
+  // The membrane's stretch from its bulge (the bulge keeps the digits that 1 + delta rounds away near rest).
+  return volume_coefficient_[group] *
+         membraneVolumeGrowthFactor(membraneStretchForBulge(groups_[group].membrane, bulge_m));
+}
+
+double FingerModel::suppliedVolumeForBulges(const double* bulge_m, double gauge_pa) const {
+  if (std::isnan(gauge_pa)) return std::numeric_limits<double>::quiet_NaN();
+  std::array<bool, kMaxChamberCount> counted{};
+  double growth_m3 = 0.0;
+  for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
+    const auto g = static_cast<std::size_t>(group_of_chamber_[k]);
+    if (counted[g]) continue;  // the group's coefficient holds all its chambers
+    counted[g] = true;
+    growth_m3 += groupGrowthM3(g, bulge_m[k]);
+  }
+  return growth_m3 + deadGasUptakeM3(parameters_.dead_volume_m3, gauge_pa, parameters_.atmospheric_pressure_pa);
+}
+
+double FingerModel::suppliedVolumeOf(const FingerState& state) const {
+  return suppliedVolumeForBulges(state.bulge_m.data(), state.gauge_pa);
+}
+
 double FingerModel::suppliedVolumeAt(double gauge_pa) const {
   if (std::isnan(gauge_pa) || gauge_pa >= limit_gauge_pa_) return std::numeric_limits<double>::quiet_NaN();
   const double p_o = parameters_.atmospheric_pressure_pa;
-  double growth_m3 = 0.0;
-  if (gauge_pa > 0.0) {
-    for (std::size_t g = 0; g < groups_.size(); ++g) {
-      const ChamberGroup& group = groups_[g];
-      if (membrane_) {
-        growth_m3 += volume_coefficient_[g] * membraneVolumeGrowthFactor(membraneStretchExcess(group.membrane, gauge_pa));
-      } else {
-        const double delta = stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa));
-        growth_m3 += volume_coefficient_[g] * bulge(delta, group.chamber_height_m);
-      }
-    }
+  std::array<double, kMaxChamberCount> bulge_m{};
+  for (std::size_t k = 0; k < group_of_chamber_.size() && gauge_pa > 0.0; ++k) {
+    const ChamberGroup& group = groups_[static_cast<std::size_t>(group_of_chamber_[k])];
+    bulge_m[k] = membrane_ ? membraneBulgeM(group.membrane, membraneStretchExcess(group.membrane, gauge_pa))
+                           : bulge(stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa)),
+                                   group.chamber_height_m);
   }
-  return growth_m3 + deadGasUptakeM3(parameters_.dead_volume_m3, gauge_pa, p_o);
+  return suppliedVolumeForBulges(bulge_m.data(), gauge_pa);
 }
 
 double FingerModel::suppliedVolumeAtStretch(double delta) const {

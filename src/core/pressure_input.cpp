@@ -154,6 +154,36 @@ void PressureInputPolicy::accept(double absolute_pa, double stamp, bool replaced
   d.gauge_pa = check.gauge_pa;
 }
 
+InputDecision PressureInputPolicy::onVolumeMessage(double volume_m3, double receive_s) {
+  InputDecision d;
+  ++counters_.received;
+  noteReceived(receive_s, d);
+  if (settings_.max_rate_hz > 0 && have_accepted_ && receive_s - last_accepted_s_ < 1.0 / settings_.max_rate_hz) {
+    ++counters_.throttled;
+    d.verdict = InputVerdict::kThrottled;
+    return d;
+  }
+  if (!std::isfinite(volume_m3)) {
+    ++counters_.refused_not_finite;
+    d.verdict = InputVerdict::kRefusedNotFinite;
+    d.problem = "supplied volume " + formatMessage(volume_m3) + " m^3 is not finite";
+    problem(d.problem, receive_s);
+    return d;
+  }
+  ++counters_.accepted;
+  have_accepted_ = true;
+  last_accepted_s_ = last_stamp_s_ = receive_s;
+  d.verdict = InputVerdict::kAccept;
+  d.stamp_s = receive_s;
+  d.stamp_replaced = true;
+  return d;
+}
+
+void PressureInputPolicy::noteVolumeNotFollowed(const std::string& what, double now_s) {
+  ++counters_.beyond_limit_point;
+  problem(what, now_s);
+}
+
 void PressureInputPolicy::noteVacuum(double gauge_pa, double now_s) {
   ++counters_.vacuum;
   problem(vacuumMessage(gauge_pa) + " is published", now_s);

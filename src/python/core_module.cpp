@@ -122,7 +122,7 @@ class PyFingerModel {
     const auto count = static_cast<std::size_t>(p.size());
     OutputArrays arrays(kStateFields, outputs, out, p.size(), model_->chamberCount());
     arrays.refuseOverlap(p.data(), count * sizeof(double));
-    pf::BatchOutputs rows;
+    pf::BatchOutputs rows;  // (bulge_m may get a scratch array below, for the supplied volume)
     rows.stretch = arrays.data<double>("stretch");
     rows.bulge_m = arrays.data<double>("bulge_m");
     rows.half_angle_rad = arrays.data<double>("half_angle_rad");
@@ -145,10 +145,18 @@ class PyFingerModel {
         clamped = pf::clampToRange(p.data(), in_range.data(), count, range_);
         evaluated = in_range.data();
       }
+      // The supplied volume, only when asked for, from each row's bulges (any branch): the batch writes them, into
+      // a scratch array when the bulges were not asked for themselves.
+      double* volume = arrays.data<double>("supplied_volume_m3");
+      std::vector<double> bulge_scratch;
+      if (volume && !rows.bulge_m) {
+        bulge_scratch.resize(count * static_cast<std::size_t>(model_->chamberCount()));
+        rows.bulge_m = bulge_scratch.data();
+      }
       model_->evaluateMany(evaluated, count, rows, workspace);
-      if (double* volume = arrays.data<double>("supplied_volume_m3")) {
-        // Computed only when asked for: a wall solve per pressure. NaN where the pressure gives no shape.
-        for (std::size_t i = 0; i < count; ++i) volume[i] = model_->suppliedVolumeAt(evaluated[i]);
+      const auto n = static_cast<std::size_t>(model_->chamberCount());
+      for (std::size_t i = 0; volume && i < count; ++i) {
+        volume[i] = model_->suppliedVolumeForBulges(rows.bulge_m + i * n, evaluated[i]);  // NaN rows stay NaN
       }
       if (clamped > 0 && rows.status) pf::markClamped(p.data(), rows.status, count, range_);
     }

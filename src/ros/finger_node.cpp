@@ -51,9 +51,7 @@ FingerNode::FingerNode(ros::NodeHandle& nh, ros::NodeHandle& private_nh)
   diagnostics_timer_ = nh.createWallTimer(ros::WallDuration(1.0),
                                           [this](const ros::WallTimerEvent&) { diagnostics_.force_update(); });
   object_sub_ = nh.subscribe(settings_.grasp_object_topic, 1, &FingerNode::onGraspObject, this);
-  // Queue of 1 when throttled (only the newest pressure matters); otherwise keep up with bursts.
-  pressure_sub_ = nh.subscribe(settings_.pressure_topic, settings_.input.max_rate_hz > 0 ? 1 : 100, &FingerNode::onPressure,
-                               this, ros::TransportHints().tcpNoDelay());
+  subscribeInput(nh);
   const int n = settings_.finger.chamber_count;
   const std::string& prefix = settings_.urdf.prefix;
   ROS_INFO("%s: %d chambers (%d distinct), solver %s, frames %s..%s and %s on %s; URDF in '%s'", log_name_.c_str(), n,
@@ -207,7 +205,8 @@ bool FingerNode::publishAt(double gauge_pa, const ros::Time& stamp, bool clamped
   return true;
 }
 
-void FingerNode::publish(const FingerState& state, const ContactState* contact, const ros::Time& stamp, bool clamped) {
+void FingerNode::publish(const FingerState& state, const ContactState* contact, const ros::Time& stamp, bool clamped,
+                         double supplied_volume_m3) {
   const int n = settings_.finger.chamber_count;
   // With contact the joints, backbone and tip are the contact rule's; stretch, bulge and half angle stay the free
   // chambers' (they depend on the pressure alone).
@@ -245,7 +244,9 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
   finger_state_.tip.orientation.w = std::cos(0.5 * tip_angle_rad);
   finger_state_.tip_angle_rad = tip_angle_rad;
   const bool held = contact && std::any_of(contact->held.begin(), contact->held.end(), [](bool h) { return h; });
-  finger_state_.supplied_volume_m3 = held ? NAN : model_->suppliedVolumeAt(state.gauge_pa);
+  finger_state_.supplied_volume_m3 = held                               ? NAN
+                                     : std::isnan(supplied_volume_m3) ? model_->suppliedVolumeOf(state)
+                                                                      : supplied_volume_m3;
   finger_state_.walls_in_contact = state.walls_in_contact;
   finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.input.validated_max_gauge_pa;
   finger_state_.status = state.status == EvaluationStatus::kVacuum           ? FingerModelState::STATUS_VACUUM
@@ -337,7 +338,8 @@ void FingerNode::onGraspObject(const GraspObject::ConstPtr& msg) {
     ROS_INFO("%s: grasp object '%s' in '%s'", log_name_.c_str(), msg->id.c_str(), msg->header.frame_id.c_str());
     updateObject();
   }
-  if (have_pressure_) publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
+  // (Driven by volume the object is not closed on: nothing to re-solve.)
+  if (have_pressure_ && settings_.volume_topic.empty()) publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
 }
 
 bool FingerNode::acceptObject(const GraspObject::ConstPtr& msg) {
@@ -366,7 +368,9 @@ bool FingerNode::acceptObject(const GraspObject::ConstPtr& msg) {
 }
 
 void FingerNode::onObjectTimer(const ros::TimerEvent&) {
-  if (updateObject() && have_pressure_) publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
+  if (updateObject() && have_pressure_ && settings_.volume_topic.empty()) {
+    publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
+  }
 }
 
 bool FingerNode::objectPose(Eigen::Isometry3d& finger_from_frame, std::string& why) const {

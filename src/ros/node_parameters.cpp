@@ -52,6 +52,11 @@ const std::vector<NodeParameterSpec>& specs() {
       textParameter("description_param", node.description_param, "a ROS name",
            "parameter (resolved in the node's namespace) that receives the generated URDF"),
       textParameter("pressure_topic", node.pressure_topic, "a ROS name", "subscribed sensor_msgs/FluidPressure"),
+      textParameter("volume_topic", node.volume_topic, "a ROS name, or empty",
+           "volume as the input: when set, subscribed std_msgs/Float64, the volume (m^3) a syringe pump or cylinder "
+           "has pushed in (the chambers' growth plus the compression of dead_volume_m3 of gas), instead of the "
+           "pressure topic; the pressure is then the model's answer (finger_state.gauge_pa). Empty: driven by "
+           "pressure"),
       textParameter("joint_states_topic", node.joint_states_topic, "a ROS name", "published sensor_msgs/JointState"),
       textParameter("finger_state_topic", node.finger_state_topic, "a ROS name", "published pneumatic_finger/FingerModelState"),
       textParameter("grasp_object_topic", node.grasp_object_topic, "a ROS name",
@@ -220,6 +225,7 @@ void readModelAndInput(const NodeParameterReader& in, NodeSettings& s) {
 void readNames(const NodeParameterReader& in, NodeSettings& s) {
   s.description_param = in.rosName("description_param");
   s.pressure_topic = in.rosName("pressure_topic");
+  s.volume_topic = in.rosName("volume_topic");
   s.joint_states_topic = in.rosName("joint_states_topic");
   s.finger_state_topic = in.rosName("finger_state_topic");
   s.grasp_object_topic = in.rosName("grasp_object_topic");

@@ -87,6 +87,47 @@ void printShape(std::ostream& out, const pf::FingerState& s, const Eigen::Vector
   out << ',' << pf::formatExact(tip.x()) << ',' << pf::formatExact(tip.y());
 }
 
+// The warnings of finger_model's rows, each said once (on stderr), in the words every interface uses.
+struct RowWarnings {
+  bool vacuum = false, failure = false, limit = false, clamp = false, extrapolated = false, snap = false;
+
+  void note(const pf::FingerModel& model, const pf::FingerState& s, const pf::RangeCheck& range, double requested,
+            const pf::PressureRange& limits) {
+    const double p = range.gauge_pa;
+    if (s.status == pf::EvaluationStatus::kVacuum && !once(vacuum)) {
+      std::cerr << "finger_model: warning: " << pf::vacuumMessage(p) << " is printed\n";
+    }
+    if (range.clamped && !once(clamp)) {
+      std::cerr << "finger_model: warning: " << pf::clampedMessage(requested, limits) << " (gauge_pa "
+                << pf::formatMessage(p) << " is printed)\n";
+    } else if (range.above_validated && !range.clamped && !once(extrapolated)) {
+      std::cerr << "finger_model: warning: " << pf::aboveValidatedMessage(p, limits) << "\n";
+    }
+    if (s.status == pf::EvaluationStatus::kSnappedThrough && !once(snap)) {
+      std::cerr << "finger_model: note: at " << pf::formatMessage(p) << " Pa the walls are on their far branch "
+                << "(snapped through past the limit point, " << pf::formatMessage(model.limitGaugePa())
+                << " Pa; back at or below " << pf::formatMessage(model.farTurningGaugePa())
+                << " Pa): the rows follow the path, in order\n";
+    }
+    if (s.status == pf::EvaluationStatus::kBeyondLimitPoint && !once(limit)) {
+      std::cerr << "finger_model: warning: gauge pressure " << pf::formatExact(p) << " Pa is at or beyond the "
+                << "membrane wall's limit point, " << pf::formatExact(model.limitGaugePa())
+                << " Pa, where the pressure does not determine the shape: the wall has no far branch and balloons "
+                << "without bound (a risk of bursting); such rows are nan\n";
+    } else if (s.status == pf::EvaluationStatus::kSolverFailure && !once(failure)) {
+      std::cerr << "finger_model: warning: solver '" << pf::solverName(model.options().solver)
+                << "' found no finite answer at " << pf::formatExact(p) << " Pa gauge; such rows are nan\n";
+    }
+  }
+
+  // false the first time (and marks it said), true after.
+  static bool once(bool& said) {
+    const bool before = said;
+    said = true;
+    return before;
+  }
+};
+
 void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::vector<double>& pressures,
               const CsvColumns& columns) {
   const pf::ContactSolver contact(model);
@@ -101,8 +142,7 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
     if (columns.blocked_tip_force) out << ',' << pf::formatExact(model.blockedTipForceN(p));
     out << '\n';
   };
-  bool warned = false, warned_failure = false, warned_limit = false, warned_clamp = false, warned_extrapolated = false;
-  bool told_snap = false;
+  RowWarnings warn;
   model.startBranch(ws, columns.start_far);
   for (std::size_t row = 0; row < pressures.size(); ++row) {
     // The range rule of every interface: the row is the finger at the pressure the model was given.
@@ -110,39 +150,9 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
     const double p = range.gauge_pa;
     if (!times.empty()) out << pf::formatShortest(times[row]) << ',';
     const pf::FingerState& s = model.evaluate(p, ws);
-    if (s.status == pf::EvaluationStatus::kVacuum && !warned) {
-      std::cerr << "finger_model: warning: " << pf::vacuumMessage(p) << " is printed\n";
-      warned = true;
-    }
-    if (range.clamped && !warned_clamp) {
-      std::cerr << "finger_model: warning: " << pf::clampedMessage(pressures[row], columns.range) << " (gauge_pa "
-                << pf::formatMessage(p) << " is printed)\n";
-      warned_clamp = true;
-    } else if (range.above_validated && !range.clamped && !warned_extrapolated) {
-      std::cerr << "finger_model: warning: " << pf::aboveValidatedMessage(p, columns.range) << "\n";
-      warned_extrapolated = true;
-    }
-    if (s.status == pf::EvaluationStatus::kSnappedThrough && !told_snap) {
-      std::cerr << "finger_model: note: at " << pf::formatMessage(p) << " Pa the walls are on their far branch "
-                << "(snapped through past the limit point, " << pf::formatMessage(model.limitGaugePa())
-                << " Pa; back at or below " << pf::formatMessage(model.farTurningGaugePa())
-                << " Pa): the rows follow the path, in order\n";
-      told_snap = true;
-    }
-    const bool beyond_limit = s.status == pf::EvaluationStatus::kBeyondLimitPoint;
-    if (s.status == pf::EvaluationStatus::kSolverFailure || beyond_limit) {
+    warn.note(model, s, range, pressures[row], columns.range);
+    if (s.status == pf::EvaluationStatus::kSolverFailure || s.status == pf::EvaluationStatus::kBeyondLimitPoint) {
       // The model kept its previous state; printing it would put a wrong shape on this row.
-      bool& warned_now = beyond_limit ? warned_limit : warned_failure;
-      if (!warned_now && beyond_limit) {
-        std::cerr << "finger_model: warning: gauge pressure " << pf::formatExact(p) << " Pa is at or beyond the "
-                  << "membrane wall's limit point, " << pf::formatExact(model.limitGaugePa())
-                  << " Pa, where the pressure does not determine the shape: the wall has no far branch and balloons "
-                  << "without bound (a risk of bursting); such rows are nan\n";
-      } else if (!warned_now) {
-        std::cerr << "finger_model: warning: solver '" << pf::solverName(model.options().solver)
-                  << "' found no finite answer at " << pf::formatExact(p) << " Pa gauge; such rows are nan\n";
-      }
-      warned_now = true;
       out << pf::formatExact(p);
       for (int j = 0; j < n + 6; ++j) out << ",nan";
       end_row(p);
@@ -151,7 +161,7 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
     Eigen::VectorXd q = s.joint_angle_rad;
     Eigen::Vector2d tip = s.tip();
     // The free finger's volume; a finger held by the obstacle has walls pressed flat, whose volume is not modelled.
-    double volume_m3 = model.suppliedVolumeAt(p);
+    double volume_m3 = model.suppliedVolumeOf(s);
     if (obstacle) {
       // The finger closing on the obstacle: joints held where the backbone touched it (docs/GRASP.md).
       const pf::ContactState c = contact.solve(p, *obstacle);
@@ -220,6 +230,24 @@ pf::Obstacle parseDisk(const std::string& disk) {
 }
 
 
+// The options of docs/MODEL.md's last sections: volume as the input, and the branch a snap-through starts from.
+struct VolumeOptions {
+  std::vector<std::string> volumes;
+  std::string sweep, start_branch = "near";
+
+  void addTo(CLI::App& app) {
+    app.add_option("--supplied-volume-m3", volumes,
+                   "volume as the input: the volume V (m^3) a supply has pushed in (chambers' growth plus the dead "
+                   "gas's compression); repeat for several rows, which gauge_pa then answers")
+        ->allow_extra_args(false);
+    app.add_option("--sweep-volume-m3", sweep, "FROM:TO:COUNT, evenly spaced supplied volumes (m^3)");
+    app.add_option("--start-branch", start_branch,
+                   "near (default) or far: the walls' branch the first row starts from (membrane law, a Gent wall "
+                   "that snaps through; docs/MODEL.md); the rows then follow the path in order")
+        ->check(CLI::IsMember({"near", "far"}));
+  }
+};
+
 // --supplied-volume-m3 (repeated) or --sweep-volume-m3, finite numbers (m^3).
 std::vector<double> parseVolumes(const std::vector<std::string>& volumes, const std::string& volume_sweep) {
   std::vector<double> supplied;
@@ -264,29 +292,21 @@ int main(int argc, char** argv) {
   CLI::App app(kDescription, "finger_model");
   pf::ParameterOptions parameters;
   parameters.addTo(app);
-  std::string solver = "robust", sweep, volume_sweep;
-  std::vector<std::string> gauges, volumes;
+  std::string solver = "robust", sweep;
+  std::vector<std::string> gauges;
+  VolumeOptions volume;
   bool parameter_table = false;
   app.add_option("--solver", solver, "robust (default), paper or table");
   // Kept as text: NaN and inf are refused by our own parser, with the option's name.
   app.add_option("--gauge-pa", gauges, "gauge pressure P (Pa); repeat for several rows")->allow_extra_args(false);
   app.add_option("--sweep-pa", sweep, "FROM:TO:COUNT, evenly spaced gauge pressures (Pa)");
-  app.add_option("--supplied-volume-m3", volumes,
-                 "volume as the input: the volume V (m^3) a supply has pushed in (chambers' growth plus the dead gas's "
-                 "compression); repeat for several rows, which gauge_pa then answers")
-      ->allow_extra_args(false);
-  app.add_option("--sweep-volume-m3", volume_sweep, "FROM:TO:COUNT, evenly spaced supplied volumes (m^3)");
+  volume.addTo(app);
   app.add_flag("--parameters", parameter_table, "print the parameter table (Markdown) and exit");
   CsvColumns columns;
   std::string max_gauge;
   app.add_option("--max-gauge-pa", max_gauge,
                  "top of the model's range (Pa, default 294199.5 = 3 kg/cm2): a pressure above it is clamped to it, "
                  "with a warning, as finger_node's ~max_gauge_pa does");
-  std::string start_branch = "near";
-  app.add_option("--start-branch", start_branch,
-                 "near (default) or far: the walls' branch the first row starts from (membrane law, a Gent wall that "
-                 "snaps through; docs/MODEL.md); the rows then follow the path in order")
-      ->check(CLI::IsMember({"near", "far"}));
   app.add_flag("--blocked-tip-force", columns.blocked_tip_force,
                "add blocked_tip_force_n: the tip force (N) of the finger held straight by a plate at its tip");
   std::string flow_lpm, duration_s, step_s;
@@ -307,7 +327,7 @@ int main(int argc, char** argv) {
     for (const auto& g : gauges) pressures.push_back(pf::parseFiniteOption("--gauge-pa", g));
     if (!gauges.empty() && !sweep.empty()) throw pf::ParameterError("give --gauge-pa or --sweep-pa, not both");
     if (!sweep.empty()) pressures = parseSweep("--sweep-pa", sweep);
-    const std::vector<double> supplied = parseVolumes(volumes, volume_sweep);
+    const std::vector<double> supplied = parseVolumes(volume.volumes, volume.sweep);
     const bool time_mode = !flow_lpm.empty() || !duration_s.empty() || !step_s.empty();
     if (time_mode + !pressures.empty() + !supplied.empty() > 1) {
       throw pf::ParameterError("give one input: pressures, supplied volumes or the time mode");
@@ -321,7 +341,7 @@ int main(int argc, char** argv) {
                                "a finger held by an object or a plate changes its volume, which is not modelled, "
                                "and the pressure is an output there");
     }
-    columns.start_far = start_branch == "far";
+    columns.start_far = volume.start_branch == "far";
     if (!max_gauge.empty()) columns.range = pf::PressureRange::upTo(pf::parseFiniteOption("--max-gauge-pa", max_gauge));
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);

@@ -180,6 +180,13 @@ class FingerModel {
   /// NaN at or beyond the limit point (the pressure does not set the volume there) and for NaN. Thread-safe.
   double suppliedVolumeAt(double gauge_pa) const;
 
+  /// The supplied volume (m^3) of a state the model gave (any branch: the far one too), from its bulges and pressure;
+  /// NaN where the state holds no bulges (ModelOptions::chamber_detail false) or no pressure.
+  double suppliedVolumeOf(const FingerState& state) const;
+
+  /// The same from @p bulge_m, one bulge per chamber (N entries, as FingerState::bulge_m), at @p gauge_pa.
+  double suppliedVolumeForBulges(const double* bulge_m, double gauge_pa) const;
+
   /// The largest supplied volume evaluateVolume() follows (m^3): +inf where the volume sets the shape without end;
   /// with a dead gas volume, the first maximum of the supplied volume along the inflation (where the gas's
   /// expansion, as the pressure falls past the limit point, outpaces the chambers' growth, and the finger snaps even
@@ -346,6 +353,8 @@ class FingerModel {
                         std::string& message) const;
   /// The volume model's constants (finger_volume.cpp): each group's volume coefficient and the volume's limit.
   void buildVolumeModel();
+  /// Group @p group's chambers' growth (m^3) at bulge @p bulge_m (finger_volume.cpp).
+  double groupGrowthM3(std::size_t group, double bulge_m) const;
   /// The supplied volume (m^3) of identical membrane chambers at stretch excess @p delta (>= 0, below the lock).
   double suppliedVolumeAtStretch(double delta) const;
   /// The state of identical membrane chambers at stretch excess @p delta into @p out (gauge_pa included); false for a

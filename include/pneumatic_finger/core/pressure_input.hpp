@@ -76,6 +76,19 @@ class PressureInputPolicy {
   /// @param[in] receive_s the node's clock when it arrived (s)
   InputDecision onMessage(double absolute_pa, double stamp_s, double receive_s);
 
+  /// Volume as the input (finger_node's ~volume_topic; docs/MODEL.md "Volume"): a supplied volume (m^3) received at
+  /// @p receive_s, under the same rate, throttle and staleness rules as a pressure. It carries no stamp: the receive
+  /// time is its stamp (stamp_replaced). Refused: not finite. The range rule does not apply: the pressure is the
+  /// model's answer (noteGaugeFromVolume).
+  InputDecision onVolumeMessage(double volume_m3, double receive_s);
+
+  /// The pressure the model gave an accepted volume: diagnostics' last gauge pressure.
+  void noteGaugeFromVolume(double gauge_pa) { last_gauge_pa_ = gauge_pa; }
+
+  /// A supplied volume the model does not follow (above its volume limit, or drawn out of an incompressible drive):
+  /// counted with the limit point's, the last state kept, @p what reported.
+  void noteVolumeNotFollowed(const std::string& what, double now_s);
+
   /// The model's answer to an accepted message was a vacuum (gauge < 0): counted and reported.
   void noteVacuum(double gauge_pa, double now_s);
 

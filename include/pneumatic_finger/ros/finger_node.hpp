@@ -7,6 +7,7 @@
 #include <ros/ros.h>
 #include <sensor_msgs/FluidPressure.h>
 #include <sensor_msgs/JointState.h>
+#include <std_msgs/Float64.h>
 #include <tf2_ros/buffer.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
@@ -41,6 +42,10 @@ class FingerNode {
 
  private:
   void onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg);
+  /// Subscribes the input that drives the finger: ~volume_topic when set, else the pressure topic.
+  void subscribeInput(ros::NodeHandle& nh);
+  /// Volume as the input (~volume_topic): the same rules, the model driven by the supplied volume (finger_volume.cpp).
+  void onVolume(const std_msgs::Float64::ConstPtr& msg);
   bool onInverse(PressureForTipAngle::Request& req, PressureForTipAngle::Response& res);  // finger_services.cpp
   bool onContactForce(PressureForContactForce::Request& req, PressureForContactForce::Response& res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -58,7 +63,9 @@ class FingerNode {
   bool publishAt(double gauge_pa, const ros::Time& stamp, bool clamped);
   /// Logs and counts a jump between the walls' branches (the snap-through) after an evaluation at @p gauge_pa.
   void noteBranch(double gauge_pa);
-  void publish(const FingerState& state, const ContactState* contact, const ros::Time& stamp, bool clamped);
+  /// @p supplied_volume_m3: the volume input's (NaN: the free chambers' at the state's pressure).
+  void publish(const FingerState& state, const ContactState* contact, const ros::Time& stamp, bool clamped,
+               double supplied_volume_m3 = NAN);
 
   // The grasp object (docs/GRASP.md).
   void onGraspObject(const GraspObject::ConstPtr& msg);
@@ -73,7 +80,7 @@ class FingerNode {
   NodeSettings settings_;
   std::unique_ptr<const FingerModel> model_;  // shared, const: the inverse service may run beside a pressure
   std::unique_ptr<FingerWorkspace> workspace_;  // what the pressure callback's evaluations write
-  ros::Subscriber pressure_sub_;
+  ros::Subscriber pressure_sub_, volume_sub_;
   ros::Publisher joint_states_pub_, finger_state_pub_;
   // The tip's error bar (the parameter file's tip_uncertainty) as a translucent sphere at the tip, republished only
   // when its size changes by more than 1 % or it becomes (or stops being) an extrapolation.

@@ -34,6 +34,9 @@ struct NodeSettings {
   double transform_timeout_s = 1.0;  ///< as the pressure's stale_timeout_s: a second without news is a lost publisher
   std::string description_param = "robot_description", pressure_topic = "pressure", joint_states_topic = "joint_states",
               finger_state_topic = "finger_state", grasp_object_topic = "grasp_object";
+  /// Volume as the input (docs/MODEL.md "Volume"): when set, the finger is driven by std_msgs/Float64 volumes (m^3)
+  /// on this topic instead of pressures; empty (the default): by pressure.
+  std::string volume_topic;
 };
 
 /// The actuator keys dynamic_reconfigure sets live (cfg/FingerNode.cfg's actuator group): besides a gripper file

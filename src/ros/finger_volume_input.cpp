@@ -1,0 +1,71 @@
+// finger_node's input (pressure or volume), and finger_node driven by volume (~volume_topic; docs/MODEL.md "Volume"): a syringe pump's or a cylinder's supplied
+// volume in, the finger's state and the pressure it makes out. The input rules are the pressure's (rate, staleness,
+// refusals: PressureInputPolicy); the model answers with FingerModel::evaluateVolume.
+#include <string>
+
+#include "pneumatic_finger/ros/finger_node.hpp"
+
+namespace pneumatic_finger {
+
+void FingerNode::subscribeInput(ros::NodeHandle& nh) {
+  // Queue of 1 when throttled (only the newest pressure matters); otherwise keep up with bursts. One input drives the
+  // finger: the volume when ~volume_topic is set, else the pressure.
+  const int queue = settings_.input.max_rate_hz > 0 ? 1 : 100;
+  if (settings_.volume_topic.empty()) {
+    pressure_sub_ = nh.subscribe(settings_.pressure_topic, queue, &FingerNode::onPressure, this,
+                                 ros::TransportHints().tcpNoDelay());
+    return;
+  }
+  volume_sub_ = nh.subscribe(settings_.volume_topic, queue, &FingerNode::onVolume, this,
+                             ros::TransportHints().tcpNoDelay());
+  ROS_INFO("%s: driven by the supplied volume on %s (m^3), not by pressure", log_name_.c_str(),
+           nh.resolveName(settings_.volume_topic).c_str());
+}
+
+void FingerNode::onVolume(const std_msgs::Float64::ConstPtr& msg) {
+  const ros::Time now = ros::Time::now();
+  const double volume_m3 = msg->data;
+  const InputDecision d = input_.onVolumeMessage(volume_m3, now.toSec());
+  if (d.time_jumped) ROS_WARN("%s: %s", log_name_.c_str(), d.problem.c_str());
+  if (d.verdict == InputVerdict::kThrottled) return;
+  if (d.verdict != InputVerdict::kAccept) {
+    ROS_WARN_THROTTLE(5.0, "%s: refused a volume message: %s; keeping the last state", log_name_.c_str(),
+                      d.problem.c_str());
+    return;
+  }
+  const FingerState& state = model_->evaluateVolume(volume_m3, *workspace_);
+  const bool drawn_from_liquid = state.status == EvaluationStatus::kVacuum && std::isnan(state.gauge_pa);
+  if (state.status == EvaluationStatus::kBeyondLimitPoint || state.status == EvaluationStatus::kSolverFailure ||
+      drawn_from_liquid) {
+    // No invented shape: finger_state repeats the last one and says why; joint_states and tf stay as they were.
+    const std::string why =
+        "supplied volume " + formatMessage(volume_m3) + " m^3 " +
+        (drawn_from_liquid ? std::string("draws fluid out of an incompressible drive (dead_volume_m3 = 0), which the "
+                                         "model does not follow")
+         : state.status == EvaluationStatus::kSolverFailure
+             ? std::string("found no finite answer")
+             : "is beyond the most the model follows, " + formatMessage(model_->volumeLimitM3()) +
+                   " m^3 (the drive's gas snaps the finger there, or the wall locks)") +
+        "; last state kept";
+    input_.noteVolumeNotFollowed(why, now.toSec());
+    ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), why.c_str());
+    if (have_pressure_) {
+      finger_state_.header.stamp = now;
+      finger_state_.status = FingerModelState::STATUS_BEYOND_LIMIT_POINT;
+      finger_state_pub_.publish(finger_state_);
+    }
+    return;
+  }
+  if (state.status == EvaluationStatus::kVacuum) {
+    input_.noteVacuum(state.gauge_pa, now.toSec());
+    ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), input_.lastProblem().c_str());
+  }
+  input_.noteGaugeFromVolume(state.gauge_pa);
+  have_pressure_ = true;
+  last_gauge_pa_ = state.gauge_pa;
+  last_clamped_ = false;
+  // The grasp object is not closed on: a finger held by it changes its volume, which the model does not follow.
+  publish(state, nullptr, now, false, volume_m3);
+}
+
+}  // namespace pneumatic_finger
