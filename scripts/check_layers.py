@@ -1,4 +1,4 @@
-"""Checks that each layer includes only what its folder allows: the core, the description and the tools never see a
+"""Checks that each layer includes only what its folder allows: the core, the description, the sim layer and the tools never see a
 ROS header. On Debian the ROS headers live in /usr/include beside every other library's, so the compiler cannot
 enforce this; this script does, from the #include lines.
 
@@ -17,7 +17,9 @@ ALLOWED = {
     "core": [r"pneumatic_finger/core/", r"Eigen/", r"yaml-cpp/", r"immintrin\.h$"],
     "description": [r"pneumatic_finger/(core|description)/", r"Eigen/", r"yaml-cpp/", r"urdf_model/", r"urdf_parser/",
                     r"urdf_world/", r"tinyxml\.h"],
-    "tools": [r"pneumatic_finger/(core|description|tools)/", r"Eigen/", r"CLI/", r"unistd\.h"],
+    "sim": [r"pneumatic_finger/(core|description|sim)/", r"Eigen/", r"yaml-cpp/", r"urdf_model/", r"urdf_parser/",
+            r"urdf_world/", r"mujoco/"],
+    "tools": [r"pneumatic_finger/(core|description|sim|tools)/", r"Eigen/", r"CLI/", r"unistd\.h"],
     "python": [r"pneumatic_finger/core/", r"Eigen/", r"pybind11/"],
 }
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]')
@@ -65,5 +67,5 @@ if __name__ == "__main__":
     bad = violations(root)
     for b in bad:
         print(b)
-    print(f"check_layers: {len(bad)} violation(s) in core, description, tools and python")
+    print(f"check_layers: {len(bad)} violation(s) in core, description, sim, tools and python")
     sys.exit(1 if bad else 0)

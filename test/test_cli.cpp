@@ -426,3 +426,23 @@ TEST(Cli, VolumeInputRefusesWhatItCannotModel) {
   EXPECT_EQ(fields(lines(drawn.out)[1])[0], "nan");
   EXPECT_NE(drawn.err.find("draws fluid out"), std::string::npos) << drawn.err;
 }
+
+// finger_urdf --mjcf: a MuJoCo model whose joints carry the twin's springs at --gauge-pa (test_simulator loads and
+// steps it); refusals name the option.
+TEST(UrdfCli, MjcfCarriesTheSpringsOfItsPressure) {
+  const CliRun r = runShell(std::string(FINGER_URDF_EXE) + " --mjcf --gauge-pa 98066.5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("<mujoco model=\"finger_pneumatic_finger\">"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("<compiler angle=\"radian\"/>"), std::string::npos) << "MJCF angles are degrees otherwise";
+  const pf::FingerModel model(pf::FingerParameters::defaults());
+  std::vector<double> q(7);
+  ASSERT_TRUE(model.jointAnglesAt(98066.5, q.data()));
+  EXPECT_NE(r.out.find("springref=\"" + pf::formatShortest(q[3]) + "\""), std::string::npos) << r.out;
+  const CliRun no_mjcf = runShell(std::string(FINGER_URDF_EXE) + " --gauge-pa 1000");
+  EXPECT_EQ(no_mjcf.status, 2);
+  EXPECT_NE(no_mjcf.err.find("--gauge-pa needs --mjcf"), std::string::npos) << no_mjcf.err;
+  const CliRun beyond = runShell(std::string(FINGER_URDF_EXE) +
+                                 " --mjcf --set wall_law=membrane --set shear_modulus_pa=2e4 --gauge-pa 20000");
+  EXPECT_EQ(beyond.status, 2);
+  EXPECT_NE(beyond.err.find("no free shape at 20000 Pa gauge"), std::string::npos) << beyond.err;
+}

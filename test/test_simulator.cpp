@@ -1,3 +1,6 @@
+// The descriptions as simulators and planners read them, and the finger's MJCF (finger_urdf --mjcf) against the twin:
+// MuJoCo's own springs settle the free finger to the twin's joint angles, and a plate at the tip feels the twin's
+// blocked force (docs/MODEL.md, "Joint springs").
 // The descriptions as simulators and planners read them: MuJoCo (Debian's libmujoco, a physics engine nobody here
 // wrote) loads, compiles and steps the finger's URDF and the composed cell (arm + gripper) with no NaN and no warning;
 // KDL (kdl_parser, what dynamic planners and the cell's own kinematics use) builds a tree with every moving joint.
@@ -11,7 +14,10 @@
 #include <fstream>
 #include <string>
 
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
+#include "pneumatic_finger/sim/finger_mjcf.hpp"
+#include "pneumatic_finger/sim/joint_springs.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -94,5 +100,132 @@ TEST(Simulator, KdlBuildsATreeWithEveryJoint) {
         EXPECT_NE(tree.getSegments().find(link.first), tree.getSegments().end()) << link.first;
       }
     }
+  }
+}
+
+namespace {
+
+// A loaded MJCF (from text, through a file as MuJoCo reads it), freed at the end of the scope.
+struct Loaded {
+  mjModel* m = nullptr;
+  mjData* d = nullptr;
+  std::string error;
+  Loaded(const std::string& xml, const std::string& name) {
+    const std::string path = testing::TempDir() + "/" + name + ".xml";
+    std::ofstream(path) << xml;
+    char e[1000] = "";
+    m = mj_loadXML(path.c_str(), nullptr, e, sizeof e);
+    error = e;
+    if (m) d = mj_makeData(m);
+  }
+  ~Loaded() {
+    if (d) mj_deleteData(d);
+    if (m) mj_deleteModel(m);
+  }
+};
+
+pf::FingerParameters membraneParameters() {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlText("wall_law: membrane\nshear_modulus_pa: 2e4\nwall_thickness_m: 0.002\n"
+                                    "wall_locking_jm: 50\n", "test", raw);
+  return pf::FingerParameters::fromRaw(raw);
+}
+
+// Steps @p seconds of simulated time without gravity; returns the largest |q_n - q_n0| over the finger's joints.
+double settledError(Loaded& sim, const std::vector<pf::JointSpring>& springs, double seconds) {
+  sim.m->opt.gravity[0] = sim.m->opt.gravity[1] = sim.m->opt.gravity[2] = 0.0;
+  const int steps = static_cast<int>(seconds / sim.m->opt.timestep);
+  for (int i = 0; i < steps; ++i) mj_step(sim.m, sim.d);
+  double worst = 0.0;
+  for (std::size_t j = 0; j < springs.size(); ++j) {
+    const int id = mj_name2id(sim.m, mjOBJ_JOINT, pf::jointName("finger_", static_cast<int>(j) + 1).c_str());
+    worst = std::max(worst, std::fabs(sim.d->qpos[sim.m->jnt_qposadr[id]] - springs[j].rest_angle_rad));
+  }
+  return worst;
+}
+
+}  // namespace
+
+// The file carries the twin's springs, exactly (written round-trip), and MuJoCo reads them as its passive springs.
+TEST(SimulatorSprings, TheMjcfCarriesTheTwinsSpringsIntoMujoco) {
+  const pf::FingerParameters p = pf::FingerParameters::defaults();
+  pf::MjcfOptions o;
+  o.gauge_pa = 98066.5;
+  Loaded sim(pf::fingerMjcf(p, pf::FingerUrdfOptions(), o), "finger_mjcf");
+  ASSERT_NE(sim.m, nullptr) << sim.error;
+  ASSERT_EQ(sim.m->njnt, 7);
+  std::string why;
+  const std::vector<pf::JointSpring> springs = pf::jointSprings(pf::FingerModel(p), o.gauge_pa, why);
+  for (int j = 0; j < 7; ++j) {
+    const int id = mj_name2id(sim.m, mjOBJ_JOINT, pf::jointName("finger_", j + 1).c_str());
+    ASSERT_GE(id, 0);
+    EXPECT_EQ(sim.m->jnt_stiffness[id], springs[static_cast<std::size_t>(j)].stiffness_nm_per_rad) << j;
+    EXPECT_EQ(sim.m->qpos_spring[sim.m->jnt_qposadr[id]], springs[static_cast<std::size_t>(j)].rest_angle_rad) << j;
+    EXPECT_GT(sim.m->dof_damping[sim.m->jnt_dofadr[id]], 0.0) << j;
+  }
+  EXPECT_EQ(sim.m->opt.cone, mjCONE_ELLIPTIC);
+  EXPECT_GE(mj_name2id(sim.m, mjOBJ_SITE, "finger_tip"), 0);
+  // The springs' stiffness holds the twin's moment at the straight joint: k q0 = M.
+  for (const pf::JointSpring& s : springs) {
+    EXPECT_NEAR(s.stiffness_nm_per_rad * s.rest_angle_rad, s.pressure_moment_nm, 1e-15 * s.pressure_moment_nm);
+  }
+}
+
+// Without gravity or an object, MuJoCo's finger settles to the twin's joint angles, across the range, both laws.
+TEST(SimulatorSprings, TheFreeFingerSettlesToTheTwinsAnglesWithinAMilliradian) {
+  const pf::FingerModel membrane(membraneParameters());
+  const std::vector<std::pair<pf::FingerParameters, std::vector<double>>> cases = {
+      {pf::FingerParameters::defaults(), {0.0, 49033.25, 98066.5, 196133.0, 294199.5}},
+      {membraneParameters(), {0.3 * membrane.limitGaugePa(), 0.6 * membrane.limitGaugePa(), 0.9 * membrane.limitGaugePa()}}};
+  for (const auto& [params, pressures] : cases) {
+    const pf::FingerModel twin(params);
+    for (double p : pressures) {
+      SCOPED_TRACE(std::string(pf::wallLawName(params.wall_law)) + " at " + std::to_string(p) + " Pa");
+      pf::MjcfOptions o;
+      o.gauge_pa = p;
+      Loaded sim(pf::fingerMjcf(params, pf::FingerUrdfOptions(), o), "settle");
+      ASSERT_NE(sim.m, nullptr) << sim.error;
+      std::string why;
+      const std::vector<pf::JointSpring> springs = pf::jointSprings(twin, p, why);
+      EXPECT_LT(settledError(sim, springs, 1.0), 1e-3);
+    }
+  }
+}
+
+// A plate at the tip, orthogonal to the bending plane, where the straight finger's tip is: MuJoCo's contact force is
+// the twin's blocked tip force (docs/MODEL.md "Force"), within 2 %. The plate touches only a ball at the tip (contact
+// bits), its contact is stiff (solref's direct stiffness, on a short step) so that the tip stays where it is, and the
+// chain settles for three simulated seconds.
+TEST(SimulatorSprings, APlateAtTheTipFeelsTheTwinsBlockedForce) {
+  const pf::FingerParameters p = pf::FingerParameters::defaults();
+  const pf::FingerModel twin(p);
+  for (double gauge : {98066.5, 196133.0}) {
+    SCOPED_TRACE(gauge);
+    pf::MjcfOptions o;
+    o.gauge_pa = gauge;
+    std::string xml = pf::fingerMjcf(p, pf::FingerUrdfOptions(), o);
+    const double r = 1e-3, length = p.lengthM();
+    const std::string ball = "<geom name=\"tip_ball\" type=\"sphere\" size=\"" + pf::formatShortest(r) +
+                             "\" contype=\"2\" conaffinity=\"2\" mass=\"0\"/>\n";
+    xml.insert(xml.find("<site name=\"finger_tip\""), ball);
+    // Its lower face at y = r: it touches the ball of the straight finger's tip.
+    const std::string plate = "<geom name=\"plate\" type=\"box\" size=\"0.02 0.005 0.01\" pos=\"" +
+                              pf::formatShortest(length) + " " + pf::formatShortest(r + 0.005) +
+                              " 0\" contype=\"2\" conaffinity=\"2\" solref=\"-1e9 -1e5\"/>\n";
+    xml.insert(xml.find("  </worldbody>"), "    " + plate);
+    Loaded sim(xml, "plate");
+    ASSERT_NE(sim.m, nullptr) << sim.error;
+    sim.m->opt.timestep = 1e-5;
+    sim.m->opt.gravity[1] = sim.m->opt.gravity[2] = sim.m->opt.gravity[0] = 0.0;
+    for (int i = 0; i < 300000; ++i) mj_step(sim.m, sim.d);
+    double normal_n = 0.0;
+    for (int c = 0; c < sim.d->ncon; ++c) {
+      mjtNum f[6];
+      mj_contactForce(sim.m, sim.d, c, f);
+      normal_n += f[0];
+    }
+    const double want = twin.blockedTipForceN(gauge);
+    ASSERT_GT(want, 0.0);
+    EXPECT_NEAR(normal_n, want, 0.02 * want);
   }
 }

@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "pneumatic_finger/description/finger_urdf.hpp"
+#include "pneumatic_finger/sim/finger_mjcf.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
 
 namespace pf = pneumatic_finger;
@@ -43,6 +44,13 @@ int main(int argc, char** argv) {
                                      "the gripper file (YAML: per finger prefix, parent, xyz, rpy, config); with --robot "
                                      "compose them all, without it write the finger with --prefix");
   robot_opt->needs(gripper_opt);
+  bool mjcf = false;
+  pf::MjcfOptions mjcf_options;
+  std::string mjcf_gauge;
+  app.add_flag("--mjcf", mjcf,
+               "write a MuJoCo model (MJCF) instead: the finger's joints carry springs that hold the twin's shape and "
+               "moments at --gauge-pa (docs/SIMULATION.md)");
+  app.add_option("--gauge-pa", mjcf_gauge, "with --mjcf: the pressure whose springs the joints carry (Pa gauge; 0)");
   return pf::runTool("finger_urdf", app, argc, argv, [&] {
     if (!xyz.empty()) options.mount_xyz_m = parseTriple("--xyz", xyz);
     if (!rpy.empty()) options.mount_rpy_rad = parseTriple("--rpy", rpy);
@@ -50,7 +58,14 @@ int main(int argc, char** argv) {
       throw pf::ParameterError("--max-gauge-pa must be a finite pressure > 0");
     }
     std::string urdf;
-    if (!robot.empty()) {
+    if (!mjcf_gauge.empty() && !mjcf) throw pf::ParameterError("--gauge-pa needs --mjcf");
+    if (mjcf) {
+      if (!robot.empty() || !gripper.empty()) {
+        throw pf::ParameterError("--mjcf writes one finger for now: --robot and --gripper are not taken with it");
+      }
+      if (!mjcf_gauge.empty()) mjcf_options.gauge_pa = pf::parseFiniteOption("--gauge-pa", mjcf_gauge);
+      urdf = pf::fingerMjcf(parameters.load(), options, mjcf_options);
+    } else if (!robot.empty()) {
       // One description for the whole robot: what robot_state_publisher, rviz and a planner read.
       urdf = pf::composeRobotUrdfFiles(robot, gripper);
     } else if (!gripper.empty()) {

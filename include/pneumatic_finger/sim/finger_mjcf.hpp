@@ -1,0 +1,27 @@
+// The finger as a MuJoCo model (MJCF): the URDF's bodies, inertials and collision boxes, with each finger joint's
+// spring (joint_springs.hpp) at a pressure, so that MuJoCo's own passive springs hold the twin's shape and another
+// program that loads the file gets the same finger (docs/MODEL.md, "Joint springs"; docs/SIMULATION.md). ROS-free and
+// MuJoCo-free: it writes text.
+#pragma once
+
+#include <string>
+
+#include "pneumatic_finger/description/finger_urdf.hpp"
+
+namespace pneumatic_finger {
+
+/// The MJCF's settings besides the description. Each is written into the file, with the reason beside it.
+struct MjcfOptions {
+  double gauge_pa = 0.0;        ///< the pressure whose springs the joints carry (Pa gauge)
+  double timestep_s = 1e-4;     ///< the finger's stiffest joint rings at about 1 kHz: ten steps per period and more
+  double damping_ratio = 1.0;   ///< each joint's damping, as a share of critical for the chain beyond it
+  double friction = 1.0;        ///< sliding friction of every geom (silicone on most objects: 1 and more)
+  double impratio = 10.0;       ///< elliptic friction cones, frictional constraints this much harder than normal ones
+};
+
+/// The MJCF of one finger mounted on @p options.parent_frame (a static body at the world's origin), its joints'
+/// springs at @p mjcf.gauge_pa, a site <prefix>tip at the tip. @throws ParameterError as fingerUrdfModel does, and
+/// where the twin has no free shape at the pressure (beyond the membrane law's limit point)
+std::string fingerMjcf(const FingerParameters& parameters, const FingerUrdfOptions& options, const MjcfOptions& mjcf);
+
+}  // namespace pneumatic_finger

@@ -1,0 +1,164 @@
+// The finger as MJCF (finger_mjcf.hpp): the URDF model walked from its root, each link a body, each finger joint a
+// hinge with its spring.
+#include "pneumatic_finger/sim/finger_mjcf.hpp"
+
+#include <cmath>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/sim/joint_springs.hpp"
+
+namespace pneumatic_finger {
+
+namespace {
+
+std::string num(double v) { return formatShortest(v); }
+
+std::string posQuat(const urdf::Pose& pose) {
+  double x = 0, y = 0, z = 0, w = 1;
+  pose.rotation.getQuaternion(x, y, z, w);
+  return "pos=\"" + num(pose.position.x) + " " + num(pose.position.y) + " " + num(pose.position.z) + "\" quat=\"" +
+         num(w) + " " + num(x) + " " + num(y) + " " + num(z) + "\"";
+}
+
+// A finger joint's spring and damping, by name.
+struct JointDynamics {
+  JointSpring spring;
+  double damping_nms = 0.0;
+};
+
+// The rotational inertia (kg m^2) about joint n's axis of every link beyond it, in the straight finger (all joints
+// at 0, so each link's frame is the previous one's shifted along x).
+double distalInertia(const urdf::ModelInterface& model, const std::string& prefix, int joint, int chambers) {
+  double inertia = 0.0, offset = 0.0;
+  for (int k = joint; k <= chambers; ++k) {
+    const auto link = model.getLink(segmentLinkName(prefix, k));
+    if (k > joint) offset += model.getJoint(jointName(prefix, k))->parent_to_joint_origin_transform.position.x;
+    if (!link || !link->inertial) continue;
+    const urdf::Inertial& in = *link->inertial;
+    const double x = offset + in.origin.position.x, y = in.origin.position.y;
+    inertia += in.izz + in.mass * (x * x + y * y);
+  }
+  return inertia;
+}
+
+void writeBody(std::ostringstream& out, const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& link,
+               const std::map<std::string, JointDynamics>& dynamics, const std::string& indent);
+
+// The inertial at its position, its tensor turned into the body's axes (MJCF's fullinertia takes no orientation):
+// I_body = R I R^T, R the URDF inertial frame's rotation.
+void writeInertial(std::ostringstream& out, const urdf::Inertial& i, const std::string& indent) {
+  double x = 0, y = 0, z = 0, w = 1;
+  i.origin.rotation.getQuaternion(x, y, z, w);
+  const double r[3][3] = {{1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)},
+                          {2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)},
+                          {2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)}};
+  const double t[3][3] = {{i.ixx, i.ixy, i.ixz}, {i.ixy, i.iyy, i.iyz}, {i.ixz, i.iyz, i.izz}};
+  double b[3][3] = {};
+  for (int a = 0; a < 3; ++a) {
+    for (int c = 0; c < 3; ++c) {
+      for (int k = 0; k < 3; ++k) {
+        for (int l = 0; l < 3; ++l) b[a][c] += r[a][k] * t[k][l] * r[c][l];
+      }
+    }
+  }
+  const urdf::Vector3& p = i.origin.position;
+  out << indent << "<inertial pos=\"" << num(p.x) << " " << num(p.y) << " " << num(p.z) << "\" mass=\"" << num(i.mass)
+      << "\" fullinertia=\"" << num(b[0][0]) << " " << num(b[1][1]) << " " << num(b[2][2]) << " " << num(b[0][1]) << " "
+      << num(b[0][2]) << " " << num(b[1][2]) << "\"/>\n";
+}
+
+void writeJoint(std::ostringstream& out, const urdf::Joint& joint, const std::map<std::string, JointDynamics>& dynamics,
+                const std::string& indent) {
+  if (joint.type == urdf::Joint::FIXED) return;
+  const urdf::Vector3& a = joint.axis;
+  out << indent << "<joint name=\"" << joint.name << "\" type=\""
+      << (joint.type == urdf::Joint::PRISMATIC ? "slide" : "hinge") << "\" axis=\"" << num(a.x) << " " << num(a.y)
+      << " " << num(a.z) << "\"";
+  if (joint.limits && joint.type != urdf::Joint::CONTINUOUS) {
+    out << " limited=\"true\" range=\"" << num(joint.limits->lower) << " " << num(joint.limits->upper) << "\"";
+  }
+  const auto d = dynamics.find(joint.name);
+  if (d != dynamics.end()) {
+    out << " stiffness=\"" << num(d->second.spring.stiffness_nm_per_rad) << "\" springref=\""
+        << num(d->second.spring.rest_angle_rad) << "\" damping=\"" << num(d->second.damping_nms) << "\"";
+  }
+  out << "/>\n";
+}
+
+void writeGeoms(std::ostringstream& out, const urdf::Link& link, const std::string& indent) {
+  for (const auto& c : link.collision_array) {
+    if (!c || !c->geometry) continue;
+    std::string type, size;
+    if (c->geometry->type == urdf::Geometry::BOX) {
+      const urdf::Vector3& s = static_cast<const urdf::Box&>(*c->geometry).dim;
+      type = "box", size = num(s.x / 2) + " " + num(s.y / 2) + " " + num(s.z / 2);
+    } else if (c->geometry->type == urdf::Geometry::CYLINDER) {
+      const auto& cyl = static_cast<const urdf::Cylinder&>(*c->geometry);
+      type = "cylinder", size = num(cyl.radius) + " " + num(cyl.length / 2);
+    } else if (c->geometry->type == urdf::Geometry::SPHERE) {
+      type = "sphere", size = num(static_cast<const urdf::Sphere&>(*c->geometry).radius);
+    } else {
+      continue;  // meshes: the described robots here have none
+    }
+    out << indent << "<geom type=\"" << type << "\" size=\"" << size << "\" " << posQuat(c->origin) << "/>\n";
+  }
+}
+
+void writeBody(std::ostringstream& out, const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& link,
+               const std::map<std::string, JointDynamics>& dynamics, const std::string& indent) {
+  const urdf::JointConstSharedPtr& parent = link->parent_joint;
+  out << indent << "<body name=\"" << link->name << "\""
+      << (parent ? " " + posQuat(parent->parent_to_joint_origin_transform) : std::string()) << ">\n";
+  const std::string in = indent + "  ";
+  if (parent) writeJoint(out, *parent, dynamics, in);
+  if (link->inertial) writeInertial(out, *link->inertial, in);
+  writeGeoms(out, *link, in);
+  if (link->child_links.empty()) out << in << "<site name=\"" << link->name << "\" size=\"0.0005\"/>\n";
+  for (const auto& child : link->child_links) writeBody(out, model, child, dynamics, in);
+  out << indent << "</body>\n";
+}
+
+}  // namespace
+
+std::string fingerMjcf(const FingerParameters& parameters, const FingerUrdfOptions& options, const MjcfOptions& mjcf) {
+  const urdf::ModelInterface model = fingerUrdfModel(parameters, options);
+  const FingerModel twin(parameters);
+  std::string why;
+  const std::vector<JointSpring> springs = jointSprings(twin, mjcf.gauge_pa, why);
+  if (springs.empty()) throw ParameterError("--mjcf --gauge-pa: " + why);
+  std::map<std::string, JointDynamics> dynamics;
+  const int n = parameters.chamber_count;
+  for (int j = 1; j <= n; ++j) {
+    JointDynamics d{springs[static_cast<std::size_t>(j - 1)], 0.0};
+    // Critical damping of the chain beyond the joint as one rigid body on the spring: c = 2 zeta sqrt(k J).
+    d.damping_nms = 2.0 * mjcf.damping_ratio *
+                    std::sqrt(d.spring.stiffness_nm_per_rad * distalInertia(model, options.prefix, j, n));
+    dynamics[jointName(options.prefix, j)] = d;
+  }
+  std::ostringstream out;
+  out << "<!-- The pneumatic finger at " << num(mjcf.gauge_pa) << " Pa gauge, written by finger_urdf --mjcf: each "
+      << "finger joint a spring whose rest angle is the twin's free angle and whose stiffness holds the twin's "
+      << "moment at the straight joint (docs/MODEL.md, Joint springs). -->\n"
+      << "<mujoco model=\"" << model.name_ << "\">\n"
+      << "  <compiler angle=\"radian\"/>\n"
+      << "  <!-- Elliptic cones and a high impratio: frictional contacts that hold a grasp without creep. -->\n"
+      << "  <option timestep=\"" << num(mjcf.timestep_s) << "\" cone=\"elliptic\" impratio=\"" << num(mjcf.impratio)
+      << "\"/>\n"
+      << "  <default><geom friction=\"" << num(mjcf.friction) << " 0.005 0.0001\" condim=\"4\"/></default>\n"
+      << "  <worldbody>\n";
+  writeBody(out, model, model.getRoot(), dynamics, "    ");
+  out << "  </worldbody>\n"
+      << "  <!-- Neighbouring segments' boxes meet at their joint: they bend about it, they do not collide. -->\n"
+      << "  <contact>\n";
+  for (int j = 1; j <= n; ++j) {
+    out << "    <exclude body1=\"" << segmentLinkName(options.prefix, j - 1) << "\" body2=\""
+        << segmentLinkName(options.prefix, j) << "\"/>\n";
+  }
+  out << "  </contact>\n</mujoco>\n";
+  return out.str();
+}
+
+}  // namespace pneumatic_finger

@@ -1,0 +1,39 @@
+// The joint springs (docs/MODEL.md, "Joint springs"): the twin's free angles and the force model's moments.
+#include "pneumatic_finger/sim/joint_springs.hpp"
+
+#include <cmath>
+#include <string>
+
+namespace pneumatic_finger {
+
+double straightBendingStiffnessNmPerRad(const FingerParameters& p, int joint) {
+  const auto k = static_cast<std::size_t>(joint);
+  const double height_m = p.chamber_height_m[k], width_m = p.chamber_width_m[k];
+  const double segment_m = joint == 0 ? p.base_segment_length_m : p.segment_length_m[k - 1];
+  return kStraightFingerYoungsModulusPa * width_m * height_m * height_m * height_m / 12.0 / segment_m;
+}
+
+std::vector<JointSpring> jointSprings(const FingerModel& model, double gauge_pa, std::string& why) {
+  const int n = model.chamberCount();
+  std::vector<double> q(static_cast<std::size_t>(n)), moment(static_cast<std::size_t>(n));
+  const double p = gauge_pa < 0.0 ? 0.0 : gauge_pa;  // a vacuum: the straight finger (the model has none)
+  if (!std::isfinite(p) || !model.jointAnglesAt(p, q.data())) {
+    why = "the twin has no free shape at " + formatMessage(gauge_pa) +
+          " Pa gauge (not finite, or at or beyond the wall's limit point)";
+    return {};
+  }
+  model.straightJointMomentsNm(p, moment.data());
+  std::vector<JointSpring> springs(static_cast<std::size_t>(n));
+  for (std::size_t j = 0; j < springs.size(); ++j) {
+    JointSpring& s = springs[j];
+    s.rest_angle_rad = q[j];
+    s.pressure_moment_nm = moment[j];
+    // In contact the joint held straight presses with M: k q0 = M. Before it, the elastomer alone.
+    s.stiffness_nm_per_rad = q[j] > 0.0 && moment[j] > 0.0
+                                 ? moment[j] / q[j]
+                                 : straightBendingStiffnessNmPerRad(model.parameters(), static_cast<int>(j));
+  }
+  return springs;
+}
+
+}  // namespace pneumatic_finger
