@@ -88,6 +88,13 @@ void writeJoint(std::ostringstream& out, const urdf::Joint& joint, const std::ma
   out << "/>\n";
 }
 
+// The link's visual colour (its URDF material), so that MuJoCo's viewer shows the finger as rviz does.
+std::string rgba(const urdf::Link& link) {
+  if (!link.visual || !link.visual->material) return "";
+  const urdf::Color& c = link.visual->material->color;
+  return " rgba=\"" + num(c.r) + " " + num(c.g) + " " + num(c.b) + " " + num(c.a) + "\"";
+}
+
 void writeGeoms(std::ostringstream& out, const urdf::Link& link, const std::string& indent) {
   for (const auto& c : link.collision_array) {
     if (!c || !c->geometry) continue;
@@ -103,7 +110,8 @@ void writeGeoms(std::ostringstream& out, const urdf::Link& link, const std::stri
     } else {
       continue;  // meshes: the described robots here have none
     }
-    out << indent << "<geom type=\"" << type << "\" size=\"" << size << "\" " << posQuat(c->origin) << "/>\n";
+    out << indent << "<geom type=\"" << type << "\" size=\"" << size << "\" " << posQuat(c->origin) << rgba(link)
+        << "/>\n";
   }
 }
 
@@ -148,7 +156,8 @@ std::string fingerMjcf(const FingerParameters& parameters, const FingerUrdfOptio
       << "  <option timestep=\"" << num(mjcf.timestep_s) << "\" cone=\"elliptic\" impratio=\"" << num(mjcf.impratio)
       << "\"/>\n"
       << "  <default><geom friction=\"" << num(mjcf.friction) << " 0.005 0.0001\" condim=\"4\"/></default>\n"
-      << "  <worldbody>\n";
+      << "  <worldbody>\n"
+      << "    <light directional=\"true\" pos=\"0 0 1\" dir=\"0 0 -1\"/>\n";
   writeBody(out, model, model.getRoot(), dynamics, "    ");
   out << "  </worldbody>\n"
       << "  <!-- Neighbouring segments' boxes meet at their joint: they bend about it, they do not collide. -->\n"

@@ -13,7 +13,7 @@ namespace pneumatic_finger {
 /// The MJCF's settings besides the description. Each is written into the file, with the reason beside it.
 struct MjcfOptions {
   double gauge_pa = 0.0;        ///< the pressure whose springs the joints carry (Pa gauge)
-  double timestep_s = 1e-4;     ///< the finger's stiffest joint rings at about 1 kHz: ten steps per period and more
+  double timestep_s = 1e-4;     ///< short against the stiffest joint's period (the spring on the chain beyond it)
   double damping_ratio = 1.0;   ///< each joint's damping, as a share of critical for the chain beyond it
   double friction = 1.0;        ///< sliding friction of every geom (silicone on most objects: 1 and more)
   double impratio = 10.0;       ///< elliptic friction cones, frictional constraints this much harder than normal ones
