@@ -12,12 +12,14 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <string>
 
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
 #include "pneumatic_finger/sim/finger_mjcf.hpp"
 #include "pneumatic_finger/sim/joint_springs.hpp"
+#include "pneumatic_finger/sim/pressure_driven_finger.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -228,4 +230,44 @@ TEST(SimulatorSprings, APlateAtTheTipFeelsTheTwinsBlockedForce) {
     ASSERT_GT(want, 0.0);
     EXPECT_NEAR(normal_n, want, 0.02 * want);
   }
+}
+
+// The pressure-driven finger: MuJoCo steps while the regulator's fill raises the pressure, and the springs follow the
+// twin at every step; held at the end, the finger settles to the twin's angles at the final pressure. The damping
+// keeps the file's ratio: rewritten at a pressure, it is what a file written at that pressure has.
+TEST(SimulatorSprings, AFillDrivesTheFingerThroughTheTwinsShapes) {
+  const pf::FingerParameters p = pf::FingerParameters::defaults();
+  const pf::FingerModel twin(p);
+  Loaded sim(pf::fingerMjcf(p, pf::FingerUrdfOptions(), pf::MjcfOptions()), "fill");
+  ASSERT_NE(sim.m, nullptr) << sim.error;
+  pf::PressureDrivenFinger finger(twin, sim.m, "finger_");
+  sim.m->opt.gravity[0] = sim.m->opt.gravity[1] = sim.m->opt.gravity[2] = 0.0;
+  const double top = 98066.5, fill_s = 0.5, dt = sim.m->opt.timestep;
+  std::string why;
+  for (int i = 0; i * dt < fill_s + 1.0; ++i) {
+    ASSERT_TRUE(finger.applyPressure(std::min(top, top * i * dt / fill_s), why)) << why;
+    mj_step(sim.m, sim.d);
+  }
+  const std::vector<pf::JointSpring> springs = pf::jointSprings(twin, top, why);
+  for (std::size_t j = 0; j < springs.size(); ++j) {
+    const int id = finger.jointIds()[j];
+    EXPECT_NEAR(sim.d->qpos[sim.m->jnt_qposadr[id]], springs[j].rest_angle_rad, 1e-3) << j;
+    EXPECT_EQ(sim.m->jnt_stiffness[id], springs[j].stiffness_nm_per_rad) << j;
+  }
+  pf::MjcfOptions at_top;
+  at_top.gauge_pa = top;
+  Loaded written(pf::fingerMjcf(p, pf::FingerUrdfOptions(), at_top), "fill_top");
+  for (int id : finger.jointIds()) {
+    const double want = written.m->dof_damping[written.m->jnt_dofadr[id]];
+    EXPECT_NEAR(sim.m->dof_damping[sim.m->jnt_dofadr[id]], want, 1e-12 * want) << id;
+  }
+  // Beyond what the twin holds the springs stay as they were, and the call says why.
+  const pf::FingerModel membrane(membraneParameters());
+  Loaded balloon(pf::fingerMjcf(membraneParameters(), pf::FingerUrdfOptions(), pf::MjcfOptions()), "balloon");
+  pf::PressureDrivenFinger ballooning(membrane, balloon.m, "finger_");
+  ASSERT_TRUE(ballooning.applyPressure(0.5 * membrane.limitGaugePa(), why));
+  EXPECT_FALSE(ballooning.applyPressure(std::numeric_limits<double>::quiet_NaN(), why));
+  EXPECT_NE(why.find("no free shape"), std::string::npos) << why;
+  EXPECT_EQ(ballooning.gaugePa(), 0.5 * membrane.limitGaugePa());
+  EXPECT_THROW(pf::PressureDrivenFinger(twin, sim.m, "other_"), pf::ParameterError);
 }

@@ -13,6 +13,12 @@ double straightBendingStiffnessNmPerRad(const FingerParameters& p, int joint) {
   return kStraightFingerYoungsModulusPa * width_m * height_m * height_m * height_m / 12.0 / segment_m;
 }
 
+double springStiffnessNmPerRad(const FingerParameters& parameters, int joint, double rest_angle_rad, double moment_nm) {
+  // In contact the joint held straight presses with M: k q0 = M. Before it, the elastomer alone.
+  return rest_angle_rad > 0.0 && moment_nm > 0.0 ? moment_nm / rest_angle_rad
+                                                 : straightBendingStiffnessNmPerRad(parameters, joint);
+}
+
 std::vector<JointSpring> jointSprings(const FingerModel& model, double gauge_pa, std::string& why) {
   const int n = model.chamberCount();
   std::vector<double> q(static_cast<std::size_t>(n)), moment(static_cast<std::size_t>(n));
@@ -28,10 +34,7 @@ std::vector<JointSpring> jointSprings(const FingerModel& model, double gauge_pa,
     JointSpring& s = springs[j];
     s.rest_angle_rad = q[j];
     s.pressure_moment_nm = moment[j];
-    // In contact the joint held straight presses with M: k q0 = M. Before it, the elastomer alone.
-    s.stiffness_nm_per_rad = q[j] > 0.0 && moment[j] > 0.0
-                                 ? moment[j] / q[j]
-                                 : straightBendingStiffnessNmPerRad(model.parameters(), static_cast<int>(j));
+    s.stiffness_nm_per_rad = springStiffnessNmPerRad(model.parameters(), static_cast<int>(j), q[j], moment[j]);
   }
   return springs;
 }

@@ -9,6 +9,7 @@
 //    straight finger against gravity and inertia.
 #pragma once
 
+#include <string>
 #include <vector>
 
 #include "pneumatic_finger/core/finger_model.hpp"
@@ -29,6 +30,11 @@ struct JointSpring {
 /// The elastomer's bending stiffness at joint n (N m/rad): E I / Z_n, I = e L^3 / 12 of the segment's section (width
 /// e across, height L away from the bending axis), Z_n the joint's segment length.
 double straightBendingStiffnessNmPerRad(const FingerParameters& parameters, int joint);
+
+/// Joint @p joint's (0-based) stiffness (N m/rad) for its rest angle @p rest_angle_rad and its straight joint's moment
+/// @p moment_nm: M/q0 in contact, the elastomer's E I/Z before it. The one rule of jointSprings and of the engine's
+/// per-step update (pressure_driven_finger.hpp).
+double springStiffnessNmPerRad(const FingerParameters& parameters, int joint, double rest_angle_rad, double moment_nm);
 
 /// The springs of @p model's N joints at @p gauge_pa (joint 1 first). Under the membrane law beyond the limit point
 /// (no free shape): empty. @param[out] why the reason when empty
