@@ -441,6 +441,15 @@ TEST(UrdfCli, MjcfCarriesTheSpringsOfItsPressure) {
   const CliRun no_mjcf = runShell(std::string(FINGER_URDF_EXE) + " --gauge-pa 1000");
   EXPECT_EQ(no_mjcf.status, 2);
   EXPECT_NE(no_mjcf.err.find("--gauge-pa needs --mjcf"), std::string::npos) << no_mjcf.err;
+  const std::string root = PACKAGE_SOURCE_DIR;
+  const CliRun cell = runShell(std::string(FINGER_URDF_EXE) + " --mjcf --robot " + root + "/urdf/industrial_arm.urdf" +
+                               " --gripper " + root + "/config/gripper.yaml");
+  ASSERT_EQ(cell.status, 0) << cell.err;
+  EXPECT_NE(cell.out.find("<position name=\"joint_1\" joint=\"joint_1\""), std::string::npos);
+  EXPECT_NE(cell.out.find("name=\"finger_c_joint_7\""), std::string::npos);
+  const CliRun half = runShell(std::string(FINGER_URDF_EXE) + " --mjcf --gripper " + root + "/config/gripper.yaml");
+  EXPECT_EQ(half.status, 2);
+  EXPECT_NE(half.err.find("--mjcf with --gripper needs --robot"), std::string::npos) << half.err;
   const CliRun beyond = runShell(std::string(FINGER_URDF_EXE) +
                                  " --mjcf --set wall_law=membrane --set shear_modulus_pa=2e4 --gauge-pa 20000");
   EXPECT_EQ(beyond.status, 2);

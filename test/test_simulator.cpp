@@ -271,3 +271,37 @@ TEST(SimulatorSprings, AFillDrivesTheFingerThroughTheTwinsShapes) {
   EXPECT_EQ(ballooning.gaugePa(), 0.5 * membrane.limitGaugePa());
   EXPECT_THROW(pf::PressureDrivenFinger(twin, sim.m, "other_"), pf::ParameterError);
 }
+
+// The composed cell as MJCF (finger_urdf --robot --gripper --mjcf): every finger's springs, a position actuator on
+// every arm joint. Under gravity the arm holds its pose (its rated torque at 10 mrad of error), and without it every
+// finger settles to the twin; nothing collides, nothing warns.
+TEST(SimulatorSprings, TheComposedCellHoldsItsArmAndItsFingersTakeTheTwinsShape) {
+  pf::MjcfOptions o;
+  o.gauge_pa = 98066.5;
+  Loaded sim(pf::composedMjcf(kArm, kGripper, o), "cell_mjcf");
+  ASSERT_NE(sim.m, nullptr) << sim.error;
+  EXPECT_EQ(sim.m->nu, 6) << "one position actuator per arm joint";
+  EXPECT_EQ(sim.m->njnt, 6 + 3 * 7);
+  for (int i = 0; i < 5000; ++i) mj_step(sim.m, sim.d);  // 0.5 s under gravity, the targets at 0
+  for (int j = 1; j <= 6; ++j) {
+    const int id = mj_name2id(sim.m, mjOBJ_JOINT, ("joint_" + std::to_string(j)).c_str());
+    ASSERT_GE(id, 0);
+    EXPECT_LT(std::fabs(sim.d->qpos[sim.m->jnt_qposadr[id]]), 1e-2) << "joint_" << j;
+  }
+  int warnings = 0;
+  for (int w = 0; w < mjNWARNING; ++w) warnings += sim.d->warning[w].number;
+  EXPECT_EQ(warnings, 0);
+  EXPECT_EQ(sim.d->ncon, 0) << "the fingers' and the arm's own links do not collide";
+  sim.m->opt.gravity[0] = sim.m->opt.gravity[1] = sim.m->opt.gravity[2] = 0.0;
+  for (int i = 0; i < 10000; ++i) mj_step(sim.m, sim.d);
+  const pf::FingerModel twin(pf::loadGripperFile(kGripper).front().parameters);
+  std::vector<double> q(7);
+  ASSERT_TRUE(twin.jointAnglesAt(o.gauge_pa, q.data()));
+  for (const char* prefix : {"finger_a_", "finger_b_", "finger_c_"}) {
+    for (int j = 1; j <= 7; ++j) {
+      const int id = mj_name2id(sim.m, mjOBJ_JOINT, pf::jointName(prefix, j).c_str());
+      ASSERT_GE(id, 0);
+      EXPECT_NEAR(sim.d->qpos[sim.m->jnt_qposadr[id]], q[static_cast<std::size_t>(j - 1)], 1e-3) << prefix << j;
+    }
+  }
+}

@@ -6,7 +6,10 @@
 #include <map>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
+
+#include <urdf_parser/urdf_parser.h>
 
 #include "pneumatic_finger/sim/joint_springs.hpp"
 
@@ -81,10 +84,11 @@ void writeJoint(std::ostringstream& out, const urdf::Joint& joint, const std::ma
     out << " limited=\"true\" range=\"" << num(joint.limits->lower) << " " << num(joint.limits->upper) << "\"";
   }
   const auto d = dynamics.find(joint.name);
-  if (d != dynamics.end()) {
+  if (d != dynamics.end() && d->second.spring.stiffness_nm_per_rad > 0.0) {
     out << " stiffness=\"" << num(d->second.spring.stiffness_nm_per_rad) << "\" springref=\""
-        << num(d->second.spring.rest_angle_rad) << "\" damping=\"" << num(d->second.damping_nms) << "\"";
+        << num(d->second.spring.rest_angle_rad) << "\"";
   }
+  if (d != dynamics.end()) out << " damping=\"" << num(d->second.damping_nms) << "\"";
   out << "/>\n";
 }
 
@@ -131,25 +135,78 @@ void writeBody(std::ostringstream& out, const urdf::ModelInterface& model, const
 
 }  // namespace
 
-std::string fingerMjcf(const FingerParameters& parameters, const FingerUrdfOptions& options, const MjcfOptions& mjcf) {
-  const urdf::ModelInterface model = fingerUrdfModel(parameters, options);
+namespace {
+
+// Each finger joint's spring at the pressure, and its damping: critical for the chain beyond it as one rigid body on
+// the spring, c = 2 zeta sqrt(k J). @throws ParameterError where the twin has no free shape.
+void addFingerDynamics(const urdf::ModelInterface& model, const FingerParameters& parameters, const std::string& prefix,
+                       const MjcfOptions& mjcf, std::map<std::string, JointDynamics>& dynamics) {
   const FingerModel twin(parameters);
   std::string why;
   const std::vector<JointSpring> springs = jointSprings(twin, mjcf.gauge_pa, why);
   if (springs.empty()) throw ParameterError("--mjcf --gauge-pa: " + why);
-  std::map<std::string, JointDynamics> dynamics;
   const int n = parameters.chamber_count;
   for (int j = 1; j <= n; ++j) {
     JointDynamics d{springs[static_cast<std::size_t>(j - 1)], 0.0};
-    // Critical damping of the chain beyond the joint as one rigid body on the spring: c = 2 zeta sqrt(k J).
     d.damping_nms = 2.0 * mjcf.damping_ratio *
-                    std::sqrt(d.spring.stiffness_nm_per_rad * distalInertia(model, options.prefix, j, n));
-    dynamics[jointName(options.prefix, j)] = d;
+                    std::sqrt(d.spring.stiffness_nm_per_rad * distalInertia(model, prefix, j, n));
+    dynamics[jointName(prefix, j)] = d;
   }
+}
+
+// The MJCF of @p model: the springs of @p dynamics' joints; a position actuator on every other moving joint (the
+// robot's), of stiffness kPositionGainSPerRad times its effort limit and damping kPositionTimeConstantS times that;
+// contacts between the fingers' neighbouring segments off (@p excluded: pairs of body names).
+std::string writeMjcf(const urdf::ModelInterface& model, const std::map<std::string, JointDynamics>& dynamics,
+                      const std::vector<std::pair<std::string, std::string>>& excluded, const MjcfOptions& mjcf);
+
+}  // namespace
+
+std::string fingerMjcf(const FingerParameters& parameters, const FingerUrdfOptions& options, const MjcfOptions& mjcf) {
+  const urdf::ModelInterface model = fingerUrdfModel(parameters, options);
+  std::map<std::string, JointDynamics> dynamics;
+  addFingerDynamics(model, parameters, options.prefix, mjcf, dynamics);
+  std::vector<std::pair<std::string, std::string>> excluded;
+  for (int j = 1; j <= parameters.chamber_count; ++j) {
+    excluded.emplace_back(segmentLinkName(options.prefix, j - 1), segmentLinkName(options.prefix, j));
+  }
+  return writeMjcf(model, dynamics, excluded, mjcf);
+}
+
+std::string composedMjcf(const std::string& robot_urdf_path, const std::string& gripper_path, const MjcfOptions& mjcf) {
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(composeRobotUrdfFiles(robot_urdf_path, gripper_path));
+  if (!model) throw ParameterError("the composed description does not parse");
+  std::map<std::string, JointDynamics> dynamics;
+  std::vector<std::pair<std::string, std::string>> excluded;
+  for (const GripperFinger& f : loadGripperFile(gripper_path)) {
+    addFingerDynamics(*model, f.parameters, f.mount.prefix, mjcf, dynamics);
+    for (int j = 1; j <= f.parameters.chamber_count; ++j) {
+      excluded.emplace_back(segmentLinkName(f.mount.prefix, j - 1), segmentLinkName(f.mount.prefix, j));
+    }
+  }
+  return writeMjcf(*model, dynamics, excluded, mjcf);
+}
+
+namespace {
+
+std::string writeMjcf(const urdf::ModelInterface& model, const std::map<std::string, JointDynamics>& dynamics,
+                      const std::vector<std::pair<std::string, std::string>>& excluded, const MjcfOptions& mjcf) {
+  // The robot's joints: position-controlled, stiff against their own effort limit.
+  std::ostringstream actuators;
+  std::map<std::string, double> arm_damping;
+  for (const auto& [name, joint] : model.joints_) {
+    if (joint->type == urdf::Joint::FIXED || dynamics.count(name) || !joint->limits) continue;
+    const double effort = joint->limits->effort, kp = kPositionGainPerRad * effort;
+    arm_damping[name] = kPositionTimeConstantS * kp;
+    actuators << "    <position name=\"" << name << "\" joint=\"" << name << "\" kp=\"" << num(kp)
+              << "\" forcelimited=\"true\" forcerange=\"" << num(-effort) << " " << num(effort) << "\"/>\n";
+  }
+  std::map<std::string, JointDynamics> all = dynamics;
+  for (const auto& [name, c] : arm_damping) all[name] = JointDynamics{JointSpring{}, c};
   std::ostringstream out;
-  out << "<!-- The pneumatic finger at " << num(mjcf.gauge_pa) << " Pa gauge, written by finger_urdf --mjcf: each "
+  out << "<!-- " << model.name_ << " at " << num(mjcf.gauge_pa) << " Pa gauge, written by finger_urdf --mjcf: each "
       << "finger joint a spring whose rest angle is the twin's free angle and whose stiffness holds the twin's "
-      << "moment at the straight joint (docs/MODEL.md, Joint springs). -->\n"
+      << "moment at the straight joint (docs/MODEL.md, Joint springs); each robot joint a position actuator. -->\n"
       << "<mujoco model=\"" << model.name_ << "\">\n"
       << "  <compiler angle=\"radian\"/>\n"
       << "  <!-- Elliptic cones and a high impratio: frictional contacts that hold a grasp without creep. -->\n"
@@ -158,16 +215,21 @@ std::string fingerMjcf(const FingerParameters& parameters, const FingerUrdfOptio
       << "  <default><geom friction=\"" << num(mjcf.friction) << " 0.005 0.0001\" condim=\"4\"/></default>\n"
       << "  <worldbody>\n"
       << "    <light directional=\"true\" pos=\"0 0 1\" dir=\"0 0 -1\"/>\n";
-  writeBody(out, model, model.getRoot(), dynamics, "    ");
+  // The URDF's root is the world (often named so, which MJCF's world body already is): its geoms and children go
+  // into the world body.
+  const urdf::LinkConstSharedPtr root = model.getRoot();
+  writeGeoms(out, *root, "    ");
+  for (const auto& child : root->child_links) writeBody(out, model, child, all, "    ");
   out << "  </worldbody>\n"
       << "  <!-- Neighbouring segments' boxes meet at their joint: they bend about it, they do not collide. -->\n"
       << "  <contact>\n";
-  for (int j = 1; j <= n; ++j) {
-    out << "    <exclude body1=\"" << segmentLinkName(options.prefix, j - 1) << "\" body2=\""
-        << segmentLinkName(options.prefix, j) << "\"/>\n";
-  }
-  out << "  </contact>\n</mujoco>\n";
+  for (const auto& [a, b] : excluded) out << "    <exclude body1=\"" << a << "\" body2=\"" << b << "\"/>\n";
+  out << "  </contact>\n";
+  if (!actuators.str().empty()) out << "  <actuator>\n" << actuators.str() << "  </actuator>\n";
+  out << "</mujoco>\n";
   return out.str();
 }
+
+}  // namespace
 
 }  // namespace pneumatic_finger

@@ -60,11 +60,12 @@ int main(int argc, char** argv) {
     std::string urdf;
     if (!mjcf_gauge.empty() && !mjcf) throw pf::ParameterError("--gauge-pa needs --mjcf");
     if (mjcf) {
-      if (!robot.empty() || !gripper.empty()) {
-        throw pf::ParameterError("--mjcf writes one finger for now: --robot and --gripper are not taken with it");
-      }
       if (!mjcf_gauge.empty()) mjcf_options.gauge_pa = pf::parseFiniteOption("--gauge-pa", mjcf_gauge);
-      urdf = pf::fingerMjcf(parameters.load(), options, mjcf_options);
+      if (!gripper.empty() && robot.empty()) {
+        throw pf::ParameterError("--mjcf with --gripper needs --robot (the whole cell), or neither (one finger)");
+      }
+      urdf = robot.empty() ? pf::fingerMjcf(parameters.load(), options, mjcf_options)
+                           : pf::composedMjcf(robot, gripper, mjcf_options);
     } else if (!robot.empty()) {
       // One description for the whole robot: what robot_state_publisher, rviz and a planner read.
       urdf = pf::composeRobotUrdfFiles(robot, gripper);

@@ -19,9 +19,21 @@ struct MjcfOptions {
   double impratio = 10.0;       ///< elliptic friction cones, frictional constraints this much harder than normal ones
 };
 
+/// The robot's joints in a composed MJCF: position actuators whose gain is this many times the joint's effort limit
+/// (N m/rad per N m: the rated torque at 10 mrad of error), and joint damping of this time constant times the gain
+/// (a 50 ms first-order approach; overdamped for the arm's links). Stated, not tuned against the arm.
+constexpr double kPositionGainPerRad = 100.0;
+constexpr double kPositionTimeConstantS = 0.05;
+
 /// The MJCF of one finger mounted on @p options.parent_frame (a static body at the world's origin), its joints'
 /// springs at @p mjcf.gauge_pa, a site <prefix>tip at the tip. @throws ParameterError as fingerUrdfModel does, and
 /// where the twin has no free shape at the pressure (beyond the membrane law's limit point)
 std::string fingerMjcf(const FingerParameters& parameters, const FingerUrdfOptions& options, const MjcfOptions& mjcf);
+
+/// The MJCF of a robot with a gripper (finger_urdf --robot --gripper --mjcf): composeRobotUrdfFiles' description,
+/// every finger's joints with their springs at @p mjcf.gauge_pa, every other moving joint with a position actuator
+/// (kPositionGainPerRad, kPositionTimeConstantS) named after it. @throws ParameterError as composeRobotUrdfFiles, and
+/// where a finger's twin has no free shape at the pressure
+std::string composedMjcf(const std::string& robot_urdf_path, const std::string& gripper_path, const MjcfOptions& mjcf);
 
 }  // namespace pneumatic_finger
