@@ -210,8 +210,8 @@ int main(int argc, char** argv) {
   app.add_option("--wall-law", wall_law,
                  "auto (fit the paper, the membrane and the thick-wall law, keep the one with the smallest "
                  "leave-one-out error and write it), paper, membrane or thick; default: the parameter file's "
-                 "wall_law. Without --fit each law takes its own keys (membrane and thick: "
-                 "shear_modulus_pa,chamber_gap_m,wall_locking_jm)");
+                 "wall_law. Without --fit each law takes its own keys (membrane: "
+                 "shear_modulus_pa,chamber_gap_m,wall_locking_jm; thick: shear_modulus_pa,chamber_gap_m)");
   return pf::runTool("finger_calibrate", app, argc, argv, [&] {
     const bool default_data = data_path.empty();
     if (default_data) data_path = pf::packageShareDirectory() + "/data/sierra2022_table1.csv";
