@@ -63,7 +63,10 @@ void onState(const pf::FingerModelState::ConstPtr& m) {
 void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
   std::lock_guard<std::mutex> lock(mutex);
   for (const auto& s : m->status) {
-    if (s.name.find("pressure input") != std::string::npos) diagnostics.push_back(s);
+    // The root namespace's node only: the launch runs the gent and volume nodes too, on the same /diagnostics.
+    const bool ours = s.name.rfind("/finger_node: pressure input", 0) == 0 ||
+                      s.name.rfind("finger_node: pressure input", 0) == 0;
+    if (ours) diagnostics.push_back(s);
   }
 }
 
