@@ -14,6 +14,7 @@
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "reference_quad.hpp"
+#include "test_support.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -26,15 +27,10 @@ constexpr double kMu = 2e4, kThickness = 0.002, kHeight = 0.0115, kDepth = 0.005
 constexpr int kChambers = 7;
 constexpr double kAtmosphere = 101325.0;
 
-pf::FingerParameters finger(const std::string& yaml) {
-  pf::RawParameterMap raw;
-  pf::loadRawParametersFromYamlText(yaml, "test", raw);
-  return pf::FingerParameters::fromRaw(raw);
-}
+pf::FingerParameters finger(const std::string& yaml) { return pf_test::fingerFromYaml(yaml); }
 
 pf::FingerParameters membraneFinger(double jm, double dead_volume_m3) {
-  return finger("wall_law: membrane\nshear_modulus_pa: 2e4\nwall_thickness_m: 0.002\nwall_locking_jm: " +
-                std::to_string(jm) + "\ndead_volume_m3: " + pf::formatExact(dead_volume_m3) + "\n");
+  return pf_test::membraneFinger(jm, "dead_volume_m3: " + pf::formatExact(dead_volume_m3) + "\n");
 }
 
 // The supplied volume of the membrane finger at stretch excess delta, literally: N L d e ((1 + delta)^3 - 1) plus

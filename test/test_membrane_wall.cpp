@@ -14,6 +14,7 @@
 #include "pneumatic_finger/core/obstacle.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "reference_quad.hpp"
+#include "test_support.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -32,13 +33,7 @@ constexpr double kMu = 2e4, kThickness = 0.002, kHeight = 0.0115;
 reference::Membrane referenceWall(double jm) { return {kMu, kThickness, kHeight, jm}; }
 pf::MembraneWall wall(double jm) { return pf::membraneWall(kMu, kThickness, kHeight, jm); }
 
-pf::FingerParameters membraneFinger(double jm, const std::string& extra = "") {
-  pf::RawParameterMap raw;
-  pf::loadRawParametersFromYamlText("wall_law: membrane\nshear_modulus_pa: 2e4\nwall_thickness_m: 0.002\n"
-                                    "wall_locking_jm: " + std::to_string(jm) + "\n" + extra,
-                                    "test", raw);
-  return pf::FingerParameters::fromRaw(raw);
-}
+using pf_test::membraneFinger;
 
 // The top of a sweep: just below the limit point, or where the Gent wall is near its lock.
 double sweepTop(const pf::MembraneWall& w) {

@@ -13,6 +13,7 @@
 #include "pneumatic_finger/core/membrane_wall.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "reference_quad.hpp"
+#include "test_support.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -22,13 +23,7 @@ namespace {
 // limit point, then a minimum, then the lock.
 constexpr double kMu = 2e4, kThickness = 0.002, kHeight = 0.0115, kJm = 50.0;
 
-pf::FingerParameters membraneFinger(double jm, const std::string& extra = "") {
-  pf::RawParameterMap raw;
-  pf::loadRawParametersFromYamlText("wall_law: membrane\nshear_modulus_pa: 2e4\nwall_thickness_m: 0.002\n"
-                                    "wall_locking_jm: " + std::to_string(jm) + "\n" + extra,
-                                    "test", raw);
-  return pf::FingerParameters::fromRaw(raw);
-}
+using pf_test::membraneFinger;
 
 double referenceGauge(double delta) { return reference::membraneGaugePa({kMu, kThickness, kHeight, kJm}, delta); }
 

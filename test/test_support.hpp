@@ -8,9 +8,24 @@
 #include <vector>
 
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "reference_quad.hpp"
 
 namespace pf_test {
+
+/// The parameters of a YAML text (the defaults for every key it leaves out). @throws ParameterError as the node would
+inline pneumatic_finger::FingerParameters fingerFromYaml(const std::string& yaml) {
+  pneumatic_finger::RawParameterMap raw;
+  pneumatic_finger::loadRawParametersFromYamlText(yaml, "test", raw);
+  return pneumatic_finger::FingerParameters::fromRaw(raw);
+}
+
+/// The membrane tests' silicone finger: mu = 20 kPa, t = 2 mm (L = 11.5 mm, d = 5 mm, e = 7 mm, N = 7 by default),
+/// Gent's locking J_m = @p jm (0: Neo-Hookean), then @p extra keys.
+inline pneumatic_finger::FingerParameters membraneFinger(double jm, const std::string& extra = "") {
+  return fingerFromYaml("wall_law: membrane\nshear_modulus_pa: 2e4\nwall_thickness_m: 0.002\nwall_locking_jm: " +
+                        std::to_string(jm) + "\n" + extra);
+}
 
 inline std::vector<reference::ChamberGeometry> chambersOf(const pneumatic_finger::FingerParameters& p) {
   std::vector<reference::ChamberGeometry> out;

@@ -79,7 +79,7 @@ double FingerModel::jointMomentNm(std::size_t joint, double gauge_pa, const doub
 }
 
 void FingerModel::straightJointMomentsNm(double gauge_pa, double* moment_nm) const {
-  std::vector<double> none(force_joints_.size(), 0.0);  // held since rest: every plane at c
+  const std::array<double, kMaxChamberCount> none{};  // held since rest: every plane at c (no allocation per step)
   heldJointMomentsNm(gauge_pa, none.data(), moment_nm);
 }
 

@@ -35,19 +35,26 @@ void PressureInputPolicy::startTimeline(double receive_s) {
 
 InputDecision PressureInputPolicy::onMessage(double absolute_pa, double stamp_s, double receive_s) {
   InputDecision d;
-  ++counters_.received;
-  noteReceived(receive_s, d);
-  if (settings_.max_rate_hz > 0 && have_accepted_ && receive_s - last_accepted_s_ < 1.0 / settings_.max_rate_hz) {
-    ++counters_.throttled;
-    d.verdict = InputVerdict::kThrottled;
-    return d;
-  }
+  if (receiveOrThrottle(receive_s, d)) return d;
   if (refuseValue(absolute_pa, receive_s, d)) return d;
   bool replaced = false;
   const double stamp = stampOf(stamp_s, receive_s, replaced, d);
   if (refuseStamp(stamp, replaced, receive_s, d)) return d;
   accept(absolute_pa, stamp, replaced, receive_s, d);
   return d;
+}
+
+// Every message, pressure or volume: counted, the clock's jumps noted, and one that comes sooner than the rate cap
+// allows after the last accepted one throttled (true: decided).
+bool PressureInputPolicy::receiveOrThrottle(double receive_s, InputDecision& d) {
+  ++counters_.received;
+  noteReceived(receive_s, d);
+  if (settings_.max_rate_hz > 0 && have_accepted_ && receive_s - last_accepted_s_ < 1.0 / settings_.max_rate_hz) {
+    ++counters_.throttled;
+    d.verdict = InputVerdict::kThrottled;
+    return true;
+  }
+  return false;
 }
 
 // The clock itself went back (a bag played with --clock --loop, a simulation reset): a new timeline, as
@@ -156,13 +163,7 @@ void PressureInputPolicy::accept(double absolute_pa, double stamp, bool replaced
 
 InputDecision PressureInputPolicy::onVolumeMessage(double volume_m3, double receive_s) {
   InputDecision d;
-  ++counters_.received;
-  noteReceived(receive_s, d);
-  if (settings_.max_rate_hz > 0 && have_accepted_ && receive_s - last_accepted_s_ < 1.0 / settings_.max_rate_hz) {
-    ++counters_.throttled;
-    d.verdict = InputVerdict::kThrottled;
-    return d;
-  }
+  if (receiveOrThrottle(receive_s, d)) return d;
   if (!std::isfinite(volume_m3)) {
     ++counters_.refused_not_finite;
     d.verdict = InputVerdict::kRefusedNotFinite;

@@ -120,6 +120,7 @@ class PressureInputPolicy {
   void problem(const std::string& what, double now_s);
   void startTimeline(double receive_s);
   // onMessage's steps, in order (pressure_input.cpp).
+  bool receiveOrThrottle(double receive_s, InputDecision& d);
   void noteReceived(double receive_s, InputDecision& d);
   bool refuseValue(double absolute_pa, double receive_s, InputDecision& d);
   double stampOf(double stamp_s, double receive_s, bool& replaced, InputDecision& d);
