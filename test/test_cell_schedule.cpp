@@ -1,10 +1,13 @@
-// The pick-and-place cell's schedule, driven with synthetic times (no ROS, no sleeps).
+// The pick-and-place cell's schedule, driven with synthetic times (no ROS, no sleeps), and its grasp rule.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <stdexcept>
+#include <string>
 
 #include "pneumatic_finger/cell/cell_schedule.hpp"
+#include "pneumatic_finger/cell/grasp_hold.hpp"
+#include "pneumatic_finger/core/smoothstep.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -75,4 +78,35 @@ TEST(CellSchedule, BadSettingsAreRefused) {
   EXPECT_THROW(pf::CellSchedule(w, 10.0), std::invalid_argument);
   EXPECT_THROW(pf::CellSchedule(waypoints(), 1.0), std::invalid_argument);
   EXPECT_THROW(pf::CellSchedule(waypoints(), NAN), std::invalid_argument);
+}
+
+// Each phase lasts what at() shows: the span of times it reports the phase for (scanned in 1 ms steps).
+TEST(CellSchedule, APhasesDurationIsTheSpanAtReportsIt) {
+  const pf::CellSchedule s(waypoints(), 10.0);
+  for (pf::CellPhase phase : {pf::CellPhase::kGrasp, pf::CellPhase::kLift, pf::CellPhase::kReturn}) {
+    int ticks = 0;
+    for (int k = 0; k < 10000; ++k) ticks += s.at(1e-3 * (k + 0.5)).phase == phase;
+    EXPECT_NEAR(s.phaseDurationS(phase), 1e-3 * ticks, 1e-3) << pf::cellPhaseName(phase);
+  }
+  EXPECT_DOUBLE_EQ(s.phaseDurationS(pf::CellPhase::kLift), 1.0);  // 10 % of the 10 s cycle
+}
+
+// The smoothstep's largest acceleration, against its second difference at the start (the peak), and the lift's
+// inertia in the grasp rule: friction must hold margin x m (g + a).
+TEST(GraspHold, TheLiftsInertiaAddsToTheWeight) {
+  const double d = 0.1, T = 0.4, h = 1e-4;
+  const double second_difference = (pf::smoothstep(2 * h / T) - 2 * pf::smoothstep(h / T) + pf::smoothstep(0)) * d /
+                                   (h * h);
+  EXPECT_NEAR(pf::smoothstepPeakAcceleration(d, T), second_difference, 1e-3 * second_difference);
+  EXPECT_DOUBLE_EQ(pf::smoothstepPeakAcceleration(d, T), 3.75);
+  // 3 fingers x 0.1 N, friction 1: 0.3 N. A 20 g part needs 1.5 x 0.02 x 9.80665 = 0.294 N at rest: held; lifted at
+  // 1 m/s^2 it needs 1.5 x 0.02 x 10.80665 = 0.324 N: not.
+  const pf::HoldVerdict still = pf::judgeHold(3, 0.1, 0.02, 1.0, 1.5);
+  const pf::HoldVerdict lifted = pf::judgeHold(3, 0.1, 0.02, 1.0, 1.5, 1.0);
+  EXPECT_TRUE(still.holds);
+  EXPECT_FALSE(lifted.holds);
+  EXPECT_DOUBLE_EQ(lifted.needed_n, 1.5 * 0.02 * (9.80665 + 1.0));
+  EXPECT_NE(lifted.message.find("is less than 1.5 x its weight 0.196 N (0.02 kg) and its inertia lifted at 1 m/s^2"),
+            std::string::npos) << lifted.message;
+  EXPECT_EQ(still.message.find("inertia"), std::string::npos) << still.message;
 }

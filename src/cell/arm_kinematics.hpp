@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "pneumatic_finger/cell/cell_schedule.hpp"
+#include "pneumatic_finger/core/smoothstep.hpp"
 
 namespace pneumatic_finger {
 
@@ -46,6 +47,14 @@ class ArmKinematics {
     pose.linear() = Eigen::Quaterniond(w, x, y, z).toRotationMatrix();
     pose.translation() = Eigen::Vector3d(frame.p.x(), frame.p.y(), frame.p.z());
     return pose;
+  }
+
+  /// The lift's peak upward acceleration (m/s^2): the schedule's path over the tool's rise from the pick pose to the
+  /// pose above it. Its inertia adds to the weight the grip must hold (docs/SIMULATION.md, "Does the grasp rule
+  /// hold?"); 0 for a lift that does not rise.
+  double liftPeakAccelerationMps2(const CellWaypoints& w, const CellSchedule& schedule) const {
+    const double rise_m = (toolPose(w.above_pick).translation() - toolPose(w.pick).translation()).z();
+    return std::max(0.0, smoothstepPeakAcceleration(rise_m, schedule.phaseDurationS(CellPhase::kLift)));
   }
 
  private:

@@ -4,6 +4,8 @@
 #include <cmath>
 #include <stdexcept>
 
+#include "pneumatic_finger/core/smoothstep.hpp"
+
 namespace pneumatic_finger {
 
 const char* cellPhaseName(CellPhase phase) {
@@ -58,7 +60,7 @@ CellStep CellSchedule::at(double t_s) const {
   step.phase = seg.phase;
   step.phase_progress = std::min(1.0, s / seg.fraction);
   const double u = step.phase_progress;
-  const double smooth = u * u * (3 - 2 * u);  // zero velocity at both ends of every motion
+  const double smooth = smoothstep(u);  // zero velocity at both ends of every motion
   step.arm.resize(seg.from->size());
   for (std::size_t i = 0; i < step.arm.size(); ++i) step.arm[i] = (*seg.from)[i] + smooth * ((*seg.to)[i] - (*seg.from)[i]);
   step.gripper_closed = seg.closed;
@@ -73,6 +75,12 @@ CellStep CellSchedule::at(double t_s) const {
     step.object = ObjectPlace::kOnPickTable;
   }
   return step;
+}
+
+double CellSchedule::phaseDurationS(CellPhase phase) const {
+  double fraction = 0.0;
+  for (const Segment& s : segments_) fraction += s.phase == phase ? s.fraction : 0.0;
+  return fraction * cycle_time_s_;
 }
 
 }  // namespace pneumatic_finger

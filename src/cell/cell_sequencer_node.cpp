@@ -258,7 +258,8 @@ class CellSequencer {
         scene_(nh, settings, arm.toolPose(settings.waypoints.pick) * heldOffset(settings),
                arm.toolPose(settings.waypoints.place) * heldOffset(settings)),
         handle_(settings, scene_.pickSpot()),
-        gripper_("gripper/gripper_action", true) {
+        gripper_("gripper/gripper_action", true),
+        lift_acceleration_mps2_(arm.liftPeakAccelerationMps2(settings.waypoints, schedule_)) {
     object_.in_base = scene_.pickSpot();
     joints_pub_ = nh.advertise<sensor_msgs::JointState>("joint_states", 10);
     phase_pub_ = nh.advertise<std_msgs::String>("cell/phase", 10, true);
@@ -387,7 +388,7 @@ class CellSequencer {
     // with at least the result's grip force, the smallest).
     const pf::HoldVerdict hold =
         result ? pf::judgeHold(settings_.finger_count, result->effort, settings_.object_mass_kg,
-                               settings_.friction_coefficient, settings_.hold_margin)
+                               settings_.friction_coefficient, settings_.hold_margin, lift_acceleration_mps2_)
                : pf::HoldVerdict{};
     if (state == actionlib::SimpleClientGoalState::SUCCEEDED && result && result->stalled && !hold.holds) {
       say("cycle " + std::to_string(cycle) + ": grasp slips, '" + settings_.object_id + "' stays on the pick table: " +
@@ -442,6 +443,7 @@ class CellSequencer {
   Scene scene_;
   ObjectHandle handle_;
   actionlib::SimpleActionClient<pf::GripperCommandAction> gripper_;
+  double lift_acceleration_mps2_;  // the lift's peak upward acceleration (m/s^2)
   ros::Publisher joints_pub_, phase_pub_, events_pub_, cycles_pub_;
   sensor_msgs::JointState js_;
   std::mutex object_mutex_;  // the object is moved by the ticks and by the drag handle's callback

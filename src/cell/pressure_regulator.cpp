@@ -15,7 +15,7 @@ const std::vector<NodeParameterSpec>& PressureRegulator::parameterSpecs() {
   static const std::vector<NodeParameterSpec> table = {
       textParameter("config", "", "empty, or a finger file (YAML)",
                     "the finger's parameter file, for its rest volume V_o and P_o (empty: the default finger)"),
-      numberParameter("flow_m3_per_s", 1.6e-5, 0, true, 1.0, "m^3/s",
+      numberParameter("flow_m3_per_s", kCellRegulatorFlowM3PerS, 0, true, 1.0, "m^3/s",
                       "the source's constant flow Q (1.6e-5: about 1 L/min, three fingers to 2 kg/cm^2 in 1 s)"),
       integerParameter("finger_count", 3, 1, 64, "fingers the regulator fills (their chambers' volumes add)"),
       numberParameter("publish_rate_hz", 100.0, 0, true, 10000, "Hz", "how often the pressure is published"),

@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "pneumatic_finger/core/contact.hpp"
+#include "pneumatic_finger/core/grasp_object.hpp"
 #include "pneumatic_finger/core/object_section.hpp"
 
 namespace pneumatic_finger {
@@ -66,6 +67,24 @@ SideGrasp sideGraspDepth(const std::vector<GripperFinger>& fingers, double radiu
     throw ParameterError(why.str());
   }
   return g;
+}
+
+SideGraspForces sideGraspForces(const std::vector<GripperFinger>& fingers, double radius_m, double height_m,
+                                double centre_depth_m, double gauge_pa) {
+  SideGraspForces out;
+  SolidObject cylinder;
+  cylinder.shape = SolidObject::Shape::kCylinder;
+  cylinder.radius_m = radius_m;
+  cylinder.height_m = height_m;
+  for (const GripperFinger& f : fingers) {
+    const FingerModel model(f.parameters);
+    GraspObjectTracker tracker(model, f.mount.max_gauge_pa);
+    tracker.setObject(cylinder);
+    tracker.locate(mountPose(f.mount).inverse() * Eigen::Translation3d(0.0, 0.0, centre_depth_m));
+    out.touch_gauge_pa.push_back(tracker.touchGaugePa());
+    out.normal_force_n.push_back(tracker.inReach() ? totalContactForceN(model, gauge_pa, tracker.solve(gauge_pa)) : 0.0);
+  }
+  return out;
 }
 
 }  // namespace pneumatic_finger

@@ -351,12 +351,16 @@ std::string composeRobotUrdf(const std::string& robot_urdf_xml, const std::vecto
   return xml;
 }
 
-std::string composeRobotUrdfFiles(const std::string& robot_urdf_path, const std::string& gripper_path) {
+std::string readRobotUrdfFile(const std::string& robot_urdf_path) {
   std::ifstream in(robot_urdf_path);
   if (!in) throw ParameterError("cannot read the robot's URDF '" + robot_urdf_path + "'");
   std::stringstream xml;
   xml << in.rdbuf();
-  return composeRobotUrdf(xml.str(), loadGripperFile(gripper_path));
+  return xml.str();
+}
+
+std::string composeRobotUrdfFiles(const std::string& robot_urdf_path, const std::string& gripper_path) {
+  return composeRobotUrdf(readRobotUrdfFile(robot_urdf_path), loadGripperFile(gripper_path));
 }
 
 }  // namespace pneumatic_finger

@@ -33,7 +33,7 @@ const std::vector<pf::NodeParameterSpec>& parameterSpecs() {
   static const std::vector<pf::NodeParameterSpec> table = {
       pf::listParameter("finger_namespaces", "string[]", "-", "each finger_node's namespace",
                         "the fingers the action drives (their pressure_for_tip_angle service and finger_state)"),
-      pf::numberParameter("squeeze_margin_pa", 0.1 * pf::kPaPerKgfPerCm2, 0, false, 1e6, "Pa",
+      pf::numberParameter("squeeze_margin_pa", pf::kDefaultSqueezeMarginPa, 0, false, 1e6, "Pa",
                           "a grasp's pressure beyond the last finger's touch (0.1 kg/cm^2)"),
       pf::numberParameter("goal_tolerance_rad", 0.01, 1e-6, false, 1.0, "rad", "`reached_goal` tolerance"),
       pf::numberParameter("settle_tolerance_pa", 200.0, 1e-3, false, 1e5, "Pa",

@@ -158,7 +158,8 @@ void addFingerDynamics(const urdf::ModelInterface& model, const FingerParameters
 // robot's), of stiffness kPositionGainSPerRad times its effort limit and damping kPositionTimeConstantS times that;
 // contacts between the fingers' neighbouring segments off (@p excluded: pairs of body names).
 std::string writeMjcf(const urdf::ModelInterface& model, const std::map<std::string, JointDynamics>& dynamics,
-                      const std::vector<std::pair<std::string, std::string>>& excluded, const MjcfOptions& mjcf);
+                      const std::vector<std::pair<std::string, std::string>>& excluded, const MjcfOptions& mjcf,
+                      const std::string& world_xml);
 
 }  // namespace
 
@@ -170,27 +171,33 @@ std::string fingerMjcf(const FingerParameters& parameters, const FingerUrdfOptio
   for (int j = 1; j <= parameters.chamber_count; ++j) {
     excluded.emplace_back(segmentLinkName(options.prefix, j - 1), segmentLinkName(options.prefix, j));
   }
-  return writeMjcf(model, dynamics, excluded, mjcf);
+  return writeMjcf(model, dynamics, excluded, mjcf, "");
 }
 
 std::string composedMjcf(const std::string& robot_urdf_path, const std::string& gripper_path, const MjcfOptions& mjcf) {
-  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(composeRobotUrdfFiles(robot_urdf_path, gripper_path));
+  return composedMjcf(readRobotUrdfFile(robot_urdf_path), loadGripperFile(gripper_path), mjcf, "");
+}
+
+std::string composedMjcf(const std::string& robot_urdf_xml, const std::vector<GripperFinger>& fingers,
+                         const MjcfOptions& mjcf, const std::string& world_xml) {
+  const urdf::ModelInterfaceSharedPtr model = urdf::parseURDF(composeRobotUrdf(robot_urdf_xml, fingers));
   if (!model) throw ParameterError("the composed description does not parse");
   std::map<std::string, JointDynamics> dynamics;
   std::vector<std::pair<std::string, std::string>> excluded;
-  for (const GripperFinger& f : loadGripperFile(gripper_path)) {
+  for (const GripperFinger& f : fingers) {
     addFingerDynamics(*model, f.parameters, f.mount.prefix, mjcf, dynamics);
     for (int j = 1; j <= f.parameters.chamber_count; ++j) {
       excluded.emplace_back(segmentLinkName(f.mount.prefix, j - 1), segmentLinkName(f.mount.prefix, j));
     }
   }
-  return writeMjcf(*model, dynamics, excluded, mjcf);
+  return writeMjcf(*model, dynamics, excluded, mjcf, world_xml);
 }
 
 namespace {
 
 std::string writeMjcf(const urdf::ModelInterface& model, const std::map<std::string, JointDynamics>& dynamics,
-                      const std::vector<std::pair<std::string, std::string>>& excluded, const MjcfOptions& mjcf) {
+                      const std::vector<std::pair<std::string, std::string>>& excluded, const MjcfOptions& mjcf,
+                      const std::string& world_xml) {
   // The robot's joints: position-controlled, stiff against their own effort limit.
   std::ostringstream actuators;
   std::map<std::string, double> arm_damping;
@@ -220,7 +227,7 @@ std::string writeMjcf(const urdf::ModelInterface& model, const std::map<std::str
   const urdf::LinkConstSharedPtr root = model.getRoot();
   writeGeoms(out, *root, "    ");
   for (const auto& child : root->child_links) writeBody(out, model, child, all, "    ");
-  out << "  </worldbody>\n"
+  out << world_xml << "  </worldbody>\n"
       << "  <!-- Neighbouring segments' boxes meet at their joint: they bend about it, they do not collide. -->\n"
       << "  <contact>\n";
   for (const auto& [a, b] : excluded) out << "    <exclude body1=\"" << a << "\" body2=\"" << b << "\"/>\n";

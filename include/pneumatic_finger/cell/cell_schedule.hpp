@@ -46,6 +46,9 @@ class CellSchedule {
   /// The step at @p t_s seconds since the start (t >= 0).
   CellStep at(double t_s) const;
 
+  /// How long @p phase lasts in each cycle (s).
+  double phaseDurationS(CellPhase phase) const;
+
 
  private:
   struct Segment {

@@ -17,9 +17,10 @@ struct HoldVerdict {
 };
 
 /// The grip of @p finger_count fingers, each pressing with at least @p finger_force_n (N), holds an object of
-/// @p mass_kg lifted against gravity when @p friction_coefficient x the total normal force >= @p margin x its weight.
-/// Friction only: the fingers close on the side of the object, not under it.
+/// @p mass_kg lifted against gravity at @p lift_acceleration_mps2 (upward; 0: a slow lift) when
+/// @p friction_coefficient x the total normal force >= @p margin x m (g + a). Friction only: the fingers close on the
+/// side of the object, not under it.
 HoldVerdict judgeHold(int finger_count, double finger_force_n, double mass_kg, double friction_coefficient,
-                      double margin);
+                      double margin, double lift_acceleration_mps2 = 0.0);
 
 }  // namespace pneumatic_finger

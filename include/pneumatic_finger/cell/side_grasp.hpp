@@ -26,4 +26,14 @@ struct SideGrasp {
 ///         touches span more than the side's height (no depth puts every one on the side)
 SideGrasp sideGraspDepth(const std::vector<GripperFinger>& fingers, double radius_m, double height_m);
 
+/// What the twin says of each finger closing on a cylinder of radius @p radius_m and height @p height_m whose centre
+/// lies @p centre_depth_m along tool z (its axis along tool z): its first touch (Pa gauge; NaN: none up to its range)
+/// and, at @p gauge_pa, its total normal force on the cylinder (N; 0 without contact: totalContactForceN).
+struct SideGraspForces {
+  std::vector<double> touch_gauge_pa;
+  std::vector<double> normal_force_n;
+};
+SideGraspForces sideGraspForces(const std::vector<GripperFinger>& fingers, double radius_m, double height_m,
+                                double centre_depth_m, double gauge_pa);
+
 }  // namespace pneumatic_finger

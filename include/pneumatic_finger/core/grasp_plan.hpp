@@ -5,7 +5,13 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/core/units.hpp"
+
 namespace pneumatic_finger {
+
+/// What a grasp adds beyond the last finger's touch unless told otherwise (Pa): 0.1 kg/cm^2 (the gripper action's
+/// squeeze_margin_pa).
+constexpr double kDefaultSqueezeMarginPa = 0.1 * kPaPerKgfPerCm2;
 
 /// One finger's answers for a goal.
 struct FingerGoalAnswer {

@@ -7,6 +7,9 @@
 
 namespace pneumatic_finger {
 
+/// The cell's source: a constant flow of about 1 L/min, which fills three fingers to 2 kg/cm^2 in about 1 s (m^3/s).
+constexpr double kCellRegulatorFlowM3PerS = 1.6e-5;
+
 /// Air volume of @p finger_count fingers at rest: V_o = finger_count * sum_n L_n d_n e_n (m^3).
 double restVolumeM3(const FingerParameters& parameters, int finger_count);
 

@@ -60,6 +60,9 @@ std::vector<GripperFinger> loadGripperFile(const std::string& path);
 /// used twice, or a finger link or joint whose name the robot (or another finger) already has.
 std::string composeRobotUrdf(const std::string& robot_urdf_xml, const std::vector<GripperFinger>& fingers);
 
+/// The text of a robot's URDF file. @throws ParameterError naming a file that cannot be read
+std::string readRobotUrdfFile(const std::string& robot_urdf_path);
+
 /// The same from files: the robot's URDF and a gripper file.
 std::string composeRobotUrdfFiles(const std::string& robot_urdf_path, const std::string& gripper_path);
 

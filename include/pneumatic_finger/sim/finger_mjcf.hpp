@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "pneumatic_finger/description/finger_urdf.hpp"
 
@@ -35,5 +36,11 @@ std::string fingerMjcf(const FingerParameters& parameters, const FingerUrdfOptio
 /// (kPositionGainPerRad, kPositionTimeConstantS) named after it. @throws ParameterError as composeRobotUrdfFiles, and
 /// where a finger's twin has no free shape at the pressure
 std::string composedMjcf(const std::string& robot_urdf_path, const std::string& gripper_path, const MjcfOptions& mjcf);
+
+/// The same from a robot's URDF text and its fingers, with @p world_xml (MJCF elements: bodies, geoms) added to the
+/// world body: the scene around the robot (grasp_scene.hpp). @throws ParameterError as composeRobotUrdf, and where a
+/// finger's twin has no free shape at the pressure
+std::string composedMjcf(const std::string& robot_urdf_xml, const std::vector<GripperFinger>& fingers,
+                         const MjcfOptions& mjcf, const std::string& world_xml);
 
 }  // namespace pneumatic_finger

@@ -25,6 +25,14 @@ class PressureDrivenFinger {
   /// they were, where the twin has no free shape (beyond the membrane law's limit point); @p why says so.
   bool applyPressure(double gauge_pa, std::string& why);
 
+  /// As applyPressure, but a joint that something holds back from its rest angle (an object, a plate) presses as the
+  /// force model says a joint held at that angle does: its walls' contact plane where the free walls are at the
+  /// joint's angle in @p data, the moment FingerModel::heldJointMomentsNm's. Its spring is the secant from the rest
+  /// angle through that angle, rewritten at every step (docs/MODEL.md, "Joint springs"). A joint at or past its rest
+  /// angle keeps applyPressure's spring. Needs identical chambers (the angle's pressure in closed form); other fingers
+  /// get applyPressure's springs.
+  bool applyPressureWithHeldMoments(double gauge_pa, const mjData& data, std::string& why);
+
   /// The pressure of the springs in the model now (Pa gauge; NaN before the first applyPressure).
   double gaugePa() const { return gauge_pa_; }
 
@@ -36,7 +44,11 @@ class PressureDrivenFinger {
   mjModel* model_;
   std::vector<int> joint_ids_;
   std::vector<double> inertia_beyond_;  // J_n (kg m^2) with the file's damping ratio folded in: c = 2 sqrt(k J)
-  std::vector<double> angle_, moment_;  // scratch, sized once
+  // The free shape at the pressure into angle_ and the straight joints' moments into moment_; false with why.
+  bool freeShape(double gauge_pa, std::string& why);
+  void writeSpring(std::size_t joint, double stiffness_nm_per_rad);
+
+  std::vector<double> angle_, moment_, since_, held_moment_;  // scratch, sized once
   double gauge_pa_;
 };
 

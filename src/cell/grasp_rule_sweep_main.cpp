@@ -1,0 +1,150 @@
+// grasp_rule_sweep: does the cell's grasp rule hold? For each object mass and lift acceleration, the twin's verdict
+// (friction x the fingers' normal forces against the weight, with and without the lift's inertia) beside what MuJoCo
+// does with the same gripper, part and lift (docs/SIMULATION.md, "Does the grasp rule hold?"). One CSV row per case.
+#include <CLI/CLI.hpp>
+#include <yaml-cpp/yaml.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <numeric>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/cell/cell_schedule.hpp"
+#include "pneumatic_finger/cell/grasp_hold.hpp"
+#include "pneumatic_finger/cell/side_grasp.hpp"
+#include "pneumatic_finger/core/grasp_plan.hpp"
+#include "pneumatic_finger/core/smoothstep.hpp"
+#include "pneumatic_finger/sim/finger_mjcf.hpp"
+#include "pneumatic_finger/sim/grasp_lift_trial.hpp"
+#include "pneumatic_finger/sim/mjcf_text.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+struct Sweep {
+  std::string gripper = "config/gripper.yaml", cell = "config/cell.yaml", arm = "urdf/industrial_arm.urdf";
+  std::vector<double> masses_g = {5, 7.5, 10, 12.5, 15, 17.5, 20, 25, 30, 50, 100, 200};
+  std::vector<double> accelerations;  // empty: the cell's lift from slow to its fastest (cellLift)
+  double lift_m = 0.0;                 // 0: the cell's
+  double squeeze_margin_pa = pf::kDefaultSqueezeMarginPa;
+  std::string scene_out;  // where to write the first case's scene at the grasp pressure, for MuJoCo's viewer
+};
+
+// The cell's part and its rule's friction and margin (config/cell.yaml).
+struct CellPart {
+  double radius_m = 0, height_m = 0, friction = 0, margin = 0;
+};
+
+CellPart readCellPart(const std::string& path) {
+  const YAML::Node y = YAML::LoadFile(path);
+  return {y["object_radius_m"].as<double>(), y["object_height_m"].as<double>(), y["friction_coefficient"].as<double>(),
+          y["hold_margin"].as<double>()};
+}
+
+// The cell's lift (config/cell.yaml's pick -> above_pick): how far tool0 rises, by MuJoCo's kinematics of the
+// composed arm, and the path's peak acceleration at the fastest cycle the schedule runs (kMinCycleTimeS).
+struct CellLift {
+  double height_m = 0.0, fastest_mps2 = 0.0;
+};
+
+CellLift cellLift(const std::string& arm_path, const std::string& gripper_path, const std::string& cell_path) {
+  const pf::MujocoModelPtr m = pf::loadMjcfText(pf::composedMjcf(arm_path, gripper_path, pf::MjcfOptions()));
+  const pf::MujocoDataPtr d(mj_makeData(m.get()));
+  const YAML::Node cell = YAML::LoadFile(cell_path);
+  const auto names = cell["arm_joint_names"].as<std::vector<std::string>>();
+  const int tool = mj_name2id(m.get(), mjOBJ_BODY, "tool0");
+  double z[2] = {0, 0};
+  for (int w = 0; w < 2; ++w) {
+    const auto q = cell[w == 0 ? "pick" : "above_pick"].as<std::vector<double>>();
+    for (std::size_t j = 0; j < names.size(); ++j) {
+      d->qpos[m->jnt_qposadr[mj_name2id(m.get(), mjOBJ_JOINT, names[j].c_str())]] = q.at(j);
+    }
+    mj_kinematics(m.get(), d.get());
+    z[w] = d->xpos[3 * tool + 2];
+  }
+  const auto wp = [&](const char* key) { return cell[key].as<std::vector<double>>(); };
+  const pf::CellSchedule fastest({wp("home"), wp("above_pick"), wp("pick"), wp("above_place"), wp("place")},
+                                 pf::kMinCycleTimeS);
+  const double T = fastest.phaseDurationS(pf::CellPhase::kLift), h = z[1] - z[0];
+  return {h, pf::smoothstepPeakAcceleration(h, T)};
+}
+
+void printRow(double mass_kg, const pf::LiftMotion& lift, double gauge_pa, const pf::SideGraspForces& twin,
+              const CellPart& part, const pf::GraspTrialOutcome& sim) {
+  const int fingers = static_cast<int>(twin.normal_force_n.size());
+  const double weakest = *std::min_element(twin.normal_force_n.begin(), twin.normal_force_n.end());
+  const double twin_sum = std::accumulate(twin.normal_force_n.begin(), twin.normal_force_n.end(), 0.0);
+  const double sim_sum = std::accumulate(sim.finger_normal_force_n.begin(), sim.finger_normal_force_n.end(), 0.0);
+  const pf::HoldVerdict cell = pf::judgeHold(fingers, weakest, mass_kg, part.friction, part.margin);
+  const pf::HoldVerdict lifted = pf::judgeHold(fingers, weakest, mass_kg, part.friction, 1.0, lift.peak_acceleration_mps2);
+  const double threshold_kg = part.friction * fingers * weakest / (pf::kStandardGravity + lift.peak_acceleration_mps2);
+  std::printf("%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%.6g,%d,%d,%d,%.6g,%s\n", mass_kg, lift.peak_acceleration_mps2,
+              lift.durationS(), gauge_pa, twin_sum, sim_sum, threshold_kg, cell.holds, lifted.holds, sim.carried,
+              sim.slip_m, sim.problem.empty() ? "" : ("\"" + sim.problem + "\"").c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app("grasp_rule_sweep: the cell's grasp rule against MuJoCo, over the part's mass and the lift's "
+               "acceleration; one CSV row per case");
+  Sweep s;
+  app.add_option("--gripper", s.gripper, "the gripper's file")->check(CLI::ExistingFile)->capture_default_str();
+  app.add_option("--cell", s.cell, "the cell's file (the part's size, friction, hold margin)")
+      ->check(CLI::ExistingFile)->capture_default_str();
+  app.add_option("--masses-g", s.masses_g, "the part's masses (g)")->capture_default_str();
+  app.add_option("--accelerations", s.accelerations, "the lift's peak accelerations (m/s^2)")->capture_default_str();
+  app.add_option("--arm", s.arm, "the arm's URDF (the cell's lift height)")->check(CLI::ExistingFile)
+      ->capture_default_str();
+  app.add_option("--lift-m", s.lift_m, "how far the lift rises (m; default: the cell's, from --arm and --cell)")
+      ->check(CLI::PositiveNumber);
+  app.add_option("--write-scene", s.scene_out,
+                 "also write the first mass's scene, the springs at the grasp pressure, as MJCF to this file "
+                 "(mujoco-simulate FILE shows it)");
+  CLI11_PARSE(app, argc, argv);
+  try {
+    const std::vector<pf::GripperFinger> fingers = pf::loadGripperFile(s.gripper);
+    const CellLift lift = cellLift(s.arm, s.gripper, s.cell);
+    if (s.lift_m == 0.0) s.lift_m = lift.height_m;
+    if (s.accelerations.empty()) s.accelerations = {0.25, 0.5, 1, 2, 4, 8, lift.fastest_mps2};
+    std::fprintf(stderr, "grasp_rule_sweep: the cell lifts tool0 by %.4g m; at its fastest cycle (%g s) the lift's "
+                 "peak acceleration is %.4g m/s^2\n", lift.height_m, pf::kMinCycleTimeS, lift.fastest_mps2);
+    const CellPart part = readCellPart(s.cell);
+    pf::GraspScene scene;
+    scene.object_radius_m = part.radius_m;
+    scene.object_height_m = part.height_m;
+    scene.object_centre_depth_m = pf::sideGraspDepth(fingers, part.radius_m, part.height_m).centre_depth_m;
+    const pf::SideGraspForces touch = pf::sideGraspForces(fingers, part.radius_m, part.height_m,
+                                                          scene.object_centre_depth_m, 0.0);
+    // The gripper action's grasp: the last finger's touch plus the squeeze margin.
+    const double gauge_pa = *std::max_element(touch.touch_gauge_pa.begin(), touch.touch_gauge_pa.end()) +
+                            s.squeeze_margin_pa;
+    const pf::SideGraspForces twin = pf::sideGraspForces(fingers, part.radius_m, part.height_m,
+                                                         scene.object_centre_depth_m, gauge_pa);
+    std::printf("mass_kg,peak_acceleration_mps2,lift_duration_s,grasp_gauge_pa,twin_normal_force_n,"
+                "mujoco_normal_force_n,threshold_mass_kg,cell_rule_holds,rule_with_lift_holds,mujoco_carried,slip_m,"
+                "problem\n");
+    for (double mass_g : s.masses_g) {
+      scene.object_mass_kg = 1e-3 * mass_g;
+      if (!s.scene_out.empty() && mass_g == s.masses_g.front()) {
+        pf::MjcfOptions at_grasp;
+        at_grasp.gauge_pa = gauge_pa;
+        std::ofstream(s.scene_out) << pf::graspSceneMjcf(fingers, scene, at_grasp);
+      }
+      pf::GraspLiftTrial trial(fingers, scene, pf::MjcfOptions());
+      for (double a : s.accelerations) {
+        pf::LiftMotion lift{s.lift_m, a};
+        printRow(scene.object_mass_kg, lift, gauge_pa, twin, part, trial.run(gauge_pa, lift, pf::GraspTrialSettings()));
+        std::fflush(stdout);
+      }
+    }
+  } catch (const std::exception& e) {
+    std::cerr << "grasp_rule_sweep: " << e.what() << "\n";
+    return 1;
+  }
+  return 0;
+}
