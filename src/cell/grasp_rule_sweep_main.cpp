@@ -87,6 +87,22 @@ void printRow(double mass_kg, const pf::LiftMotion& lift, double gauge_pa, const
               sim.slip_m, sim.problem.empty() ? "" : ("\"" + sim.problem + "\"").c_str());
 }
 
+// The grasp closed without gravity (nothing pulls the part): each finger's normal force by the twin
+// (contactNormalForcesN) and by MuJoCo, with the held moments' springs and with the linear ones (N, finger 1).
+void printClosedForces(const std::vector<pf::GripperFinger>& fingers, const pf::GraspScene& scene, double gauge_pa,
+                       const pf::SideGraspForces& twin) {
+  pf::GraspLiftTrial trial(fingers, scene, pf::MjcfOptions());
+  pf::GraspTrialSettings closed;
+  closed.hang_s = closed.after_s = 0.0;
+  const double held = trial.run(gauge_pa, pf::LiftMotion{0.0, 1.0}, closed).finger_normal_force_n.at(0);
+  closed.held_moments = false;
+  const double linear = trial.run(gauge_pa, pf::LiftMotion{0.0, 1.0}, closed).finger_normal_force_n.at(0);
+  std::fprintf(stderr, "grasp_rule_sweep: closed at %.0f Pa without gravity, one finger's normal force: the twin "
+               "%.4g N; MuJoCo %.4g N with the held moments' springs (%+.1f %%), %.4g N with the linear springs "
+               "(%+.1f %%)\n", gauge_pa, twin.normal_force_n.at(0), held, 100 * (held / twin.normal_force_n.at(0) - 1),
+               linear, 100 * (linear / twin.normal_force_n.at(0) - 1));
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -125,6 +141,7 @@ int main(int argc, char** argv) {
                             s.squeeze_margin_pa;
     const pf::SideGraspForces twin = pf::sideGraspForces(fingers, part.radius_m, part.height_m,
                                                          scene.object_centre_depth_m, gauge_pa);
+    printClosedForces(fingers, scene, gauge_pa, twin);
     std::printf("mass_kg,peak_acceleration_mps2,lift_duration_s,grasp_gauge_pa,twin_normal_force_n,"
                 "mujoco_normal_force_n,threshold_mass_kg,cell_rule_holds,rule_with_lift_holds,mujoco_carried,slip_m,"
                 "problem\n");

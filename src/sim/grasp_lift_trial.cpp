@@ -65,9 +65,7 @@ bool GraspLiftTrial::step(double gauge_pa, double z_m, double v_mps, double a_mp
                           std::string& problem) {
   mjModel* m = model_.get();
   mjData* d = data_.get();
-  for (PressureDrivenFinger& finger : driven_) {
-    if (!finger.applyPressureWithHeldMoments(gauge_pa, *d, problem)) return false;
-  }
+  if (!applySprings(gauge_pa, problem)) return false;
   m->opt.gravity[2] = gravity ? gravity_z_ : 0.0;
   const int carriage = m->dof_bodyid[lift_dof_];
   d->qpos[lift_qpos_] = z_m;
@@ -80,6 +78,15 @@ bool GraspLiftTrial::step(double gauge_pa, double z_m, double v_mps, double a_mp
       problem = "the simulation's state is not finite";
       return false;
     }
+  }
+  return true;
+}
+
+bool GraspLiftTrial::applySprings(double gauge_pa, std::string& problem) {
+  for (PressureDrivenFinger& finger : driven_) {
+    const bool ok = held_moments_ ? finger.applyPressureWithHeldMoments(gauge_pa, *data_, problem)
+                                  : finger.applyPressure(gauge_pa, problem);
+    if (!ok) return false;
   }
   return true;
 }
@@ -106,6 +113,7 @@ GraspTrialOutcome GraspLiftTrial::run(double grasp_gauge_pa, const LiftMotion& l
   mjModel* m = model_.get();
   mjData* d = data_.get();
   mj_resetData(m, d);
+  held_moments_ = settings.held_moments;
   const double dt = m->opt.timestep;
   const FingerParameters& p = fingers_.front().parameters;
   const double rate = fillRatePaPerS(settings.flow_m3_per_s, restVolumeM3(p, static_cast<int>(fingers_.size())),

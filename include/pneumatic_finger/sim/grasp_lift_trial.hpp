@@ -32,6 +32,8 @@ struct GraspTrialSettings {
   double hang_s = 0.5;           ///< gravity on, the carriage still: the forces are read at the end (s)
   double after_s = 0.5;          ///< after the lift, the carriage still (s)
   double carried_slip_m = 0.005; ///< an object that fell less than this in the grasp was carried (m)
+  bool held_moments = true;      ///< the springs press with the twin's held moments (applyPressureWithHeldMoments);
+                                 ///< false: applyPressure's linear springs (for comparison)
 };
 
 struct GraspTrialOutcome {
@@ -58,6 +60,7 @@ class GraspLiftTrial {
  private:
   // One step with the pressure's springs, the carriage on its path (z, v, a) and gravity on or off. false: a problem.
   bool step(double gauge_pa, double z_m, double v_mps, double a_mps2, bool gravity, std::string& problem);
+  bool applySprings(double gauge_pa, std::string& problem);
   void readNormalForces(std::vector<double>& force_n) const;
 
   std::vector<GripperFinger> fingers_;
@@ -68,6 +71,7 @@ class GraspLiftTrial {
   std::vector<int> finger_of_body_;  // per body: the finger it belongs to, or -1
   int lift_dof_ = -1, lift_qpos_ = -1, lift_actuator_ = -1, object_body_ = -1, object_geom_ = -1;
   double gravity_z_ = 0.0;
+  bool held_moments_ = true;  // the run's GraspTrialSettings::held_moments
 };
 
 }  // namespace pneumatic_finger
