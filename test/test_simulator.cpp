@@ -9,23 +9,28 @@
 #include <kdl_parser/kdl_parser.hpp>
 #include <mujoco/mujoco.h>
 #include <urdf_parser/urdf_parser.h>
+#include <yaml-cpp/yaml.h>
 
 #include <algorithm>
 #include <cmath>
 #include <fstream>
 #include <limits>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "pneumatic_finger/cell/grasp_hold.hpp"
 #include "pneumatic_finger/cell/side_grasp.hpp"
 #include "pneumatic_finger/core/grasp_plan.hpp"
+#include "pneumatic_finger/core/regulator.hpp"
 #include "pneumatic_finger/core/smoothstep.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
+#include "pneumatic_finger/sim/cell_physics.hpp"
 #include "pneumatic_finger/sim/finger_mjcf.hpp"
 #include "pneumatic_finger/sim/grasp_lift_trial.hpp"
 #include "pneumatic_finger/sim/joint_springs.hpp"
+#include "pneumatic_finger/sim/mjcf_text.hpp"
 #include "pneumatic_finger/sim/pressure_driven_finger.hpp"
 
 namespace pf = pneumatic_finger;
@@ -215,12 +220,12 @@ TEST(SimulatorSprings, APlateAtTheTipFeelsTheTwinsBlockedForce) {
     std::string xml = pf::fingerMjcf(p, pf::FingerUrdfOptions(), o);
     const double r = 1e-3, length = p.lengthM();
     const std::string ball = "<geom name=\"tip_ball\" type=\"sphere\" size=\"" + pf::formatShortest(r) +
-                             "\" contype=\"2\" conaffinity=\"2\" mass=\"0\"/>\n";
+                             "\" contype=\"2\" conaffinity=\"2\" condim=\"1\" mass=\"0\"/>\n";
     xml.insert(xml.find("<site name=\"finger_tip\""), ball);
     // Its lower face at y = r: it touches the ball of the straight finger's tip.
     const std::string plate = "<geom name=\"plate\" type=\"box\" size=\"0.02 0.005 0.01\" pos=\"" +
                               pf::formatShortest(length) + " " + pf::formatShortest(r + 0.005) +
-                              " 0\" contype=\"2\" conaffinity=\"2\" solref=\"-1e9 -1e5\"/>\n";
+                              " 0\" contype=\"2\" conaffinity=\"2\" condim=\"1\" solref=\"-1e9 -1e5\"/>\n";
     xml.insert(xml.find("  </worldbody>"), "    " + plate);
     Loaded sim(xml, "plate");
     ASSERT_NE(sim.m, nullptr) << sim.error;
@@ -380,13 +385,12 @@ TEST(SimulatorGrasp, EveryHeldJointPressesWithTheTwinsMomentAtItsAngle) {
   mj_deleteModel(m);
 }
 
-// Closed on the part, MuJoCo's normal force of each finger against contactNormalForcesN's. They differ by about
-// 15 %, and docs/SIMULATION.md shows why: the twin freezes every joint at its touch angle and shares the joints'
-// moments by a compliance linear about the straight finger; the engine lets each joint settle under the contact, so
-// the distal joints, next to the contact, give back most of their moment. The bound holds that measured difference
-// (a regression check, not the 10 % agreement the plan asked for). The linear springs (applyPressure), which carry
-// the straight joint's moment, press with a third of the twin's force: the held moments are what make the grasp.
-TEST(SimulatorGrasp, ClosedOnTheCellsPartEachFingerPressesWithinAFifthOfTheTwinsForce) {
+// Closed on the part, MuJoCo's normal force of each finger against contactNormalForcesN's, with the file's settings
+// (a 1 ms step, the fingers' armature): within 10 %, and below it. The engine lets each joint settle under the
+// contact, and its soft contact lets the part in a little, both of which give back some of the twin's moment
+// (docs/SIMULATION.md, "Where and why the two differ"). The linear springs (applyPressure), which carry the straight
+// joint's moment, press with a third of it: the held moments are what make the grasp.
+TEST(SimulatorGrasp, ClosedOnTheCellsPartEachFingerPressesWithinTenPercentOfTheTwinsForce) {
   CellGrasp g;
   pf::GraspLiftTrial trial(g.fingers, g.scene, pf::MjcfOptions());
   const pf::GraspTrialOutcome closed = closeWithoutGravity(trial, g.gauge_pa);
@@ -394,9 +398,14 @@ TEST(SimulatorGrasp, ClosedOnTheCellsPartEachFingerPressesWithinAFifthOfTheTwins
   ASSERT_EQ(closed.finger_normal_force_n.size(), 3u);
   for (std::size_t f = 0; f < 3; ++f) {
     ASSERT_GT(g.twin.normal_force_n[f], 0.0);
-    EXPECT_NEAR(closed.finger_normal_force_n[f], g.twin.normal_force_n[f], 0.2 * g.twin.normal_force_n[f]) << f;
+    EXPECT_NEAR(closed.finger_normal_force_n[f], g.twin.normal_force_n[f], 0.1 * g.twin.normal_force_n[f]) << f;
     EXPECT_LT(closed.finger_normal_force_n[f], g.twin.normal_force_n[f]) << "the engine's chain gives way";
   }
+  pf::GraspTrialSettings linear;
+  linear.hang_s = linear.after_s = 0.0;
+  linear.held_moments = false;
+  const pf::GraspTrialOutcome straight = trial.run(g.gauge_pa, pf::LiftMotion{0.0, 1.0}, linear);
+  for (std::size_t f = 0; f < 3; ++f) EXPECT_LT(straight.finger_normal_force_n[f], 0.5 * g.twin.normal_force_n[f]) << f;
 }
 
 // The cell's lift at its default 12 s cycle (tool0 rises 0.108 m in 1.2 s: a peak of 0.45 m/s^2): physics carries
@@ -417,5 +426,46 @@ TEST(SimulatorGrasp, TheCellsTenGramPartIsCarriedAndATwoHundredGramPartSlips) {
     EXPECT_EQ(rule, out.carried);
     if (out.carried) EXPECT_LT(out.slip_m, 0.005);
     if (!out.carried) EXPECT_GT(out.slip_m, lift.height_m) << "it fell out, not crept";
+  }
+}
+
+// The whole cell in MuJoCo (CellPhysics): the arm at the pick pose, the part on its table where the gripper holds
+// it. The fingers fill at the regulator's rate to the grasp pressure, then the arm's position actuators follow the
+// schedule's lift from the pick pose to the pose above it (the 12 s cycle's 1.2 s), and hold for 1 s. The arm's path tilts
+// the tool and sways it: at the gripper action's default squeeze (0.1 kg/cm^2 past the touch) one finger loses the
+// part and it falls out as the lift stops (docs/SIMULATION.md); at twice that squeeze physics carries the 10 g part up
+// with tool0 (within 5 mm of its rise) and leaves a 200 g part on the table.
+TEST(SimulatorCell, TheArmLiftsTheTenGramPartOffItsTableAndLeavesTwoHundredGrams) {
+  CellGrasp g;
+  const YAML::Node cell = YAML::LoadFile(std::string(PACKAGE_SOURCE_DIR) + "/config/cell.yaml");
+  const auto names = cell["arm_joint_names"].as<std::vector<std::string>>();
+  const auto pick = cell["pick"].as<std::vector<double>>(), above = cell["above_pick"].as<std::vector<double>>();
+  const pf::FingerModel twin(g.fingers.front().parameters);
+  const double rate = pf::fillRatePaPerS(pf::kCellRegulatorFlowM3PerS, pf::restVolumeM3(twin.parameters(), 3),
+                                         twin.parameters().atmospheric_pressure_pa);
+  for (const auto& [mass, squeeze, carried] : {std::tuple{0.01, 1.0, false}, std::tuple{0.01, 2.0, true},
+                                               std::tuple{0.2, 2.0, false}}) {
+    SCOPED_TRACE(std::to_string(mass) + " kg at " + std::to_string(squeeze) + " x the squeeze");
+    g.scene.object_mass_kg = mass;
+    pf::CellPhysics physics(pf::readRobotUrdfFile(kArm), g.fingers, names, pick, g.scene, pf::MjcfOptions());
+    const double grasp_pa = g.gauge_pa + (squeeze - 1.0) * pf::kDefaultSqueezeMarginPa, lift_s = 1.2;
+    const double dt = physics.model().opt.timestep;
+    double gauge = 0.0, part_z0 = 0.0, tool_z0 = 0.0;
+    std::string why;
+    std::vector<double> target(names.size());
+    for (double t = 0.0; t < 1.5 + lift_s + 1.0; t += dt) {
+      const double u = std::clamp((t - 1.5) / lift_s, 0.0, 1.0);
+      for (std::size_t j = 0; j < target.size(); ++j) target[j] = pick[j] + pf::smoothstep(u) * (above[j] - pick[j]);
+      physics.setArmTargets(target);
+      gauge = pf::regulatorStep(gauge, grasp_pa, rate, dt);
+      ASSERT_TRUE(physics.step(gauge, why)) << why;
+      if (t < 1.5) part_z0 = physics.partPose().translation().z(), tool_z0 = physics.toolPose().translation().z();
+    }
+    const double rise = physics.toolPose().translation().z() - tool_z0;
+    const double part_rise = physics.partPose().translation().z() - part_z0;
+    EXPECT_NEAR(rise, 0.1076, 2e-3) << "the arm follows the schedule's lift";
+    if (carried) EXPECT_NEAR(part_rise, rise, 0.005);
+    if (!carried) EXPECT_LT(std::fabs(part_rise), 0.005) << "it is back on the table";
+    EXPECT_EQ(physics.warnings(), 0);
   }
 }

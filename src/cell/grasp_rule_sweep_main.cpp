@@ -17,6 +17,8 @@
 #include "pneumatic_finger/cell/side_grasp.hpp"
 #include "pneumatic_finger/core/grasp_plan.hpp"
 #include "pneumatic_finger/core/smoothstep.hpp"
+#include "pneumatic_finger/core/regulator.hpp"
+#include "pneumatic_finger/sim/cell_physics.hpp"
 #include "pneumatic_finger/sim/finger_mjcf.hpp"
 #include "pneumatic_finger/sim/grasp_lift_trial.hpp"
 #include "pneumatic_finger/sim/mjcf_text.hpp"
@@ -32,6 +34,7 @@ struct Sweep {
   double lift_m = 0.0;                 // 0: the cell's
   double squeeze_margin_pa = pf::kDefaultSqueezeMarginPa;
   std::string scene_out;  // where to write the first case's scene at the grasp pressure, for MuJoCo's viewer
+  pf::MjcfOptions mjcf;   // the engine's step and the fingers' armature
 };
 
 // The cell's part and its rule's friction and margin (config/cell.yaml).
@@ -90,8 +93,8 @@ void printRow(double mass_kg, const pf::LiftMotion& lift, double gauge_pa, const
 // The grasp closed without gravity (nothing pulls the part): each finger's normal force by the twin
 // (contactNormalForcesN) and by MuJoCo, with the held moments' springs and with the linear ones (N, finger 1).
 void printClosedForces(const std::vector<pf::GripperFinger>& fingers, const pf::GraspScene& scene, double gauge_pa,
-                       const pf::SideGraspForces& twin) {
-  pf::GraspLiftTrial trial(fingers, scene, pf::MjcfOptions());
+                       const pf::SideGraspForces& twin, const pf::MjcfOptions& mjcf) {
+  pf::GraspLiftTrial trial(fingers, scene, mjcf);
   pf::GraspTrialSettings closed;
   closed.hang_s = closed.after_s = 0.0;
   const double held = trial.run(gauge_pa, pf::LiftMotion{0.0, 1.0}, closed).finger_normal_force_n.at(0);
@@ -101,6 +104,48 @@ void printClosedForces(const std::vector<pf::GripperFinger>& fingers, const pf::
                "%.4g N; MuJoCo %.4g N with the held moments' springs (%+.1f %%), %.4g N with the linear springs "
                "(%+.1f %%)\n", gauge_pa, twin.normal_force_n.at(0), held, 100 * (held / twin.normal_force_n.at(0) - 1),
                linear, 100 * (linear / twin.normal_force_n.at(0) - 1));
+}
+
+// The cell's own lift in MuJoCo (CellPhysics): the fingers fill to @p grasp_pa at the regulator's rate while the arm
+// holds the pick pose, the arm's actuators follow the schedule from the pick pose to the pose above it in
+// @p lift_s, then hold 1 s. How far the part rose (m), against the tool's rise (@p tool_rise_m).
+double armLiftPartRise(const Sweep& s, const std::vector<pf::GripperFinger>& fingers, const pf::GraspScene& scene,
+                       double grasp_pa, double lift_s, double& tool_rise_m) {
+  const YAML::Node cell = YAML::LoadFile(s.cell);
+  const auto pick = cell["pick"].as<std::vector<double>>(), above = cell["above_pick"].as<std::vector<double>>();
+  pf::CellPhysics physics(pf::readRobotUrdfFile(s.arm), fingers, cell["arm_joint_names"].as<std::vector<std::string>>(),
+                          pick, scene, s.mjcf);
+  const pf::FingerParameters& p = fingers.front().parameters;
+  const double rate = pf::fillRatePaPerS(pf::kCellRegulatorFlowM3PerS, pf::restVolumeM3(p, static_cast<int>(fingers.size())),
+                                         p.atmospheric_pressure_pa);
+  const double dt = physics.model().opt.timestep, hold_s = 1.5;
+  double gauge = 0.0, part_z0 = 0.0, tool_z0 = 0.0;
+  std::string why;
+  std::vector<double> target(pick.size());
+  for (double t = 0.0; t < hold_s + lift_s + 1.0; t += dt) {
+    const double u = std::clamp((t - hold_s) / lift_s, 0.0, 1.0);
+    for (std::size_t j = 0; j < target.size(); ++j) target[j] = pick[j] + pf::smoothstep(u) * (above[j] - pick[j]);
+    physics.setArmTargets(target);
+    gauge = pf::regulatorStep(gauge, grasp_pa, rate, dt);
+    if (!physics.step(gauge, why)) throw pf::ParameterError(why);
+    if (t < hold_s) part_z0 = physics.partPose().translation().z(), tool_z0 = physics.toolPose().translation().z();
+  }
+  tool_rise_m = physics.toolPose().translation().z() - tool_z0;
+  return physics.partPose().translation().z() - part_z0;
+}
+
+// The cell's 10 g part lifted by the arm at the default 12 s cycle, at the action's squeeze and at twice it.
+void printArmLifts(const Sweep& s, const std::vector<pf::GripperFinger>& fingers, pf::GraspScene scene,
+                   double grasp_pa) {
+  scene.object_mass_kg = 0.01;
+  const double lift_s = 0.1 * 12.0;  // the lift's tenth of the launch file's default cycle
+  for (double squeeze : {1.0, 2.0}) {
+    double tool_rise = 0.0;
+    const double pa = grasp_pa + (squeeze - 1.0) * s.squeeze_margin_pa;
+    const double part_rise = armLiftPartRise(s, fingers, scene, pa, lift_s, tool_rise);
+    std::fprintf(stderr, "grasp_rule_sweep: the arm lifts the 10 g part in %g s at %.0f Pa (%g x the squeeze): tool0 "
+                 "rose %.4f m, the part %.4f m\n", lift_s, pa, squeeze, tool_rise, part_rise);
+  }
 }
 
 }  // namespace
@@ -118,6 +163,11 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--lift-m", s.lift_m, "how far the lift rises (m; default: the cell's, from --arm and --cell)")
       ->check(CLI::PositiveNumber);
+  app.add_option("--timestep-s", s.mjcf.timestep_s, "the engine's step (s)")->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--steps-per-period", s.mjcf.steps_per_period,
+                 "the finger joints' armature: steps per period of the stiffest spring (0: none)")
+      ->check(CLI::NonNegativeNumber)->capture_default_str();
   app.add_option("--write-scene", s.scene_out,
                  "also write the first mass's scene, the springs at the grasp pressure, as MJCF to this file "
                  "(mujoco-simulate FILE shows it)");
@@ -141,18 +191,19 @@ int main(int argc, char** argv) {
                             s.squeeze_margin_pa;
     const pf::SideGraspForces twin = pf::sideGraspForces(fingers, part.radius_m, part.height_m,
                                                          scene.object_centre_depth_m, gauge_pa);
-    printClosedForces(fingers, scene, gauge_pa, twin);
+    printClosedForces(fingers, scene, gauge_pa, twin, s.mjcf);
+    printArmLifts(s, fingers, scene, gauge_pa);
     std::printf("mass_kg,peak_acceleration_mps2,lift_duration_s,grasp_gauge_pa,twin_normal_force_n,"
                 "mujoco_normal_force_n,threshold_mass_kg,cell_rule_holds,rule_with_lift_holds,mujoco_carried,slip_m,"
                 "problem\n");
     for (double mass_g : s.masses_g) {
       scene.object_mass_kg = 1e-3 * mass_g;
       if (!s.scene_out.empty() && mass_g == s.masses_g.front()) {
-        pf::MjcfOptions at_grasp;
+        pf::MjcfOptions at_grasp = s.mjcf;
         at_grasp.gauge_pa = gauge_pa;
         std::ofstream(s.scene_out) << pf::graspSceneMjcf(fingers, scene, at_grasp);
       }
-      pf::GraspLiftTrial trial(fingers, scene, pf::MjcfOptions());
+      pf::GraspLiftTrial trial(fingers, scene, s.mjcf);
       for (double a : s.accelerations) {
         pf::LiftMotion lift{s.lift_m, a};
         printRow(scene.object_mass_kg, lift, gauge_pa, twin, part, trial.run(gauge_pa, lift, pf::GraspTrialSettings()));

@@ -30,6 +30,7 @@ std::string posQuat(const urdf::Pose& pose) {
 struct JointDynamics {
   JointSpring spring;
   double damping_nms = 0.0;
+  double armature_kgm2 = 0.0;
 };
 
 // The rotational inertia (kg m^2) about joint n's axis of every link beyond it, in the straight finger (all joints
@@ -80,15 +81,21 @@ void writeJoint(std::ostringstream& out, const urdf::Joint& joint, const std::ma
   out << indent << "<joint name=\"" << joint.name << "\" type=\""
       << (joint.type == urdf::Joint::PRISMATIC ? "slide" : "hinge") << "\" axis=\"" << num(a.x) << " " << num(a.y)
       << " " << num(a.z) << "\"";
-  if (joint.limits && joint.type != urdf::Joint::CONTINUOUS) {
+  const auto d = dynamics.find(joint.name);
+  const bool finger_joint = d != dynamics.end() && d->second.spring.stiffness_nm_per_rad > 0.0;
+  // A finger joint is its spring: the URDF's range (the shapes the pressure gives, for planners) would add a limit's
+  // force to the force model's statics (a joint held back past straight by a plate, say).
+  if (joint.limits && joint.type != urdf::Joint::CONTINUOUS && !finger_joint) {
     out << " limited=\"true\" range=\"" << num(joint.limits->lower) << " " << num(joint.limits->upper) << "\"";
   }
-  const auto d = dynamics.find(joint.name);
-  if (d != dynamics.end() && d->second.spring.stiffness_nm_per_rad > 0.0) {
+  if (finger_joint) {
     out << " stiffness=\"" << num(d->second.spring.stiffness_nm_per_rad) << "\" springref=\""
         << num(d->second.spring.rest_angle_rad) << "\"";
   }
   if (d != dynamics.end()) out << " damping=\"" << num(d->second.damping_nms) << "\"";
+  if (d != dynamics.end() && d->second.armature_kgm2 > 0.0) {
+    out << " armature=\"" << num(d->second.armature_kgm2) << "\"";
+  }
   out << "/>\n";
 }
 
@@ -137,19 +144,22 @@ void writeBody(std::ostringstream& out, const urdf::ModelInterface& model, const
 
 namespace {
 
-// Each finger joint's spring at the pressure, and its damping: critical for the chain beyond it as one rigid body on
-// the spring, c = 2 zeta sqrt(k J). @throws ParameterError where the twin has no free shape.
+// Each finger joint's spring at the pressure, its armature (MjcfOptions::steps_per_period, from its stiffest spring up
+// to @p max_gauge_pa) and its damping: critical for the chain beyond it as one rigid body on the spring, with the
+// armature, c = 2 zeta sqrt(k (J + A)). @throws ParameterError where the twin has no free shape.
 void addFingerDynamics(const urdf::ModelInterface& model, const FingerParameters& parameters, const std::string& prefix,
-                       const MjcfOptions& mjcf, std::map<std::string, JointDynamics>& dynamics) {
+                       double max_gauge_pa, const MjcfOptions& mjcf, std::map<std::string, JointDynamics>& dynamics) {
   const FingerModel twin(parameters);
   std::string why;
   const std::vector<JointSpring> springs = jointSprings(twin, mjcf.gauge_pa, why);
   if (springs.empty()) throw ParameterError("--mjcf --gauge-pa: " + why);
   const int n = parameters.chamber_count;
+  const double period_s = mjcf.steps_per_period * mjcf.timestep_s / (2.0 * M_PI);
   for (int j = 1; j <= n; ++j) {
-    JointDynamics d{springs[static_cast<std::size_t>(j - 1)], 0.0};
-    d.damping_nms = 2.0 * mjcf.damping_ratio *
-                    std::sqrt(d.spring.stiffness_nm_per_rad * distalInertia(model, prefix, j, n));
+    JointDynamics d{springs[static_cast<std::size_t>(j - 1)], 0.0, 0.0};
+    const double inertia = distalInertia(model, prefix, j, n);
+    d.armature_kgm2 = std::max(0.0, stiffestSpringNmPerRad(twin, j - 1, max_gauge_pa) * period_s * period_s - inertia);
+    d.damping_nms = 2.0 * mjcf.damping_ratio * std::sqrt(d.spring.stiffness_nm_per_rad * (inertia + d.armature_kgm2));
     dynamics[jointName(prefix, j)] = d;
   }
 }
@@ -166,7 +176,7 @@ std::string writeMjcf(const urdf::ModelInterface& model, const std::map<std::str
 std::string fingerMjcf(const FingerParameters& parameters, const FingerUrdfOptions& options, const MjcfOptions& mjcf) {
   const urdf::ModelInterface model = fingerUrdfModel(parameters, options);
   std::map<std::string, JointDynamics> dynamics;
-  addFingerDynamics(model, parameters, options.prefix, mjcf, dynamics);
+  addFingerDynamics(model, parameters, options.prefix, options.max_gauge_pa, mjcf, dynamics);
   std::vector<std::pair<std::string, std::string>> excluded;
   for (int j = 1; j <= parameters.chamber_count; ++j) {
     excluded.emplace_back(segmentLinkName(options.prefix, j - 1), segmentLinkName(options.prefix, j));
@@ -185,7 +195,7 @@ std::string composedMjcf(const std::string& robot_urdf_xml, const std::vector<Gr
   std::map<std::string, JointDynamics> dynamics;
   std::vector<std::pair<std::string, std::string>> excluded;
   for (const GripperFinger& f : fingers) {
-    addFingerDynamics(*model, f.parameters, f.mount.prefix, mjcf, dynamics);
+    addFingerDynamics(*model, f.parameters, f.mount.prefix, f.mount.max_gauge_pa, mjcf, dynamics);
     for (int j = 1; j <= f.parameters.chamber_count; ++j) {
       excluded.emplace_back(segmentLinkName(f.mount.prefix, j - 1), segmentLinkName(f.mount.prefix, j));
     }
@@ -209,14 +219,16 @@ std::string writeMjcf(const urdf::ModelInterface& model, const std::map<std::str
               << "\" forcelimited=\"true\" forcerange=\"" << num(-effort) << " " << num(effort) << "\"/>\n";
   }
   std::map<std::string, JointDynamics> all = dynamics;
-  for (const auto& [name, c] : arm_damping) all[name] = JointDynamics{JointSpring{}, c};
+  for (const auto& [name, c] : arm_damping) all[name] = JointDynamics{JointSpring{}, c, 0.0};
   std::ostringstream out;
   out << "<!-- " << model.name_ << " at " << num(mjcf.gauge_pa) << " Pa gauge, written by finger_urdf --mjcf: each "
       << "finger joint a spring whose rest angle is the twin's free angle and whose stiffness holds the twin's "
       << "moment at the straight joint (docs/MODEL.md, Joint springs); each robot joint a position actuator. -->\n"
       << "<mujoco model=\"" << model.name_ << "\">\n"
       << "  <compiler angle=\"radian\"/>\n"
-      << "  <!-- Elliptic cones and a high impratio: frictional contacts that hold a grasp without creep. -->\n"
+      << "  <!-- Elliptic cones and a high impratio: frictional contacts that hold a grasp without creep. The step is long "
+      << "against every finger joint's period: each has an armature (a rotor inertia, no static effect) that gives its "
+      << "stiffest spring " << num(mjcf.steps_per_period) << " steps per period. -->\n"
       << "  <option timestep=\"" << num(mjcf.timestep_s) << "\" cone=\"elliptic\" impratio=\"" << num(mjcf.impratio)
       << "\"/>\n"
       << "  <default><geom friction=\"" << num(mjcf.friction) << " 0.005 0.0001\" condim=\"4\"/></default>\n"

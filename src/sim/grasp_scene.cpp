@@ -38,6 +38,17 @@ std::string liftRigUrdf(double carriage_height_m) {
 
 }  // namespace
 
+std::string partBodyMjcf(const GraspScene& scene, const std::string& pos, const std::string& quat) {
+  return "    <!-- The part, free: carried, slipped or dropped by physics. Its contacts are stiff (a 2 ms time constant "
+         "against MuJoCo's 20 ms), so that the fingers press on it without sinking in. -->\n"
+         "    <body name=\"" + std::string(kSceneObjectName) + "\" pos=\"" + pos + "\" quat=\"" + quat + "\">\n"
+         "      <freejoint name=\"" + std::string(kSceneObjectName) + "\"/>\n"
+         "      <geom name=\"" + std::string(kSceneObjectName) + "\" type=\"cylinder\" size=\"" +
+         num(scene.object_radius_m) + " " + num(0.5 * scene.object_height_m) + "\" mass=\"" +
+         num(scene.object_mass_kg) + "\" solref=\"0.002 1\" rgba=\"0.9 0.5 0.1 1\"/>\n"
+         "    </body>\n";
+}
+
 std::string graspSceneMjcf(const std::vector<GripperFinger>& fingers, const GraspScene& scene, const MjcfOptions& mjcf) {
   requirePositive(scene.object_radius_m, "object radius (m)");
   requirePositive(scene.object_height_m, "object height (m)");
@@ -55,15 +66,7 @@ std::string graspSceneMjcf(const std::vector<GripperFinger>& fingers, const Gras
   // The object's centre lies depth below tool0, and the carriage puts tool0 at the height that sets the object's
   // base at z = 0.
   const double carriage_height_m = 0.5 * scene.object_height_m + scene.object_centre_depth_m;
-  const std::string object =
-      "    <!-- The part, free: carried, slipped or dropped by physics. Its contacts are stiff (a 2 ms time constant "
-      "against MuJoCo's 20 ms), so that the fingers press on it without sinking in. -->\n"
-      "    <body name=\"" + std::string(kSceneObjectName) + "\" pos=\"0 0 " + num(0.5 * scene.object_height_m) + "\">\n"
-      "      <freejoint name=\"" + std::string(kSceneObjectName) + "\"/>\n"
-      "      <geom name=\"" + std::string(kSceneObjectName) + "\" type=\"cylinder\" size=\"" +
-      num(scene.object_radius_m) + " " + num(0.5 * scene.object_height_m) + "\" mass=\"" + num(scene.object_mass_kg) +
-      "\" solref=\"0.002 1\" rgba=\"0.9 0.5 0.1 1\"/>\n"
-      "    </body>\n";
+  const std::string object = partBodyMjcf(scene, "0 0 " + num(0.5 * scene.object_height_m), "1 0 0 0");
   return composedMjcf(liftRigUrdf(carriage_height_m), fingers, mjcf, object);
 }
 

@@ -1,6 +1,7 @@
 // The joint springs (docs/MODEL.md, "Joint springs"): the twin's free angles and the force model's moments.
 #include "pneumatic_finger/sim/joint_springs.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <string>
 
@@ -17,6 +18,17 @@ double springStiffnessNmPerRad(const FingerParameters& parameters, int joint, do
   // In contact the joint held straight presses with M: k q0 = M. Before it, the elastomer alone.
   return rest_angle_rad > 0.0 && moment_nm > 0.0 ? moment_nm / rest_angle_rad
                                                  : straightBendingStiffnessNmPerRad(parameters, joint);
+}
+
+double stiffestSpringNmPerRad(const FingerModel& model, int joint, double max_gauge_pa) {
+  const double top = std::min(max_gauge_pa, model.belowLimitGaugePa());
+  double stiffest = straightBendingStiffnessNmPerRad(model.parameters(), joint);
+  std::string why;
+  for (int i = 1; i <= 64; ++i) {
+    const std::vector<JointSpring> springs = jointSprings(model, top * i / 64.0, why);
+    if (!springs.empty()) stiffest = std::max(stiffest, springs[static_cast<std::size_t>(joint)].stiffness_nm_per_rad);
+  }
+  return stiffest;
 }
 
 std::vector<JointSpring> jointSprings(const FingerModel& model, double gauge_pa, std::string& why) {

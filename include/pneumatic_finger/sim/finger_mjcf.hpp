@@ -14,7 +14,11 @@ namespace pneumatic_finger {
 /// The MJCF's settings besides the description. Each is written into the file, with the reason beside it.
 struct MjcfOptions {
   double gauge_pa = 0.0;        ///< the pressure whose springs the joints carry (Pa gauge)
-  double timestep_s = 1e-4;     ///< short against the stiffest joint's period (the spring on the chain beyond it)
+  double timestep_s = 1e-3;     ///< the engine's step (s): the armature below makes it short against every period
+  /// Each finger joint gets an armature (a rotor inertia, which changes no static shape or force) so that its stiffest
+  /// spring over the finger's range, on the chain beyond the joint plus the armature, has a period of at least this
+  /// many steps: J + A >= k_max (steps dt / 2 pi)^2. 0: no armature (the chain's own inertia alone).
+  double steps_per_period = 60.0;
   double damping_ratio = 1.0;   ///< each joint's damping, as a share of critical for the chain beyond it
   double friction = 1.0;        ///< sliding friction of every geom (silicone on most objects: 1 and more)
   double impratio = 10.0;       ///< elliptic friction cones, frictional constraints this much harder than normal ones

@@ -32,4 +32,8 @@ struct GraspScene {
 /// not on tool0, and as composedMjcf
 std::string graspSceneMjcf(const std::vector<GripperFinger>& fingers, const GraspScene& scene, const MjcfOptions& mjcf);
 
+/// The part alone as an MJCF body of the world (kSceneObjectName), its centre at @p pos and its axis along the z axis
+/// of the rotation @p quat (MJCF's "x y z" and "w x y z" text): what graspSceneMjcf and cellSceneMjcf add.
+std::string partBodyMjcf(const GraspScene& scene, const std::string& pos, const std::string& quat);
+
 }  // namespace pneumatic_finger

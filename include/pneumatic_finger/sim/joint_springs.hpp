@@ -36,6 +36,11 @@ double straightBendingStiffnessNmPerRad(const FingerParameters& parameters, int 
 /// per-step update (pressure_driven_finger.hpp).
 double springStiffnessNmPerRad(const FingerParameters& parameters, int joint, double rest_angle_rad, double moment_nm);
 
+/// Joint @p joint's stiffest spring (N m/rad) at the pressures up to @p max_gauge_pa (the range's top; below the
+/// limit point under the membrane law), from 64 pressures evenly spread: what sets the shortest period, and so the
+/// armature that lets an engine take a long step (finger_mjcf.hpp).
+double stiffestSpringNmPerRad(const FingerModel& model, int joint, double max_gauge_pa);
+
 /// The springs of @p model's N joints at @p gauge_pa (joint 1 first). Under the membrane law beyond the limit point
 /// (no free shape): empty. @param[out] why the reason when empty
 std::vector<JointSpring> jointSprings(const FingerModel& model, double gauge_pa, std::string& why);

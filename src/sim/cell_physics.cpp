@@ -1,0 +1,85 @@
+// The cell as physics (cell_physics.hpp).
+#include "pneumatic_finger/sim/cell_physics.hpp"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+namespace pneumatic_finger {
+
+CellPhysics::CellPhysics(const std::string& arm_urdf_xml, const std::vector<GripperFinger>& fingers,
+                         const std::vector<std::string>& arm_joint_names, const std::vector<double>& pick_joints_rad,
+                         const GraspScene& scene, const MjcfOptions& mjcf)
+    : model_(loadMjcfText(cellSceneMjcf(arm_urdf_xml, fingers, arm_joint_names, pick_joints_rad, scene, mjcf))),
+      data_(mj_makeData(model_.get())) {
+  mjModel* m = model_.get();
+  fingers_.reserve(fingers.size());
+  finger_of_body_.assign(static_cast<std::size_t>(m->nbody), -1);
+  for (std::size_t f = 0; f < fingers.size(); ++f) {
+    twins_.push_back(std::make_unique<FingerModel>(fingers[f].parameters));
+    fingers_.emplace_back(*twins_.back(), m, fingers[f].mount.prefix);
+    for (int b = 0; b < m->nbody; ++b) {
+      const char* name = mj_id2name(m, mjOBJ_BODY, b);
+      if (name && std::string(name).rfind(fingers[f].mount.prefix, 0) == 0) finger_of_body_[b] = static_cast<int>(f);
+    }
+  }
+  for (const std::string& name : arm_joint_names) {
+    arm_qpos_.push_back(m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, name.c_str())]);
+    arm_actuators_.push_back(mj_name2id(m, mjOBJ_ACTUATOR, name.c_str()));
+  }
+  for (std::size_t j = 0; j < arm_qpos_.size(); ++j) data_->qpos[arm_qpos_[j]] = pick_joints_rad[j];
+  setArmTargets(pick_joints_rad);
+  part_body_ = mj_name2id(m, mjOBJ_BODY, kSceneObjectName);
+  part_geom_ = mj_name2id(m, mjOBJ_GEOM, kSceneObjectName);
+  tool_body_ = mj_name2id(m, mjOBJ_BODY, kSceneToolName);
+  mj_forward(m, data_.get());
+}
+
+void CellPhysics::setArmTargets(const std::vector<double>& joints_rad) {
+  if (joints_rad.size() != arm_actuators_.size()) {
+    throw ParameterError("the arm has " + std::to_string(arm_actuators_.size()) + " joints, the targets " +
+                         std::to_string(joints_rad.size()));
+  }
+  for (std::size_t j = 0; j < joints_rad.size(); ++j) data_->ctrl[arm_actuators_[j]] = joints_rad[j];
+}
+
+bool CellPhysics::step(double gauge_pa, std::string& why) {
+  for (PressureDrivenFinger& f : fingers_) {
+    if (!f.applyPressureWithHeldMoments(gauge_pa, *data_, why)) return false;
+  }
+  mj_step(model_.get(), data_.get());
+  for (int k = 0; k < model_->nq; ++k) {
+    if (!std::isfinite(data_->qpos[k])) {
+      why = "the simulation's state is not finite at " + formatMessage(data_->time) + " s";
+      return false;
+    }
+  }
+  return true;
+}
+
+std::vector<int> CellPhysics::fingerContacts() const {
+  std::vector<int> count(fingers_.size(), 0);
+  for (int c = 0; c < data_->ncon; ++c) {
+    const mjContact& contact = data_->contact[c];
+    const int other = contact.geom1 == part_geom_ ? contact.geom2 : contact.geom2 == part_geom_ ? contact.geom1 : -1;
+    const int finger = other < 0 ? -1 : finger_of_body_[static_cast<std::size_t>(model_->geom_bodyid[other])];
+    if (finger >= 0) ++count[static_cast<std::size_t>(finger)];
+  }
+  return count;
+}
+
+int CellPhysics::warnings() const {
+  int n = 0;
+  for (int w = 0; w < mjNWARNING; ++w) n += data_->warning[w].number;
+  return n;
+}
+
+Eigen::Isometry3d CellPhysics::pose(int body) const {
+  Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();
+  const double* q = data_->xquat + 4 * body;
+  pose.linear() = Eigen::Quaterniond(q[0], q[1], q[2], q[3]).toRotationMatrix();
+  pose.translation() = Eigen::Vector3d(data_->xpos[3 * body], data_->xpos[3 * body + 1], data_->xpos[3 * body + 2]);
+  return pose;
+}
+
+}  // namespace pneumatic_finger
