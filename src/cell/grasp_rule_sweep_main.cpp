@@ -5,6 +5,7 @@
 #include <yaml-cpp/yaml.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <fstream>
 #include <iostream>
@@ -108,9 +109,15 @@ void printClosedForces(const std::vector<pf::GripperFinger>& fingers, const pf::
 
 // The cell's own lift in MuJoCo (CellPhysics): the fingers fill to @p grasp_pa at the regulator's rate while the arm
 // holds the pick pose, the arm's actuators follow the schedule from the pick pose to the pose above it in
-// @p lift_s, then hold 1 s. How far the part rose (m), against the tool's rise (@p tool_rise_m).
-double armLiftPartRise(const Sweep& s, const std::vector<pf::GripperFinger>& fingers, const pf::GraspScene& scene,
-                       double grasp_pa, double lift_s, double& tool_rise_m) {
+// @p lift_s, then hold 1 s. What it did to the part.
+struct ArmLift {
+  double tool_rise_m = 0.0, part_rise_m = 0.0;
+  double largest_tilt_deg = 0.0;   // tool z from straight down, during the lift
+  int fewest_fingers = 0;          // fingers touching the part, the fewest during the lift
+};
+
+ArmLift armLift(const Sweep& s, const std::vector<pf::GripperFinger>& fingers, const pf::GraspScene& scene,
+                double grasp_pa, double lift_s) {
   const YAML::Node cell = YAML::LoadFile(s.cell);
   const auto pick = cell["pick"].as<std::vector<double>>(), above = cell["above_pick"].as<std::vector<double>>();
   pf::CellPhysics physics(pf::readRobotUrdfFile(s.arm), fingers, cell["arm_joint_names"].as<std::vector<std::string>>(),
@@ -122,6 +129,8 @@ double armLiftPartRise(const Sweep& s, const std::vector<pf::GripperFinger>& fin
   double gauge = 0.0, part_z0 = 0.0, tool_z0 = 0.0;
   std::string why;
   std::vector<double> target(pick.size());
+  ArmLift out;
+  out.fewest_fingers = static_cast<int>(fingers.size());
   for (double t = 0.0; t < hold_s + lift_s + 1.0; t += dt) {
     const double u = std::clamp((t - hold_s) / lift_s, 0.0, 1.0);
     for (std::size_t j = 0; j < target.size(); ++j) target[j] = pick[j] + pf::smoothstep(u) * (above[j] - pick[j]);
@@ -129,9 +138,17 @@ double armLiftPartRise(const Sweep& s, const std::vector<pf::GripperFinger>& fin
     gauge = pf::regulatorStep(gauge, grasp_pa, rate, dt);
     if (!physics.step(gauge, why)) throw pf::ParameterError(why);
     if (t < hold_s) part_z0 = physics.partPose().translation().z(), tool_z0 = physics.toolPose().translation().z();
+    if (t < hold_s || t > hold_s + lift_s) continue;
+    const double down = -physics.toolPose().linear()(2, 2);
+    out.largest_tilt_deg = std::max(out.largest_tilt_deg, std::acos(std::min(1.0, down)) * 180.0 / M_PI);
+    const std::vector<int> touching = physics.fingerContacts();
+    out.fewest_fingers = std::min(out.fewest_fingers,
+                                  static_cast<int>(std::count_if(touching.begin(), touching.end(),
+                                                                 [](int n) { return n > 0; })));
   }
-  tool_rise_m = physics.toolPose().translation().z() - tool_z0;
-  return physics.partPose().translation().z() - part_z0;
+  out.tool_rise_m = physics.toolPose().translation().z() - tool_z0;
+  out.part_rise_m = physics.partPose().translation().z() - part_z0;
+  return out;
 }
 
 // The cell's 10 g part lifted by the arm at the default 12 s cycle, at the action's squeeze and at twice it.
@@ -140,11 +157,12 @@ void printArmLifts(const Sweep& s, const std::vector<pf::GripperFinger>& fingers
   scene.object_mass_kg = 0.01;
   const double lift_s = 0.1 * 12.0;  // the lift's tenth of the launch file's default cycle
   for (double squeeze : {1.0, 2.0}) {
-    double tool_rise = 0.0;
     const double pa = grasp_pa + (squeeze - 1.0) * s.squeeze_margin_pa;
-    const double part_rise = armLiftPartRise(s, fingers, scene, pa, lift_s, tool_rise);
+    const ArmLift lift = armLift(s, fingers, scene, pa, lift_s);
     std::fprintf(stderr, "grasp_rule_sweep: the arm lifts the 10 g part in %g s at %.0f Pa (%g x the squeeze): tool0 "
-                 "rose %.4f m, the part %.4f m\n", lift_s, pa, squeeze, tool_rise, part_rise);
+                 "rose %.4f m, the part %.4f m; during the lift tool z tilted up to %.2f deg and as few as %d fingers "
+                 "touched the part\n", lift_s, pa, squeeze, lift.tool_rise_m, lift.part_rise_m, lift.largest_tilt_deg,
+                 lift.fewest_fingers);
   }
 }
 
