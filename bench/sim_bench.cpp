@@ -90,7 +90,7 @@ void benchCell(benchmark::State& state) {
 
 }  // namespace
 
-BENCHMARK(benchCell)->Name("sim/cell_step")->MinTime(2.0);
+BENCHMARK(benchCell)->Name("sim/cell_step");
 BENCHMARK_CAPTURE(benchStep, fixed_springs, false)->Name("sim/step");
 BENCHMARK_CAPTURE(benchStep, twin_springs, true)->Name("sim/step_with_springs");
 BENCHMARK_MAIN();

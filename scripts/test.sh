@@ -24,6 +24,9 @@ echo "lint: house rules (no function over 80 lines, no file over 500, in src/ an
 "$ROOT/devel/lib/pneumatic_finger/finger_bench" --benchmark_min_time=0.002 --benchmark_format=json \
   >"$ROOT/build/bench_smoke.json" 2>/dev/null
 /usr/bin/python3 "$ROOT/scripts/check_bench_smoke.py" "$ROOT/build/bench_smoke.json"
+"$ROOT/devel/lib/pneumatic_finger/sim_bench" --benchmark_min_time=0.002 --benchmark_format=json \
+  >"$ROOT/build/sim_bench_smoke.json" 2>/dev/null
+/usr/bin/python3 "$ROOT/scripts/check_bench_smoke.py" --sim "$ROOT/build/sim_bench_smoke.json"
 
 # Each run gets its own ROS master port and ROS_HOME under build/, so two runs never collide.
 source "$ROOT/scripts/ros_env.sh"
