@@ -178,3 +178,26 @@ TEST(PressureInput, SolverFailuresAndVacuumAreReported) {
   EXPECT_EQ(p.counters().vacuum, 1);
   EXPECT_NE(p.report(1.3).message.find("no finite answer"), std::string::npos);
 }
+
+// Driven by volume, the reports name the supplied volume, and past the limit point (the pressure falling as the
+// volume grows, a state volume control follows) they say so while it lasts.
+TEST(PressureInput, VolumeInputReportsNameTheVolumeAndThePastLimitState) {
+  pf::PressureInputSettings s = settings();
+  s.volume_input = true;
+  pf::PressureInputPolicy p(s);
+  EXPECT_EQ(p.report(0.0).message, "no supplied volume received yet");
+  ASSERT_EQ(p.onVolumeMessage(2e-6, 1.0).verdict, pf::InputVerdict::kAccept);
+  p.noteGaugeFromVolume(3e4, false);
+  EXPECT_EQ(p.report(1.5).level, pf::InputHealth::kOk);
+  EXPECT_EQ(p.report(1.5).message, "ok");
+  ASSERT_EQ(p.onVolumeMessage(5e-6, 1.6).verdict, pf::InputVerdict::kAccept);
+  p.noteGaugeFromVolume(2.5e4, true);
+  const pf::InputReport past = p.report(2.0);
+  EXPECT_EQ(past.level, pf::InputHealth::kOk);
+  EXPECT_NE(past.message.find("past the wall's limit point"), std::string::npos) << past.message;
+  const pf::InputReport stale = p.report(4.0);
+  EXPECT_EQ(stale.level, pf::InputHealth::kError);
+  EXPECT_NE(stale.message.find("stale: no supplied volume for 2.4 s"), std::string::npos) << stale.message;
+  pf::PressureInputPolicy pressure(settings());
+  EXPECT_EQ(pressure.report(0.0).message, "no pressure received yet");
+}

@@ -209,13 +209,14 @@ InputReport PressureInputPolicy::report(double now_s) {
   r.rate_hz = static_cast<double>(recent_.size());
   r.age_s = have_received_ ? now_s - last_received_s_ : -1.0;
   const bool recent_problem = have_problem_ && now_s - last_problem_s_ <= kProblemHoldS && now_s >= last_problem_s_;
+  const char* input = settings_.volume_input ? "supplied volume" : "pressure";
   if (!have_received_) {
     r.level = InputHealth::kWarn;
-    r.message = "no pressure received yet";
+    r.message = std::string("no ") + input + " received yet";
   } else if (r.age_s > settings_.stale_timeout_s) {
     r.level = InputHealth::kError;
     char b[96];
-    std::snprintf(b, sizeof b, "stale: no pressure for %.1f s; last state kept", r.age_s);
+    std::snprintf(b, sizeof b, "stale: no %s for %.1f s; last state kept", input, r.age_s);
     r.message = b;
   } else if (recent_problem) {
     r.level = InputHealth::kWarn;
@@ -225,7 +226,10 @@ InputReport PressureInputPolicy::report(double now_s) {
     r.message = aboveValidatedMessage(last_gauge_pa_, range());
   } else {
     r.level = InputHealth::kOk;
-    r.message = "ok";
+    r.message = settings_.volume_input && past_limit_point_
+                    ? "ok: past the wall's limit point, which volume control follows (the pressure falls as the "
+                      "volume grows)"
+                    : "ok";
   }
   return r;
 }

@@ -226,6 +226,7 @@ void readNames(const NodeParameterReader& in, NodeSettings& s) {
   s.description_param = in.rosName("description_param");
   s.pressure_topic = in.rosName("pressure_topic");
   s.volume_topic = in.rosName("volume_topic");
+  s.input.volume_input = !s.volume_topic.empty();
   s.joint_states_topic = in.rosName("joint_states_topic");
   s.finger_state_topic = in.rosName("finger_state_topic");
   s.grasp_object_topic = in.rosName("grasp_object_topic");

@@ -21,6 +21,7 @@ struct PressureInputSettings {
   double stamp_tolerance_s = 1.0;        ///< a stamp further than this from the receive time is replaced by it (s)
   double time_jump_s = 1.0;              ///< a stamp older than the last by more than this starts a new timeline (s)
   double stale_timeout_s = 1.0;          ///< no message for longer than this: the input is stale (s)
+  bool volume_input = false;             ///< the input is a supplied volume (~volume_topic): the reports name it so
 };
 
 /// What happens to one message.
@@ -82,8 +83,13 @@ class PressureInputPolicy {
   /// model's answer (noteGaugeFromVolume).
   InputDecision onVolumeMessage(double volume_m3, double receive_s);
 
-  /// The pressure the model gave an accepted volume: diagnostics' last gauge pressure.
-  void noteGaugeFromVolume(double gauge_pa) { last_gauge_pa_ = gauge_pa; }
+  /// The pressure the model gave an accepted volume: diagnostics' last gauge pressure. @p past_limit_point: the volume
+  /// lies past the pressure's limit point, where volume control follows the wall and the pressure falls (the report
+  /// says so while it lasts).
+  void noteGaugeFromVolume(double gauge_pa, bool past_limit_point) {
+    last_gauge_pa_ = gauge_pa;
+    past_limit_point_ = past_limit_point;
+  }
 
   /// A supplied volume the model does not follow (above its volume limit, or drawn out of an incompressible drive):
   /// counted with the limit point's, the last state kept, @p what reported.
@@ -138,6 +144,7 @@ class PressureInputPolicy {
   bool have_problem_ = false;
   std::string last_problem_;
   double last_gauge_pa_ = 0.0;
+  bool past_limit_point_ = false;  // the last accepted volume lies past the pressure's limit point
 };
 
 }  // namespace pneumatic_finger
