@@ -33,94 +33,15 @@
 #include "pneumatic_finger/cell/side_grasp.hpp"
 #include "pneumatic_finger/ros/parameter_reader.hpp"
 #include "arm_kinematics.hpp"
+#include "cell_settings.hpp"
 
 namespace pf = pneumatic_finger;
+using pf::sequencer::parameterSpecs;
+using pf::sequencer::readSettings;
+using pf::sequencer::Settings;
+using pf::sequencer::setPose;
 
 namespace {
-
-struct Settings {
-  std::vector<std::string> joint_names;
-  pf::CellWaypoints waypoints;
-  double cycle_time_s = 0, grasp_position_rad = 0, grasp_force_n = 0, object_offset_m = 0, object_radius_m = 0,
-         object_height_m = 0, publish_rate_hz = 0, object_mass_kg = 0, friction_coefficient = 0, hold_margin = 0;
-  int finger_count = 0;
-  int loop_count = 0;
-  std::string base_link = "world", tool_link = "tool0", object_id;
-};
-
-// The sequencer's parameters: their one definition (`cell_sequencer --parameters` prints it for docs/).
-const std::vector<pf::NodeParameterSpec>& parameterSpecs() {
-  static const std::vector<pf::NodeParameterSpec> table = {
-      pf::listParameter("arm_joint_names", "string[]", "-", "the arm's joints", "the arm's joints, in the waypoints' order"),
-      pf::listParameter("home", "double[]", "rad", "one per arm joint", "waypoint: where a cycle starts and ends"),
-      pf::listParameter("above_pick", "double[]", "rad", "one per arm joint", "waypoint: above the pick table"),
-      pf::listParameter("pick", "double[]", "rad", "one per arm joint", "waypoint: the grasp pose"),
-      pf::listParameter("above_place", "double[]", "rad", "one per arm joint", "waypoint: above the place table"),
-      pf::listParameter("place", "double[]", "rad", "one per arm joint", "waypoint: the release pose"),
-      pf::numberParameter("cycle_time_s", 12.0, pf::kMinCycleTimeS, false, pf::kMaxCycleTimeS, "s",
-                          "one pick-and-place cycle, as scheduled; where the gripper's fill or release outlasts its "
-                          "phase, the cell waits for it (cell/events says how long)"),
-      pf::integerParameter("loop_count", 0, 0, 1000000, "cycles to run, then stop the launch (0: forever)"),
-      pf::numberParameter("grasp_position_rad", 3.0, 0, true, 20, "rad",
-                          "the grasp goal's closing angle: beyond the object, so that the object stops the fingers"),
-      pf::numberParameter("grasp_force_n", 0.0, 0, false, 100, "N",
-                          "the grasp goal's grip force (max_effort): each finger's total normal force on the object; "
-                          "0: the touch plus the gripper action's squeeze margin"),
-      pf::textParameter("object_id", "cylinder", "not empty", "the object's name (grasp_object, markers)"),
-      pf::textParameter("gripper_file", "", "a gripper file (YAML)",
-                        "the gripper's fingers (mounts and actuators): where the object is held is computed from them "
-                        "and the object's size, so that the fingers close on its side"),
-      pf::numberParameter("object_radius_m", 0.016, 0, true, 1, "m", "the cylinder's radius"),
-      pf::numberParameter("object_height_m", 0.035, 0, true, 1, "m", "the cylinder's height"),
-      pf::numberParameter("object_mass_kg", 0.01, 0, true, 100, "kg", "the cylinder's mass: what the grip must hold"),
-      pf::numberParameter("friction_coefficient", 1.0, 0, true, 10, "-",
-                          "friction between the fingers' silicone and the object (silicone on plastic: about 1)"),
-      pf::numberParameter("hold_margin", 1.5, 1, false, 100, "-",
-                          "the grip's friction must hold this many times the object's weight"),
-      pf::numberParameter("publish_rate_hz", 50.0, 0, true, 1000, "Hz", "the arm's joint_states and the object's rate"),
-  };
-  return table;
-}
-
-Settings readSettings(const ros::NodeHandle& pnh) {
-  const pf::NodeParameterReader in(pnh, parameterSpecs());
-  Settings s;
-  s.joint_names = in.texts("arm_joint_names");
-  const std::size_t n = s.joint_names.size();
-  s.waypoints = {in.numbers("home", n), in.numbers("above_pick", n), in.numbers("pick", n),
-                 in.numbers("above_place", n), in.numbers("place", n)};
-  s.cycle_time_s = in.number("cycle_time_s");
-  s.loop_count = static_cast<int>(in.number("loop_count"));
-  s.grasp_position_rad = in.number("grasp_position_rad");
-  s.grasp_force_n = in.number("grasp_force_n");
-  s.object_id = in.text("object_id");
-  if (s.object_id.empty()) throw pf::ParameterError("parameter 'object_id' must not be empty");
-  s.object_radius_m = in.number("object_radius_m");
-  s.object_height_m = in.number("object_height_m");
-  s.object_mass_kg = in.number("object_mass_kg");
-  s.friction_coefficient = in.number("friction_coefficient");
-  s.hold_margin = in.number("hold_margin");
-  // Where the object is held: computed, so that every finger closes on its side, away from both rims.
-  const std::string gripper_file = in.text("gripper_file");
-  if (gripper_file.empty()) throw pf::ParameterError("parameter 'gripper_file' must name the gripper's file");
-  const std::vector<pf::GripperFinger> fingers = pf::loadGripperFile(gripper_file);
-  s.finger_count = static_cast<int>(fingers.size());
-  const pf::SideGrasp side = pf::sideGraspDepth(fingers, s.object_radius_m, s.object_height_m);
-  s.object_offset_m = side.centre_depth_m;
-  ROS_INFO("cell_sequencer: the object is held with its centre %.1f mm along tool z, where every finger meets its side "
-           "(%.1f mm or more from a rim)", 1e3 * side.centre_depth_m, 1e3 * side.rim_margin_m);
-  s.publish_rate_hz = in.number("publish_rate_hz");
-  in.refuseUnknownKeys();
-  return s;
-}
-
-void setPose(geometry_msgs::Pose& m, const Eigen::Isometry3d& p) {
-  m.position.x = p.translation().x();
-  m.position.y = p.translation().y();
-  m.position.z = p.translation().z();
-  const Eigen::Quaterniond q(p.rotation());
-  m.orientation.x = q.x(), m.orientation.y = q.y(), m.orientation.z = q.z(), m.orientation.w = q.w();
-}
 
 // The object: on a table (in the base frame) or held (in the tool frame, fixed there from the grasp on).
 struct ObjectState {
@@ -157,8 +78,10 @@ class Scene {
   const Eigen::Isometry3d& pickSpot() const { return at_pick_; }
   void movePickSpot(const Eigen::Isometry3d& spot) { at_pick_ = spot; }
 
-  // The object changed place: the fingers (grasp_object) and rviz (markers) learn it.
+  // The object changed place: the fingers (grasp_object) and rviz (markers) learn it. Under physics, cell_physics
+  // publishes where the object is.
   void publishObject(const ObjectState& o, const ros::Time& stamp) {
+    if (settings_.physics) return publishMarkers(stamp);
     grasp_object_.header.stamp = stamp;
     grasp_object_.header.frame_id = o.held ? settings_.tool_link : settings_.base_link;
     setPose(grasp_object_.pose, o.held ? o.in_tool : o.in_base);
@@ -171,7 +94,7 @@ class Scene {
     object_.header = grasp_object_.header;
     object_.header.stamp = stamp;
     object_.pose = grasp_object_.pose;
-    markers.markers.push_back(object_);
+    if (!settings_.physics) markers.markers.push_back(object_);
     table_.header.stamp = stamp;
     table_.header.frame_id = settings_.base_link;
     for (int i = 0; i < 2; ++i) {
@@ -390,6 +313,11 @@ class CellSequencer {
         result ? pf::judgeHold(settings_.finger_count, result->effort, settings_.object_mass_kg,
                                settings_.friction_coefficient, settings_.hold_margin, lift_acceleration_mps2_)
                : pf::HoldVerdict{};
+    if (settings_.physics) {  // physics carries it or not (cell_physics says which); the rule's verdict beside it
+      say("cycle " + std::to_string(cycle) + ": the static rule expects the grip to " +
+          (hold.holds ? "carry '" : "lose '") + settings_.object_id + "': " + hold.message);
+      return false;
+    }
     if (state == actionlib::SimpleClientGoalState::SUCCEEDED && result && result->stalled && !hold.holds) {
       say("cycle " + std::to_string(cycle) + ": grasp slips, '" + settings_.object_id + "' stays on the pick table: " +
           "every finger touches it, but " + hold.message);

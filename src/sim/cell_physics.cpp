@@ -24,7 +24,8 @@ CellPhysics::CellPhysics(const std::string& arm_urdf_xml, const std::vector<Grip
     }
   }
   for (const std::string& name : arm_joint_names) {
-    arm_qpos_.push_back(m->jnt_qposadr[mj_name2id(m, mjOBJ_JOINT, name.c_str())]);
+    arm_joints_.push_back(mj_name2id(m, mjOBJ_JOINT, name.c_str()));
+    arm_qpos_.push_back(m->jnt_qposadr[arm_joints_.back()]);
     arm_actuators_.push_back(mj_name2id(m, mjOBJ_ACTUATOR, name.c_str()));
   }
   for (std::size_t j = 0; j < arm_qpos_.size(); ++j) data_->qpos[arm_qpos_[j]] = pick_joints_rad[j];
@@ -32,7 +33,37 @@ CellPhysics::CellPhysics(const std::string& arm_urdf_xml, const std::vector<Grip
   part_body_ = mj_name2id(m, mjOBJ_BODY, kSceneObjectName);
   part_geom_ = mj_name2id(m, mjOBJ_GEOM, kSceneObjectName);
   tool_body_ = mj_name2id(m, mjOBJ_BODY, kSceneToolName);
+  const int part_joint = m->body_jntadr[part_body_];
+  part_qpos_ = m->jnt_qposadr[part_joint];
+  part_dof_ = m->jnt_dofadr[part_joint];
+  for (int k = 0; k < 7; ++k) part_rest_[k] = data_->qpos[part_qpos_ + k];
   mj_forward(m, data_.get());
+}
+
+void CellPhysics::resetPart() {
+  for (int k = 0; k < 7; ++k) data_->qpos[part_qpos_ + k] = part_rest_[k];
+  for (int k = 0; k < 6; ++k) data_->qvel[part_dof_ + k] = 0.0;
+  mj_forward(model_.get(), data_.get());
+}
+
+void CellPhysics::fingerJoints(std::vector<std::string>& names, std::vector<double>& angles_rad) const {
+  names.clear();
+  angles_rad.clear();
+  for (const PressureDrivenFinger& f : fingers_) {
+    for (int id : f.jointIds()) {
+      names.emplace_back(mj_id2name(model_.get(), mjOBJ_JOINT, id));
+      angles_rad.push_back(data_->qpos[model_->jnt_qposadr[id]]);
+    }
+  }
+}
+
+void CellPhysics::placeArm(const std::vector<double>& joints_rad) {
+  setArmTargets(joints_rad);
+  for (std::size_t j = 0; j < joints_rad.size(); ++j) {
+    data_->qpos[arm_qpos_[j]] = joints_rad[j];
+    data_->qvel[model_->jnt_dofadr[arm_joints_[j]]] = 0.0;
+  }
+  mj_forward(model_.get(), data_.get());
 }
 
 void CellPhysics::setArmTargets(const std::vector<double>& joints_rad) {

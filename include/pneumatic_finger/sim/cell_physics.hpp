@@ -24,6 +24,13 @@ class CellPhysics {
               const std::vector<std::string>& arm_joint_names, const std::vector<double>& pick_joints_rad,
               const GraspScene& scene, const MjcfOptions& mjcf);
 
+  /// A new part on the pick table, at rest where the scene put the first (the next cycle's part).
+  void resetPart();
+
+  /// Puts the arm at @p joints_rad at rest, its targets there too (where the cell starts). @throws ParameterError for
+  /// another count
+  void placeArm(const std::vector<double>& joints_rad);
+
   /// The arm's joint targets (rad, in arm_joint_names' order). @throws ParameterError for another count
   void setArmTargets(const std::vector<double>& joints_rad);
 
@@ -39,6 +46,8 @@ class CellPhysics {
   std::vector<int> fingerContacts() const;
   /// MuJoCo's warnings so far.
   int warnings() const;
+  /// Every finger joint's name and angle (rad), in the model's order: the simulated fingers' joint states.
+  void fingerJoints(std::vector<std::string>& names, std::vector<double>& angles_rad) const;
 
   const mjModel& model() const { return *model_; }
   const mjData& data() const { return *data_; }
@@ -50,8 +59,9 @@ class CellPhysics {
   MujocoModelPtr model_;
   MujocoDataPtr data_;
   std::vector<PressureDrivenFinger> fingers_;
-  std::vector<int> arm_qpos_, arm_actuators_, finger_of_body_;
-  int part_body_ = -1, part_geom_ = -1, tool_body_ = -1;
+  std::vector<int> arm_joints_, arm_qpos_, arm_actuators_, finger_of_body_;
+  int part_body_ = -1, part_geom_ = -1, tool_body_ = -1, part_qpos_ = -1, part_dof_ = -1;
+  double part_rest_[7] = {};  // the part's free joint at the start: position and quaternion
 };
 
 }  // namespace pneumatic_finger
