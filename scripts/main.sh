@@ -1,10 +1,12 @@
 #!/usr/bin/env bash
 # The main job: install what is missing, build, and run the pick-and-place cell (three soft fingers on an arm).
 # With a display, rviz shows it; without one, the cell runs headless and its log says what happens.
-# usage: bash scripts/main.sh [LOOPS]   (LOOPS pick-and-place cycles, default 3; 0 runs until Ctrl-C)
+# usage: bash scripts/main.sh [LOOPS [ARG:=VALUE...]]   (LOOPS pick-and-place cycles, default 3; 0 runs until Ctrl-C;
+#        then any of the launch file's arguments, e.g. physics:=mujoco: MuJoCo moves the part, docs/SIMULATION.md)
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 LOOPS="${1:-3}"
+shift || true
 bash "$ROOT/scripts/setup.sh"
 bash "$ROOT/scripts/build.sh"
 source "$ROOT/scripts/ros_env.sh"
@@ -23,4 +25,4 @@ main: no display: running the cell headless ($LOOPS cycles of 12 s); the log bel
         rostopic echo /finger_a/finger_state/tip_angle_rad
 MSG
 fi
-exec roslaunch --port "$port" pneumatic_finger pick_and_place_cell.launch rviz:="$rviz" loop_count:="$LOOPS"
+exec roslaunch --port "$port" pneumatic_finger pick_and_place_cell.launch rviz:="$rviz" loop_count:="$LOOPS" "$@"

@@ -13,6 +13,7 @@
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <mutex>
@@ -90,10 +91,42 @@ class CellPhysicsNode {
     }
     if (found != target.size()) return;
     // The first pose puts the arm there (the cell starts at home, the scene at the pick pose); then it follows.
-    if (!arm_placed_) physics_->placeArm(target);
-    arm_placed_ = true;
-    physics_->setArmTargets(target);
+    const ros::Time now = ros::Time::now();
+    if (!arm_placed_) {
+      physics_->placeArm(target);
+      target_from_ = target_to_ = filtered_ = target;
+      filtered_rate_.assign(target.size(), 0.0);
+      arm_placed_ = true;
+    } else {
+      target_from_ = targetAt(now);
+      target_to_ = target;
+      target_period_s_ = std::clamp((now - target_t0_).toSec(), 1e-3, 0.1);
+    }
+    target_t0_ = now;
   }
+
+  // The sequencer's poses come at its publish rate (50 Hz): the engine's targets move from one to the next over the
+  // period between them, so that the arm's servos are not jolted at every message (a step in the target is a spike
+  // of acceleration that shakes a held part loose).
+  std::vector<double> targetAt(const ros::Time& t) const {
+    const double u = std::clamp((t - target_t0_).toSec() / target_period_s_, 0.0, 1.0);
+    std::vector<double> q(target_to_.size());
+    for (std::size_t j = 0; j < q.size(); ++j) q[j] = target_from_[j] + u * (target_to_[j] - target_from_[j]);
+    return q;
+  }
+
+  // And they pass a critically damped second-order filter (kTargetFilterHz): the corners of the piecewise-linear path
+  // become bounded accelerations, as a real arm's trajectory controller makes them.
+  const std::vector<double>& filteredTarget(const std::vector<double>& target, double dt) {
+    const double w = 2.0 * M_PI * kTargetFilterHz;
+    if (filtered_.size() != target.size()) filtered_ = target, filtered_rate_.assign(target.size(), 0.0);
+    for (std::size_t j = 0; j < target.size(); ++j) {
+      filtered_rate_[j] += dt * (w * w * (target[j] - filtered_[j]) - 2.0 * w * filtered_rate_[j]);
+      filtered_[j] += dt * filtered_rate_[j];
+    }
+    return filtered_;
+  }
+  static constexpr double kTargetFilterHz = 5.0;
 
   void onPressure(const sensor_msgs::FluidPressure::ConstPtr& msg) {
     std::lock_guard<std::mutex> lock(mutex_);
@@ -117,6 +150,10 @@ class CellPhysicsNode {
   double atmospheric_pa_ = 0.0, gauge_pa_ = 0.0, part_rest_z_ = 0.0;
   long cycles_ = 0;  // completed, as cell/cycles says
   bool arm_placed_ = false;
+  std::vector<double> target_from_, target_to_;  // the arm's targets move from one pose to the next
+  ros::Time target_t0_;
+  double target_period_s_ = 0.02;
+  std::vector<double> filtered_, filtered_rate_;  // the targets after the filter, and their rates
   ros::Time last_step_;
   pneumatic_finger::GraspObject object_;
   ros::Publisher object_pub_, joints_pub_, events_pub_;
@@ -171,6 +208,7 @@ void CellPhysicsNode::onStep(const ros::TimerEvent&) {
   std::string why;
   if (steps == 100) ROS_WARN_THROTTLE(10.0, "cell_physics: the engine falls behind the clock (0.1 s in one call)");
   for (int i = 0; i < steps && arm_placed_; ++i) {
+    physics_->setArmTargets(filteredTarget(targetAt(last_step_ + ros::Duration((i + 1) * dt)), dt));
     if (!physics_->step(gauge_pa_, why)) {
       ROS_WARN_THROTTLE(5.0, "cell_physics: %s", why.c_str());
       break;

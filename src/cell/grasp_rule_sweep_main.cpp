@@ -151,19 +151,15 @@ ArmLift armLift(const Sweep& s, const std::vector<pf::GripperFinger>& fingers, c
   return out;
 }
 
-// The cell's 10 g part lifted by the arm at the default 12 s cycle, at the action's squeeze and at twice it.
-void printArmLifts(const Sweep& s, const std::vector<pf::GripperFinger>& fingers, pf::GraspScene scene,
-                   double grasp_pa) {
+// The cell's 10 g part lifted by the arm at the default 12 s cycle, at the gripper action's grasp pressure.
+void printArmLift(const Sweep& s, const std::vector<pf::GripperFinger>& fingers, pf::GraspScene scene,
+                  double grasp_pa) {
   scene.object_mass_kg = 0.01;
   const double lift_s = 0.1 * 12.0;  // the lift's tenth of the launch file's default cycle
-  for (double squeeze : {1.0, 2.0}) {
-    const double pa = grasp_pa + (squeeze - 1.0) * s.squeeze_margin_pa;
-    const ArmLift lift = armLift(s, fingers, scene, pa, lift_s);
-    std::fprintf(stderr, "grasp_rule_sweep: the arm lifts the 10 g part in %g s at %.0f Pa (%g x the squeeze): tool0 "
-                 "rose %.4f m, the part %.4f m; during the lift tool z tilted up to %.2f deg and as few as %d fingers "
-                 "touched the part\n", lift_s, pa, squeeze, lift.tool_rise_m, lift.part_rise_m, lift.largest_tilt_deg,
-                 lift.fewest_fingers);
-  }
+  const ArmLift lift = armLift(s, fingers, scene, grasp_pa, lift_s);
+  std::fprintf(stderr, "grasp_rule_sweep: the arm lifts the 10 g part in %g s at %.0f Pa: tool0 rose %.4f m, the part "
+               "%.4f m; during the lift tool z tilted up to %.2f deg and as few as %d fingers touched the part\n",
+               lift_s, grasp_pa, lift.tool_rise_m, lift.part_rise_m, lift.largest_tilt_deg, lift.fewest_fingers);
 }
 
 }  // namespace
@@ -210,7 +206,7 @@ int main(int argc, char** argv) {
     const pf::SideGraspForces twin = pf::sideGraspForces(fingers, part.radius_m, part.height_m,
                                                          scene.object_centre_depth_m, gauge_pa);
     printClosedForces(fingers, scene, gauge_pa, twin, s.mjcf);
-    printArmLifts(s, fingers, scene, gauge_pa);
+    printArmLift(s, fingers, scene, gauge_pa);
     std::printf("mass_kg,peak_acceleration_mps2,lift_duration_s,grasp_gauge_pa,twin_normal_force_n,"
                 "mujoco_normal_force_n,threshold_mass_kg,cell_rule_holds,rule_with_lift_holds,mujoco_carried,slip_m,"
                 "problem\n");

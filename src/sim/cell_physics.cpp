@@ -30,6 +30,7 @@ CellPhysics::CellPhysics(const std::string& arm_urdf_xml, const std::vector<Grip
   }
   for (std::size_t j = 0; j < arm_qpos_.size(); ++j) data_->qpos[arm_qpos_[j]] = pick_joints_rad[j];
   setArmTargets(pick_joints_rad);
+  dampArm();
   part_body_ = mj_name2id(m, mjOBJ_BODY, kSceneObjectName);
   part_geom_ = mj_name2id(m, mjOBJ_GEOM, kSceneObjectName);
   tool_body_ = mj_name2id(m, mjOBJ_BODY, kSceneToolName);
@@ -38,6 +39,18 @@ CellPhysics::CellPhysics(const std::string& arm_urdf_xml, const std::vector<Grip
   part_dof_ = m->jnt_dofadr[part_joint];
   for (int k = 0; k < 7; ++k) part_rest_[k] = data_->qpos[part_qpos_ + k];
   mj_forward(m, data_.get());
+}
+
+// Each arm joint's servo critically damped for the inertia it moves at the pick pose, c = 2 sqrt(kp M_jj): the file's
+// damping (kPositionTimeConstantS x kp) would cap a joint at 0.2 rad/s where its torque saturates.
+void CellPhysics::dampArm() {
+  mjModel* m = model_.get();
+  mj_forward(m, data_.get());
+  for (std::size_t j = 0; j < arm_joints_.size(); ++j) {
+    const int dof = m->jnt_dofadr[arm_joints_[j]];
+    const double kp = m->actuator_gainprm[arm_actuators_[j] * mjNGAIN];
+    m->dof_damping[dof] = 2.0 * std::sqrt(kp * data_->qM[m->dof_Madr[dof]]);
+  }
 }
 
 void CellPhysics::resetPart() {

@@ -18,8 +18,9 @@ namespace pneumatic_finger {
 
 class CellPhysics {
  public:
-  /// The cell of cellSceneMjcf, the arm at @p pick_joints_rad and held there. @throws ParameterError as
-  /// cellSceneMjcf
+  /// The cell of cellSceneMjcf, the arm at @p pick_joints_rad and held there. Each arm joint's servo is critically
+  /// damped for the inertia it moves at that pose (the file's damping is for a joint held still, and would slow a
+  /// moving one to 0.2 rad/s). @throws ParameterError as cellSceneMjcf
   CellPhysics(const std::string& arm_urdf_xml, const std::vector<GripperFinger>& fingers,
               const std::vector<std::string>& arm_joint_names, const std::vector<double>& pick_joints_rad,
               const GraspScene& scene, const MjcfOptions& mjcf);
@@ -54,6 +55,7 @@ class CellPhysics {
 
  private:
   Eigen::Isometry3d pose(int body) const;
+  void dampArm();
 
   std::vector<std::unique_ptr<FingerModel>> twins_;
   MujocoModelPtr model_;
