@@ -2,7 +2,7 @@
 // `pick_and_place_cell.launch physics:=mujoco`. It steps MuJoCo on the ROS clock (real or /clock): the arm follows
 // the sequencer's joint_states through its position actuators, every finger's springs follow the regulator's
 // pressure, and the part is a free body. Where physics puts the part goes out as grasp_object (the twins close on
-// it) and on tf; the simulated fingers' joints on physics/joint_states; what physics did at each lift on
+// it) and on tf; the simulated arm's and fingers' joints on physics/joint_states; what physics did at each lift on
 // cell/events.
 #include <geometry_msgs/TransformStamped.h>
 #include <ros/ros.h>
@@ -10,6 +10,7 @@
 #include <sensor_msgs/JointState.h>
 #include <std_msgs/String.h>
 #include <std_msgs/UInt32.h>
+#include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
 
 #include <algorithm>
@@ -56,7 +57,7 @@ class CellPhysicsNode {
     scene.object_centre_depth_m = settings_.object_offset_m;
     physics_ = std::make_unique<pf::CellPhysics>(pf::readRobotUrdfFile(in.text("arm_urdf_file")), fingers,
                                                  settings_.joint_names, settings_.waypoints.pick, scene,
-                                                 pf::MjcfOptions());
+                                                 pf::MjcfOptions(), settings_.waypoints.place);
     atmospheric_pa_ = fingers.front().parameters.atmospheric_pressure_pa;
     part_rest_z_ = physics_->partPose().translation().z();
     object_.id = settings_.object_id;
@@ -73,6 +74,14 @@ class CellPhysicsNode {
     step_timer_ = nh.createTimer(ros::Duration(1.0 / in.number("step_rate_hz")), &CellPhysicsNode::onStep, this);
     publish_timer_ = nh.createTimer(ros::Duration(1.0 / in.number("publish_rate_hz")), &CellPhysicsNode::onPublish,
                                     this);
+    // The simulated robot's frames (physics/..., robot_state_publisher under that prefix) hang from world as the
+    // twin's do.
+    geometry_msgs::TransformStamped root;
+    root.header.stamp = ros::Time::now();
+    root.header.frame_id = settings_.base_link;
+    root.child_frame_id = "physics/" + settings_.base_link;
+    root.transform.rotation.w = 1.0;
+    static_tf_.sendTransform(root);
     ROS_INFO("cell_physics: MuJoCo steps the cell (%d bodies, a %g ms step); the part is %g kg", physics_->model().nbody,
              1e3 * physics_->model().opt.timestep, settings_.object_mass_kg);
   }
@@ -160,6 +169,7 @@ class CellPhysicsNode {
   std::vector<ros::Subscriber> subs_;
   ros::Timer step_timer_, publish_timer_;
   tf2_ros::TransformBroadcaster tf_;
+  tf2_ros::StaticTransformBroadcaster static_tf_;
 };
 
 // At the end of the move (the descent to the place table begins) the part is in the grip or not: it is where the
@@ -234,7 +244,7 @@ void CellPhysicsNode::onPublish(const ros::TimerEvent&) {
   tf_.sendTransform(t);
   sensor_msgs::JointState js;
   js.header.stamp = now;
-  physics_->fingerJoints(js.name, js.position);
+  physics_->jointStates(js.name, js.position);
   joints_pub_.publish(js);
 }
 

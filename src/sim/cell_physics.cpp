@@ -9,8 +9,9 @@ namespace pneumatic_finger {
 
 CellPhysics::CellPhysics(const std::string& arm_urdf_xml, const std::vector<GripperFinger>& fingers,
                          const std::vector<std::string>& arm_joint_names, const std::vector<double>& pick_joints_rad,
-                         const GraspScene& scene, const MjcfOptions& mjcf)
-    : model_(loadMjcfText(cellSceneMjcf(arm_urdf_xml, fingers, arm_joint_names, pick_joints_rad, scene, mjcf))),
+                         const GraspScene& scene, const MjcfOptions& mjcf, const std::vector<double>& place_joints_rad)
+    : model_(loadMjcfText(cellSceneMjcf(arm_urdf_xml, fingers, arm_joint_names, pick_joints_rad, scene, mjcf,
+                                        place_joints_rad))),
       data_(mj_makeData(model_.get())) {
   mjModel* m = model_.get();
   fingers_.reserve(fingers.size());
@@ -59,9 +60,13 @@ void CellPhysics::resetPart() {
   mj_forward(model_.get(), data_.get());
 }
 
-void CellPhysics::fingerJoints(std::vector<std::string>& names, std::vector<double>& angles_rad) const {
+void CellPhysics::jointStates(std::vector<std::string>& names, std::vector<double>& angles_rad) const {
   names.clear();
   angles_rad.clear();
+  for (std::size_t j = 0; j < arm_joints_.size(); ++j) {
+    names.emplace_back(mj_id2name(model_.get(), mjOBJ_JOINT, arm_joints_[j]));
+    angles_rad.push_back(data_->qpos[arm_qpos_[j]]);
+  }
   for (const PressureDrivenFinger& f : fingers_) {
     for (int id : f.jointIds()) {
       names.emplace_back(mj_id2name(model_.get(), mjOBJ_JOINT, id));

@@ -18,12 +18,13 @@ namespace pneumatic_finger {
 
 class CellPhysics {
  public:
-  /// The cell of cellSceneMjcf, the arm at @p pick_joints_rad and held there. Each arm joint's servo is critically
+  /// The cell of cellSceneMjcf (with a place table at @p place_joints_rad, when given), the arm at @p pick_joints_rad
+  /// and held there. Each arm joint's servo is critically
   /// damped for the inertia it moves at that pose (the file's damping is for a joint held still, and would slow a
   /// moving one to 0.2 rad/s). @throws ParameterError as cellSceneMjcf
   CellPhysics(const std::string& arm_urdf_xml, const std::vector<GripperFinger>& fingers,
               const std::vector<std::string>& arm_joint_names, const std::vector<double>& pick_joints_rad,
-              const GraspScene& scene, const MjcfOptions& mjcf);
+              const GraspScene& scene, const MjcfOptions& mjcf, const std::vector<double>& place_joints_rad = {});
 
   /// A new part on the pick table, at rest where the scene put the first (the next cycle's part).
   void resetPart();
@@ -47,8 +48,8 @@ class CellPhysics {
   std::vector<int> fingerContacts() const;
   /// MuJoCo's warnings so far.
   int warnings() const;
-  /// Every finger joint's name and angle (rad), in the model's order: the simulated fingers' joint states.
-  void fingerJoints(std::vector<std::string>& names, std::vector<double>& angles_rad) const;
+  /// Every arm and finger joint's name and angle (rad): the simulated robot's joint states.
+  void jointStates(std::vector<std::string>& names, std::vector<double>& angles_rad) const;
 
   const mjModel& model() const { return *model_; }
   const mjData& data() const { return *data_; }
