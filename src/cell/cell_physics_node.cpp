@@ -12,6 +12,7 @@
 #include <std_msgs/UInt32.h>
 #include <tf2_ros/static_transform_broadcaster.h>
 #include <tf2_ros/transform_broadcaster.h>
+#include <visualization_msgs/MarkerArray.h>
 
 #include <algorithm>
 #include <cmath>
@@ -65,6 +66,13 @@ class CellPhysicsNode {
     object_.shape.dimensions = {settings_.object_height_m, settings_.object_radius_m};
     object_.header.frame_id = settings_.base_link;
     object_pub_ = nh.advertise<pneumatic_finger::GraspObject>("grasp_object", 1, true);
+    // The part as the sequencer draws it (translucent blue, namespace "object" of cell/markers), where physics has it.
+    marker_.ns = "object";
+    marker_.type = visualization_msgs::Marker::CYLINDER;
+    marker_.scale.x = marker_.scale.y = 2 * settings_.object_radius_m;
+    marker_.scale.z = settings_.object_height_m;
+    marker_.color.r = 0.2f, marker_.color.g = 0.5f, marker_.color.b = 0.95f, marker_.color.a = 0.6f;
+    markers_pub_ = nh.advertise<visualization_msgs::MarkerArray>("cell/markers", 1);
     joints_pub_ = nh.advertise<sensor_msgs::JointState>("physics/joint_states", 10);
     events_pub_ = nh.advertise<std_msgs::String>("cell/events", 10, true);
     subs_.push_back(nh.subscribe("joint_states", 50, &CellPhysicsNode::onJointStates, this));
@@ -165,7 +173,8 @@ class CellPhysicsNode {
   std::vector<double> filtered_, filtered_rate_;  // the targets after the filter, and their rates
   ros::Time last_step_;
   pneumatic_finger::GraspObject object_;
-  ros::Publisher object_pub_, joints_pub_, events_pub_;
+  visualization_msgs::Marker marker_;
+  ros::Publisher markers_pub_, object_pub_, joints_pub_, events_pub_;
   std::vector<ros::Subscriber> subs_;
   ros::Timer step_timer_, publish_timer_;
   tf2_ros::TransformBroadcaster tf_;
@@ -234,6 +243,11 @@ void CellPhysicsNode::onPublish(const ros::TimerEvent&) {
   object_.header.stamp = now;
   pf::sequencer::setPose(object_.pose, part);
   object_pub_.publish(object_);
+  visualization_msgs::MarkerArray markers;
+  marker_.header = object_.header;
+  marker_.pose = object_.pose;
+  markers.markers.push_back(marker_);
+  markers_pub_.publish(markers);
   geometry_msgs::TransformStamped t;
   t.header = object_.header;
   t.child_frame_id = settings_.object_id;
