@@ -13,9 +13,12 @@ for path in sorted(pathlib.Path(sys.argv[1]).rglob("*.xml")):
     root = ET.parse(path).getroot()
     for case in root.iter("testcase"):
         name = f"{case.get('classname')}.{case.get('name')}"
-        if case.find("failure") is not None or case.find("error") is not None:
+        problem = case.find("failure") if case.find("failure") is not None else case.find("error")
+        if problem is not None:
             failed += 1
-            failed_names.append(f"{path.name}: {name}")
+            # The assertion's own words, so that a failure on a CI machine can be read without its logs.
+            said = " ".join((problem.get("message", "") + " " + (problem.text or "")).split())[:800]
+            failed_names.append(f"{path.name}: {name}\n  {said}")
         elif case.find("skipped") is not None or case.get("status") == "notrun":
             skipped += 1
         else:

@@ -65,7 +65,7 @@ FaultRun killAndWatch(const std::string& node, const std::string& phase, double 
   pf_test::CellWatch watch(nh);
   FaultRun run;
   bool approach_seen = false;
-  ros::Time entered;
+  ros::Time entered, left_table_at;
   const ros::Time give_up = ros::Time::now() + ros::Duration(100);
   std::size_t events_at_kill = 0;
   for (; ros::ok() && ros::Time::now() < give_up; ros::Duration(0.01).sleep()) {
@@ -94,8 +94,12 @@ FaultRun killAndWatch(const std::string& node, const std::string& phase, double 
         run.later_grasp = e;
       }
     }
-    if (run.later_grasp.empty() && now.phase == "lift" && now.object && now.object->header.frame_id != "world") {
-      run.carried_on_a_guess = run.carried_on_a_guess || !contains(run.fault_event, ": grasped '");
+    // cell/events and grasp_object are two topics: a later cycle's "grasped" may arrive just after the object it
+    // attached. Only an object off the table for a second with no grasp said was carried on a guess.
+    const bool off_table = now.object && now.object->header.frame_id != "world";
+    if (off_table && run.later_grasp.empty() && !contains(run.fault_event, ": grasped '")) {
+      if (left_table_at.isZero()) left_table_at = ros::Time::now();
+      run.carried_on_a_guess = run.carried_on_a_guess || (ros::Time::now() - left_table_at).toSec() > 1.0;
     }
     if (run.restarted_pid <= 0) {
       const int pid = nodePid(node);
