@@ -241,6 +241,25 @@ def test_calibration_says_what_the_data_cannot_tell():
     assert any("trade off" in w for w in fit["warnings"])
 
 
+def test_calibration_driven_by_volume_finds_the_gap_past_the_limit_point():
+    # Filled by volume to twice the volume at the limit point (the pressure rises, then falls): the bends come back to
+    # the gap they were made with. No gauge_pa column: the rows are driven by volume without being told.
+    truth = {"wall_law": "membrane", "shear_modulus_pa": 2e4, "chamber_gap_m": 1e-3}
+    model = pf.FingerModel(overrides=truth)
+    v_limit = model.supplied_volume(0.999 * model.limit_gauge_pa)
+    volume = numpy.linspace(0.25, 2.0, 8) * v_limit
+    made = model.evaluate_volume(volume, outputs=["tip_angle_rad", "gauge_pa"])
+    assert made["gauge_pa"][-1] < made["gauge_pa"].max()
+    data = {"supplied_volume_m3": volume, "tip_angle_rad": made["tip_angle_rad"]}
+    fit = pf.calibrate(data, ["chamber_gap_m"], overrides={**truth, "chamber_gap_m": 0.0}, compare="tip_angle")
+    assert fit["fitted"]["chamber_gap_m"] == pytest.approx(1e-3, rel=1e-6)
+    assert fit["residuals"]["model_gauge_pa"] == pytest.approx(made["gauge_pa"], rel=1e-6)
+    with pytest.raises(ValueError, match="no gauge_pa to drive the finger by pressure"):
+        pf.calibrate(data, ["chamber_gap_m"], overrides=truth, compare="tip_angle", drive="pressure")
+    with pytest.raises(ValueError, match="the volume alone sets the shape"):
+        pf.calibrate(data, ["shear_modulus_pa"], overrides=truth, compare="tip_angle")
+
+
 MEMBRANE = {"wall_law": "membrane", "shear_modulus_pa": 2e4, "dead_volume_m3": 1e-5}
 MEMBRANE_ARGS = ["--set", "wall_law=membrane", "--set", "shear_modulus_pa=2e4", "--set", "dead_volume_m3=1e-5"]
 

@@ -69,17 +69,19 @@ def _data(data):
 
 
 def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=None, average_column="",
-              compare=None, leave_one_out=False, wall_law=None):
+              compare=None, leave_one_out=False, wall_law=None, drive=None):
     """finger_calibrate from Python: the same defaults, data check, fit and leave-one-out.
 
-    data: a CSV path, or a mapping of column names to arrays: gauge_pa and any of joint_1_rad..joint_N_rad,
-    tip_angle_rad, tip_x_m,tip_y_m (None: the package's data). keys: one to three keys, a list or "a,b" (None: the
-    tool's default). compare: "joints", "average", "joint_1", "tip_angle" or "tip_position" (None: what the data
-    has). wall_law: "auto" (fit each law, keep the best leave-one-out prediction), "paper", "membrane" or "thick" (None:
+    data: a CSV path, or a mapping of column names to arrays: gauge_pa and/or supplied_volume_m3, and any of
+    joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m (None: the package's data). keys: one to three keys, a
+    list or "a,b" (None: the tool's default). compare: "joints", "average", "joint_1", "tip_angle", "tip_position" or
+    "gauge_pa" (the model's pressure at each row's volume; needs drive="volume") (None: what the data has). drive:
+    "pressure" (each row set by its gauge_pa) or "volume" (by its supplied_volume_m3; the pressure is then an output)
+    (None: pressure where the data has gauge_pa). wall_law: "auto" (fit each law, keep the best leave-one-out prediction), "paper", "membrane" or "thick" (None:
     the parameter file's).
 
     Returns a dict: fitted (key -> value), wall_law, compared, objective_value, residuals (a dict of arrays, a row
-    per measurement: gauge_pa (R,), measured_/model_joint_rad (R, N), measured_/model_avg_rad, _joint1_rad,
+    per measurement: gauge_pa (R,), supplied_volume_m3, measured_/model_gauge_pa (R,), measured_/model_joint_rad (R, N), measured_/model_avg_rad, _joint1_rad,
     _tip_angle_rad (R,), measured_/model_tip_m (R, 2); NaN where nothing was measured), model_evaluations,
     uncertainty (key -> one standard deviation), correlation (keys x keys array), warnings (columns not read, keys
     that trade off or sit on their search range's end), and leave_one_out: with leave_one_out=True (or
@@ -87,7 +89,7 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
     path, names, columns = _data(data)
     return _calibrate(path, names, columns, _keys(keys), objective,
                       config if config is not None else default_config(), dict(overrides or {}), average_column,
-                      compare or "", wall_law or "", bool(leave_one_out) or wall_law == "auto")
+                      compare or "", wall_law or "", bool(leave_one_out) or wall_law == "auto", drive or "")
 
 
 class FingerModel(_FingerModel):

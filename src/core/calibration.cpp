@@ -26,10 +26,11 @@ const char* objectiveName(CalibrationObjective objective) {
 CalibrationQuantity parseQuantity(const std::string& name) {
   for (CalibrationQuantity q : {CalibrationQuantity::kOuterAverage, CalibrationQuantity::kEveryJoint,
                                 CalibrationQuantity::kFirstJoint, CalibrationQuantity::kTipAngle,
-                                CalibrationQuantity::kTipPosition}) {
+                                CalibrationQuantity::kTipPosition, CalibrationQuantity::kGauge}) {
     if (name == quantityName(q)) return q;
   }
-  throw ParameterError("unknown quantity '" + name + "'; known: average, joints, joint_1, tip_angle, tip_position");
+  throw ParameterError("unknown quantity '" + name + "'; known: average, joints, joint_1, tip_angle, tip_position, "
+                       "gauge_pa");
 }
 
 const char* quantityName(CalibrationQuantity quantity) {
@@ -39,6 +40,7 @@ const char* quantityName(CalibrationQuantity quantity) {
     case CalibrationQuantity::kFirstJoint: return "joint_1";
     case CalibrationQuantity::kTipAngle: return "tip_angle";
     case CalibrationQuantity::kTipPosition: return "tip_position";
+    case CalibrationQuantity::kGauge: return "gauge_pa";
   }
   return "average";
 }
@@ -70,6 +72,7 @@ std::vector<double> Residual::terms(CalibrationQuantity quantity) const {
     case CalibrationQuantity::kFirstJoint: return {joint1_error_rad()};
     case CalibrationQuantity::kTipAngle: return {tip_angle_error_rad()};
     case CalibrationQuantity::kTipPosition: return {tip_position_error_m()};
+    case CalibrationQuantity::kGauge: return {gauge_error_pa()};
   }
   return {};
 }
@@ -110,6 +113,37 @@ bool isFittableKey(const std::string& key) {
   return std::find(std::begin(kFittable), std::end(kFittable), key) != std::end(kFittable);
 }
 
+namespace {
+
+// What was measured of a row, into @p r: the joints (and the tip they make along the model's segments, eq 38), the
+// tip angle and position where the file gives them.
+void measuredInto(const FingerParameters& parameters, const Measurement& m, Residual& r) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  r.measured_avg_rad = r.measured_joint1_rad = r.measured_tip_angle_rad = nan;
+  r.measured_tip_x_m = r.measured_tip_y_m = nan;
+  if (m.hasJoints()) {
+    r.measured_joint_rad = m.joint_rad;
+    r.measured_avg_rad = m.averageOuterJoints();
+    r.measured_joint1_rad = m.joint_rad[0];
+    double angle = 0.0, x = parameters.base_segment_length_m, y = 0.0, dir_c = 1.0, dir_s = 0.0;
+    for (std::size_t k = 0; k < m.joint_rad.size() && k < parameters.segment_length_m.size(); ++k) {
+      angle += m.joint_rad[k];
+      advanceBackbone(std::cos(m.joint_rad[k]), std::sin(m.joint_rad[k]), parameters.segment_length_m[k], dir_c, dir_s,
+                      x, y);
+    }
+    r.measured_tip_angle_rad = angle;
+    r.measured_tip_x_m = x;
+    r.measured_tip_y_m = y;
+  }
+  if (m.hasTipAngle()) r.measured_tip_angle_rad = m.tip_angle_rad;
+  if (m.hasTipPosition()) {
+    r.measured_tip_x_m = m.tip_x_m;
+    r.measured_tip_y_m = m.tip_y_m;
+  }
+}
+
+}  // namespace
+
 std::vector<Residual> residuals(const FingerParameters& parameters, const std::vector<Measurement>& data) {
   FingerModel model(parameters);
   FingerWorkspace ws(model);
@@ -120,43 +154,28 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
   none.joint_angle_rad.setConstant(nan);
   none.backbone_m.setConstant(nan);
   none.tip_angle_rad = nan;
+  none.gauge_pa = nan;
   for (const Measurement& m : data) {
     // The rows in order, as a path: a wall past its limit point snaps to its far branch where it has one, and such a
-    // row is data like any other (docs/MODEL.md, "The snap-through").
-    const FingerState& evaluated = model.evaluate(m.gauge_pa, ws);
+    // row is data like any other (docs/MODEL.md, "The snap-through"). A row set by its volume has a shape before, at
+    // and past the limit point, and the model's pressure there is compared with the measured.
+    const FingerState& evaluated =
+        m.driven_by_volume ? model.evaluateVolume(m.supplied_volume_m3, ws) : model.evaluate(m.gauge_pa, ws);
     const bool shaped = evaluated.status == EvaluationStatus::kOk || evaluated.status == EvaluationStatus::kVacuum ||
                         evaluated.status == EvaluationStatus::kSnappedThrough;
     const FingerState& s = shaped ? evaluated : none;
     Residual r;
-    r.gauge_pa = m.gauge_pa;
+    r.measured_gauge_pa = m.gauge_pa;
+    r.model_gauge_pa = m.driven_by_volume ? s.gauge_pa : m.gauge_pa;
+    r.gauge_pa = m.hasGauge() ? m.gauge_pa : r.model_gauge_pa;
+    r.supplied_volume_m3 = m.supplied_volume_m3;
     r.model_joint_rad.assign(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n);
     r.model_avg_rad = n > 1 ? s.joint_angle_rad.tail(n - 1).mean() : nan;
     r.model_joint1_rad = s.joint_angle_rad[0];
     r.model_tip_angle_rad = s.tip_angle_rad;
     r.model_tip_x_m = s.tip().x();
     r.model_tip_y_m = s.tip().y();
-    r.measured_avg_rad = r.measured_joint1_rad = r.measured_tip_angle_rad = nan;
-    r.measured_tip_x_m = r.measured_tip_y_m = nan;
-    if (m.hasJoints()) {
-      r.measured_joint_rad = m.joint_rad;
-      r.measured_avg_rad = m.averageOuterJoints();
-      r.measured_joint1_rad = m.joint_rad[0];
-      // The measured finger's tip: its joints along the model's segments (eq 38).
-      double angle = 0.0, x = parameters.base_segment_length_m, y = 0.0, dir_c = 1.0, dir_s = 0.0;
-      for (std::size_t k = 0; k < m.joint_rad.size() && k < parameters.segment_length_m.size(); ++k) {
-        angle += m.joint_rad[k];
-        advanceBackbone(std::cos(m.joint_rad[k]), std::sin(m.joint_rad[k]), parameters.segment_length_m[k], dir_c, dir_s,
-                        x, y);
-      }
-      r.measured_tip_angle_rad = angle;
-      r.measured_tip_x_m = x;
-      r.measured_tip_y_m = y;
-    }
-    if (m.hasTipAngle()) r.measured_tip_angle_rad = m.tip_angle_rad;
-    if (m.hasTipPosition()) {
-      r.measured_tip_x_m = m.tip_x_m;
-      r.measured_tip_y_m = m.tip_y_m;
-    }
+    measuredInto(parameters, m, r);
     out.push_back(std::move(r));
   }
   return out;
@@ -181,6 +200,37 @@ double objectiveOver(const std::vector<Residual>& rows, CalibrationQuantity quan
 
 namespace {
 
+// What the drive needs: the pressure against the volume and the dead gas are seen only when the rows are set by
+// their volume (under pressure the model's pressure is the measured, and the gas takes no part in the shape).
+void checkTheDrive(const FingerParameters& base, const std::vector<std::string>& keys,
+                   const std::vector<Measurement>& data, CalibrationQuantity quantity) {
+  const bool by_volume = !data.empty() && data.front().driven_by_volume;
+  if (!by_volume && quantity == CalibrationQuantity::kGauge) {
+    throw ParameterError("'gauge_pa' compares the model's pressure at each row's supplied volume with the measured "
+                         "one: drive the rows by volume (--drive volume, drive=\"volume\")");
+  }
+  if (!by_volume && std::count(keys.begin(), keys.end(), "dead_volume_m3") > 0) {
+    throw ParameterError("dead_volume_m3 takes no part in a finger set by its pressure: drive the rows by volume "
+                         "(--drive volume, drive=\"volume\") to fit it");
+  }
+  // An incompressible fill: the volume sets every chamber's stretch, and so the shape, whatever the wall's
+  // stiffness, which sets only the pressure (docs/MODEL.md, "Volume").
+  const bool incompressible = base.dead_volume_m3 == 0.0 && std::count(keys.begin(), keys.end(), "dead_volume_m3") == 0;
+  for (const char* pressure_only : {"shear_modulus_pa", "wall_locking_jm"}) {
+    if (by_volume && incompressible && quantity != CalibrationQuantity::kGauge &&
+        std::count(keys.begin(), keys.end(), pressure_only) > 0) {
+      throw ParameterError(std::string(pressure_only) + " cannot be fitted to shapes set by the volume of an "
+                           "incompressible fluid (dead_volume_m3 = 0): the volume alone sets the shape, the modulus "
+                           "only the pressure (compare gauge_pa, or fit or give dead_volume_m3)");
+    }
+  }
+  for (const auto& m : data) {
+    if (quantity == CalibrationQuantity::kGauge && !m.hasGauge()) {
+      throw ParameterError("line " + std::to_string(m.line) + ": no gauge_pa to compare the model's pressure with");
+    }
+  }
+}
+
 // The keys are fittable, each once, and the data has what @p quantity compares. @throws ParameterError naming it.
 void checkKeysAndData(const FingerParameters& base, const std::vector<std::string>& keys,
                       const std::vector<Measurement>& data, CalibrationQuantity quantity) {
@@ -200,7 +250,9 @@ void checkKeysAndData(const FingerParameters& base, const std::vector<std::strin
   }
   const bool uses_joints = quantity == CalibrationQuantity::kOuterAverage ||
                            quantity == CalibrationQuantity::kEveryJoint || quantity == CalibrationQuantity::kFirstJoint;
+  checkTheDrive(base, keys, data, quantity);
   for (const auto& m : data) {
+    if (quantity == CalibrationQuantity::kGauge) continue;  // checkTheDrive saw to it
     const bool has = uses_joints ? m.hasJoints()
                      : quantity == CalibrationQuantity::kTipAngle ? m.hasTipAngle() || m.hasJoints()
                                                                    : m.hasTipPosition() || m.hasJoints();

@@ -45,15 +45,19 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
   CalibrationRun run;
   run.objective = parseObjective(request.objective);
   run.quantity = quantityFor(request, data.rows);
-  checkMeasurementsPlausible(base, data.rows);  // before any law's fit, so that its message names no law
+  MeasurementSet driven = data;
+  const bool has_gauge = !data.rows.empty() && data.rows.front().hasGauge();
+  run.by_volume = request.drive.empty() ? !has_gauge : parseDrive(request.drive);
+  driveByVolume(driven.rows, run.by_volume);
+  checkMeasurementsPlausible(base, driven.rows);  // before any law's fit, so that its message names no law
   const std::vector<WallLaw> laws =
       request.wall_law.empty() ? std::vector<WallLaw>{base.wall_law} : parseWallLawChoice(request.wall_law);
   if (laws.size() == 1 && !request.leave_one_out) {
     FingerParameters one = base;
     one.wall_law = laws[0];
-    run.fits.push_back(fitOnly(one, request.keys, data, run.objective, run.quantity));
+    run.fits.push_back(fitOnly(one, request.keys, driven, run.objective, run.quantity));
   } else {
-    run.fits = calibrateWallLaws(base, laws, request.keys, data.rows, run.objective, run.quantity);
+    run.fits = calibrateWallLaws(base, laws, request.keys, driven.rows, run.objective, run.quantity);
     run.chosen = chosenWallLaw(run.fits);
     run.tip_uncertainty = tipUncertainty(run.best().fit.residuals, run.best().leave_one_out);
   }

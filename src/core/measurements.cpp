@@ -38,7 +38,8 @@ std::vector<std::string> splitCsv(const std::string& line) {
 std::string where(const std::string& origin, int line) { return origin + ":" + std::to_string(line) + ": "; }
 
 // The columns calibration reads besides the joints (and the average column, named by the caller).
-constexpr const char* kMeasuredColumns[] = {"gauge_pa", "tip_angle_rad", "bend_angle_rad", "tip_x_m", "tip_y_m"};
+constexpr const char* kMeasuredColumns[] = {"gauge_pa",      "supplied_volume_m3", "tip_angle_rad",
+                                           "bend_angle_rad", "tip_x_m",            "tip_y_m"};
 
 // "joint_<k>" for a whole number k: the stem of a joint's column, whatever its unit.
 bool isJointStem(const std::string& stem) {
@@ -59,14 +60,14 @@ namespace {
 
 // Where each measured quantity stands in a measurement CSV (-1: absent), and the columns calibration does not read.
 struct CsvColumns {
-  int gauge = -1, average = -1, tip_angle = -1, tip_x = -1, tip_y = -1;
+  int gauge = -1, volume = -1, average = -1, tip_angle = -1, tip_x = -1, tip_y = -1;
   std::vector<int> joints;
   std::vector<std::string> unused;
 };
 
 // What calibration reads, for messages about a column it does not.
 constexpr const char* kKnownColumns =
-    "gauge_pa, joint_1_rad..joint_N_rad, tip_angle_rad (or bend_angle_rad), tip_x_m,tip_y_m";
+    "gauge_pa, supplied_volume_m3, joint_1_rad..joint_N_rad, tip_angle_rad (or bend_angle_rad), tip_x_m,tip_y_m";
 
 // A column calibration does not read that looks like one of ours under another unit ("tip_x_mm" for tip_x_m,
 // "tip_angle_deg" for tip_angle_rad, "joint_2_deg" for joint_2_rad): what it may have meant, or empty.
@@ -108,6 +109,7 @@ CsvColumns readHeader(const std::vector<std::string>& header, const std::string&
     const int k = static_cast<int>(i);
     if (!isMeasuredColumn(header[i]) && header[i] != average_column) c.unused.push_back(header[i]);
     if (header[i] == "gauge_pa") c.gauge = k;
+    if (header[i] == "supplied_volume_m3") c.volume = k;
     // A segment's bend angle (the angle between its base and its tip, as bending tests report it) is the tip's
     // direction Theta_N: the same number under another name.
     if (header[i] == "tip_angle_rad" || header[i] == "bend_angle_rad") {
@@ -119,7 +121,9 @@ CsvColumns readHeader(const std::vector<std::string>& header, const std::string&
     if (!average_column.empty() && header[i] == average_column) c.average = k;
   }
   if (!average_column.empty() && c.average < 0) throw ParameterError(at + "header has no '" + average_column + "' column");
-  if (c.gauge < 0) throw ParameterError(at + "header has no 'gauge_pa' column");
+  if (c.gauge < 0 && c.volume < 0) {
+    throw ParameterError(at + "header has no 'gauge_pa' column (nor 'supplied_volume_m3', for a finger set by volume)");
+  }
   for (int k = 1;; ++k) {
     const auto it = std::find(header.begin(), header.end(), "joint_" + std::to_string(k) + "_rad");
     if (it == header.end()) break;
@@ -151,8 +155,9 @@ Measurement measurementFrom(const std::function<double(int)>& number_at, const C
                             const std::string& at) {
   Measurement m;
   m.line = line;
-  m.gauge_pa = number_at(c.gauge);
+  m.gauge_pa = c.gauge >= 0 ? number_at(c.gauge) : std::numeric_limits<double>::quiet_NaN();
   if (m.gauge_pa < 0) throw ParameterError(at + "gauge_pa is negative");
+  if (c.volume >= 0) m.supplied_volume_m3 = number_at(c.volume);
   for (int column : c.joints) m.joint_rad.push_back(number_at(column));
   if (c.average >= 0) m.given_average_rad = number_at(c.average);
   if (c.tip_angle >= 0) m.tip_angle_rad = number_at(c.tip_angle);
@@ -198,6 +203,24 @@ MeasurementSet withNotes(const CsvColumns& columns) {
 }
 
 }  // namespace
+
+void driveByVolume(std::vector<Measurement>& data, bool by_volume) {
+  for (Measurement& m : data) {
+    if (by_volume ? !m.hasSuppliedVolume() : !m.hasGauge()) {
+      throw ParameterError("line " + std::to_string(m.line) + ": no " +
+                           (by_volume ? "supplied_volume_m3 to drive the finger by volume"
+                                      : "gauge_pa to drive the finger by pressure (drive it by volume, or give the "
+                                        "column)"));
+    }
+    m.driven_by_volume = by_volume;
+  }
+}
+
+bool parseDrive(const std::string& name) {
+  if (name == "pressure" || name == "volume") return name == "volume";
+  throw ParameterError("unknown drive '" + name + "'; known: pressure (rows set by gauge_pa), volume (rows set by "
+                       "supplied_volume_m3)");
+}
 
 MeasurementSet parseMeasurementSet(const std::string& text, const std::string& origin, std::size_t min_rows,
                                    const std::string& average_column) {

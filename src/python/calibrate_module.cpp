@@ -48,6 +48,9 @@ py::dict residualArrays(const std::vector<pf::Residual>& rows, std::size_t n) {
   };
   py::dict d;
   d["gauge_pa"] = column(r, [&](std::size_t i) { return rows[i].gauge_pa; });
+  d["supplied_volume_m3"] = column(r, [&](std::size_t i) { return rows[i].supplied_volume_m3; });
+  d["measured_gauge_pa"] = column(r, [&](std::size_t i) { return rows[i].measured_gauge_pa; });
+  d["model_gauge_pa"] = column(r, [&](std::size_t i) { return rows[i].model_gauge_pa; });
   d["measured_joint_rad"] = joints(true);
   d["model_joint_rad"] = joints(false);
   d["measured_avg_rad"] = column(r, [&](std::size_t i) { return rows[i].measured_avg_rad; });
@@ -115,7 +118,7 @@ void defineCalibrate(py::module_& m) {
       [](const py::object& path, const std::vector<std::string>& names, const std::vector<std::vector<double>>& columns,
          const std::vector<std::string>& keys, const std::string& objective, const std::string& config,
          const py::dict& overrides, const std::string& average_column, const std::string& compare,
-         const std::string& wall_law, bool leave_one_out) {
+         const std::string& wall_law, bool leave_one_out, const std::string& drive) {
         pf::CalibrationRequest request;
         request.keys = keys;
         request.objective = objective;
@@ -123,11 +126,12 @@ void defineCalibrate(py::module_& m) {
         request.compare = compare;
         request.wall_law = wall_law;
         request.leave_one_out = leave_one_out;
+        request.drive = drive;
         return calibrate(path, names, columns, request, config, overrides);
       },
       py::arg("path"), py::arg("names"), py::arg("columns"), py::arg("keys"), py::arg("objective"),
       py::arg("config"), py::arg("overrides"), py::arg("average_column"), py::arg("compare"), py::arg("wall_law"),
-      py::arg("leave_one_out"),
+      py::arg("leave_one_out"), py::arg("drive"),
       "finger_calibrate's calibration (use pneumatic_finger.core.calibrate): a CSV path, or names and columns");
 }
 

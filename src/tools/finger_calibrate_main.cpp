@@ -45,19 +45,20 @@ std::string cell(double v, const char* format, int width) {
 }
 
 // One table of errors (model - measured), in the data's own units: every joint, the joints 2..N average and the tip
-// angle (rad), the tip position (m). Also returns the largest |error| of each kind in @p worst (joint, average, tip
-// angle, tip position).
-std::string errorTable(const std::vector<pf::Residual>& rows, int n, std::array<double, 4>& worst) {
+// angle (rad), the tip position (m), and for rows set by volume their volume and the pressure's error (Pa). Also
+// returns the largest |error| of each kind in @p worst (joint, average, tip angle, tip position, pressure).
+std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_volume, std::array<double, 5>& worst) {
   std::ostringstream t;
-  t << "# " << pad("gauge_pa", 10);
+  t << "# " << (by_volume ? pad("volume_m3", 11) : "") << pad("gauge_pa", 10);
   for (int k = 1; k <= n; ++k) t << pad("joint_" + std::to_string(k), 9);
-  t << pad("avg_2.." + std::to_string(n), 10) << pad("tip_angle", 10) << pad("tip_m", 9) << "\n";
-  worst = {0, 0, 0, 0};
+  t << pad("avg_2.." + std::to_string(n), 10) << pad("tip_angle", 10) << pad("tip_m", 9)
+    << (by_volume ? pad("gauge_err_pa", 13) : "") << "\n";
+  worst = {0, 0, 0, 0, 0};
   auto keep = [](double& w, double e) {
     if (!std::isnan(e)) w = std::max(w, std::fabs(e));
   };
   for (const pf::Residual& r : rows) {
-    t << "# " << pad(pf::formatMessage(r.gauge_pa), 10);
+    t << "# " << (by_volume ? pad(fmt("%.4g", r.supplied_volume_m3), 11) : "") << pad(pf::formatMessage(r.gauge_pa), 10);
     for (int k = 0; k < n; ++k) {
       const auto i = static_cast<std::size_t>(k);
       const double e = r.measured_joint_rad.empty() ? NAN : r.model_joint_rad[i] - r.measured_joint_rad[i];
@@ -67,8 +68,10 @@ std::string errorTable(const std::vector<pf::Residual>& rows, int n, std::array<
     keep(worst[1], r.error_rad());
     keep(worst[2], r.tip_angle_error_rad());
     keep(worst[3], r.tip_position_error_m());
+    keep(worst[4], r.gauge_error_pa());
     t << cell(r.error_rad(), "%*.4f", 10) << cell(r.tip_angle_error_rad(), "%*.4f", 10)
-      << cell(r.tip_position_error_m(), "%*.5f", 9) << "\n";
+      << cell(r.tip_position_error_m(), "%*.5f", 9) << (by_volume ? cell(r.gauge_error_pa(), "%*.0f", 13) : "")
+      << "\n";
   }
   return t.str();
 }
@@ -77,7 +80,7 @@ std::string errorTable(const std::vector<pf::Residual>& rows, int n, std::array<
 std::string angle(double rad) { return pf::formatMessage(rad) + " rad (" + fmt("%.3f", rad * kDeg) + " deg)"; }
 std::string length(double m) { return pf::formatMessage(m) + " m (" + fmt("%.3f", m * 1e3) + " mm)"; }
 
-std::string largest(const std::array<double, 4>& w, int n, bool paper) {
+std::string largest(const std::array<double, 5>& w, int n, bool paper) {
   std::vector<std::string> parts;
   if (w[0] > 0) parts.push_back("joints " + angle(w[0]));
   if (w[1] > 0) {
@@ -86,6 +89,7 @@ std::string largest(const std::array<double, 4>& w, int n, bool paper) {
   }
   if (w[2] > 0) parts.push_back("tip angle " + angle(w[2]));
   if (w[3] > 0) parts.push_back("tip position " + length(w[3]));
+  if (w[4] > 0) parts.push_back("pressure " + fmt("%.0f", w[4]) + " Pa");
   std::string s;
   for (const std::string& p : parts) s += (s.empty() ? " " : ", ") + p;
   return s;
@@ -134,6 +138,7 @@ std::string report(const std::string& data_name, bool paper_data, std::size_t ro
   std::ostringstream table;
   table << "# data: " << data_name << " ("
         << rows << " rows)\n# compared: " << pf::quantityName(run.quantity)
+        << (run.by_volume ? " (each row set by its supplied volume; the pressure is the model's output)" : "")
         << (run.quantity == pf::CalibrationQuantity::kOuterAverage
                 ? std::string(" (joints 2..") + std::to_string(n) + ", " +
                       (average_column.empty() ? "mean of the measured joints" : "column " + average_column) + ")"
@@ -141,9 +146,10 @@ std::string report(const std::string& data_name, bool paper_data, std::size_t ro
         << "; objective: " << pf::objectiveName(run.objective) << "; error = model - measured\n# fitted:";
   for (std::size_t i = 0; i < fit.keys.size(); ++i) table << " " << fit.keys[i] << " = " << pf::formatExact(fit.values[i]);
   table << uncertaintyLines(run);
-  std::array<double, 4> worst{}, worst_loo{};
-  const std::string fit_table = errorTable(fit.residuals, n, worst);
-  const std::string loo_table = errorTable(run.best().leave_one_out, n, worst_loo);
+  std::array<double, 5> worst{}, worst_loo{};
+  const bool by_volume = run.by_volume;
+  const std::string fit_table = errorTable(fit.residuals, n, by_volume, worst);
+  const std::string loo_table = errorTable(run.best().leave_one_out, n, by_volume, worst_loo);
   table << "\n#\n# error of the fit (angles in rad, tip_m in m)\n" << fit_table
         << "# leave-one-out error: each row predicted by a fit to the others\n" << loo_table
         << "#\n# largest |error|:" << largest(worst, n, paper_data) << "\n# largest leave-one-out |error|:"
@@ -155,6 +161,7 @@ std::string report(const std::string& data_name, bool paper_data, std::size_t ro
 // has none (beyond the limit point).
 std::string errorSummary(const std::vector<pf::Residual>& rows, pf::CalibrationQuantity quantity) {
   const bool metres = quantity == pf::CalibrationQuantity::kTipPosition;
+  const bool pascals = quantity == pf::CalibrationQuantity::kGauge;
   double worst = 0.0, sum_sq = 0.0;
   int count = 0;
   for (const pf::Residual& r : rows) {
@@ -166,6 +173,7 @@ std::string errorSummary(const std::vector<pf::Residual>& rows, pf::CalibrationQ
     }
   }
   const double rms = std::sqrt(sum_sq / std::max(count, 1));
+  if (pascals) return "largest " + fmt("%.0f", worst) + " Pa, rms " + fmt("%.0f", rms) + " Pa";
   return metres ? "largest " + length(worst) + ", rms " + length(rms) : "largest " + angle(worst) + ", rms " + angle(rms);
 }
 
@@ -191,14 +199,21 @@ int main(int argc, char** argv) {
   CLI::App app(kDescription, "finger_calibrate");
   pf::ParameterOptions parameters;
   parameters.addTo(app);
-  std::string data_path, output, objective_name = "minimax", average_column, fit_keys, compare, wall_law;
+  std::string data_path, output, objective_name = "minimax", average_column, fit_keys, compare, wall_law, drive;
   app.add_option("--data", data_path,
-                 "measured CSV: gauge_pa and any of joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m (the "
-                 "tip in the finger's frame); default: the package's data/sierra2022_table1.csv");
+                 "measured CSV: gauge_pa and/or supplied_volume_m3, and any of joint_1_rad..joint_N_rad, "
+                 "tip_angle_rad, tip_x_m,tip_y_m (the tip in the finger's frame); default: the package's "
+                 "data/sierra2022_table1.csv");
+  app.add_option("--drive", drive,
+                 "what set each row: pressure (gauge_pa) or volume (supplied_volume_m3: a syringe pump or a "
+                 "displacement-controlled cylinder; the model's pressure is then compared with gauge_pa by "
+                 "--compare gauge_pa, and dead_volume_m3 can be fitted); default: pressure where the file has "
+                 "gauge_pa, else volume");
   app.add_option("--compare", compare,
                  "what the fit compares: joints (with base_wall_share: the chamber keys to the joints 2..N average, "
-                 "then base_wall_share to joint 1), average (of joints 2..N, the paper's measure), joint_1, tip_angle "
-                 "or tip_position; default: joints if the file has them, else tip_position, else tip_angle");
+                 "then base_wall_share to joint 1), average (of joints 2..N, the paper's measure), joint_1, tip_angle, "
+                 "tip_position or gauge_pa (the pressure at each row's volume, with --drive volume); default: joints "
+                 "if the file has them, else tip_position, else tip_angle");
   app.add_option("--fit", fit_keys,
                  "one to three parameter keys to fit, comma-separated; default: shear_modulus_pa,chamber_gap_m and, "
                  "when every joint is compared, base_wall_share (joint_1: base_wall_share alone)");
@@ -221,6 +236,7 @@ int main(int argc, char** argv) {
     request.objective = objective_name;
     request.compare = compare;
     request.average_column = average_column;
+    request.drive = drive;
     const pf::FingerParameters base = pf::calibrationBase(parameters.loadRaw(), wall_law);
     const pf::MeasurementSet data = pf::readMeasurementSet(data_path, 1, average_column);
     pf::CalibrationRun run;

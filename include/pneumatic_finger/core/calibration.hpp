@@ -21,13 +21,19 @@ namespace pneumatic_finger {
 /// file lacks is empty (joints) or NaN.
 struct Measurement {
   int line = 0;                    ///< line number in the file, for messages
-  double gauge_pa = 0.0;           ///< gauge pressure (Pa)
+  double gauge_pa = 0.0;           ///< gauge pressure (Pa); NaN where only the supplied volume was measured
   std::vector<double> joint_rad;   ///< measured joint angles q_1..q_N (rad), columns joint_1_rad..joint_N_rad
   double given_average_rad = NAN;  ///< average of joints 2..N read from a column instead (NaN: compute it)
   double tip_angle_rad = NAN;      ///< measured tip direction Theta_N (rad), column tip_angle_rad
   double tip_x_m = NAN, tip_y_m = NAN;  ///< measured tip O_{N+1} in the finger's frame (m), columns tip_x_m, tip_y_m
+  double supplied_volume_m3 = NAN;  ///< volume the supply pushed in (m^3), column supplied_volume_m3; NaN: not measured
+  /// What set the finger's state: its supplied volume (a syringe pump, a displacement-controlled cylinder: the model is
+  /// then evaluated by evaluateVolume and its pressure is an output) or, false, its pressure. driveByVolume sets it.
+  bool driven_by_volume = false;
 
   bool hasJoints() const { return !joint_rad.empty(); }
+  bool hasGauge() const { return !std::isnan(gauge_pa); }
+  bool hasSuppliedVolume() const { return !std::isnan(supplied_volume_m3); }
   bool hasTipAngle() const { return !std::isnan(tip_angle_rad); }
   bool hasTipPosition() const { return !std::isnan(tip_x_m); }
 
@@ -37,7 +43,7 @@ struct Measurement {
 };
 
 /// Reads measurements. Lines starting with '#' and blank lines are skipped; the first other line is the header:
-/// gauge_pa and any of joint_1_rad..joint_N_rad (without a gap, at least two), tip_angle_rad, tip_x_m and tip_y_m
+/// gauge_pa or supplied_volume_m3 (or both), and any of joint_1_rad..joint_N_rad (without a gap, at least two), tip_angle_rad, tip_x_m and tip_y_m
 /// (both). When @p average_column is not empty, that column gives the joints 2..N average (e.g. the paper's printed
 /// paper_avg_rad, which differs from the mean of its printed joints by up to 0.001 rad).
 /// @throws ParameterError naming the file and line: no gauge_pa, none of the measured columns, tip_x_m without
@@ -69,6 +75,14 @@ MeasurementSet measurementSetFromColumns(const std::vector<std::string>& names,
                                          const std::vector<std::vector<double>>& columns, const std::string& origin,
                                          std::size_t min_rows, const std::string& average_column = "");
 
+/// Marks every row of @p data as set by its supplied volume (Measurement::driven_by_volume), or, with @p by_volume
+/// false, by its pressure. @throws ParameterError naming the first line without the column the drive needs
+/// (supplied_volume_m3, or gauge_pa)
+void driveByVolume(std::vector<Measurement>& data, bool by_volume = true);
+
+/// "pressure" (false) or "volume" (true). @throws ParameterError for anything else.
+bool parseDrive(const std::string& name);
+
 /// What a finger can do, checked once before anything is fitted to a measurement (runCalibration calls it, the entry
 /// of finger_calibrate and pf.calibrate; calibrate() and leave-one-out, which refit many times, do not): no joint beyond
 /// pi rad (each of its two walls turns at most pi/2), no tip angle beyond 2 pi (a full turn), no tip farther from the
@@ -88,9 +102,11 @@ enum class CalibrationQuantity {
   kFirstJoint,    ///< "joint_1": joint 1 alone, between the passive base segment and chamber 1 (rad)
   kTipAngle,      ///< "tip_angle": the tip direction Theta_N (rad)
   kTipPosition,   ///< "tip_position": the distance of the model's tip from the measured one (m)
+  kGauge,         ///< "gauge_pa": the model's pressure at the row's supplied volume against the measured (Pa); needs
+                  ///< rows driven by volume with gauge_pa measured
 };
 
-/// "average", "joints", "joint_1", "tip_angle" or "tip_position". @throws ParameterError for anything else.
+/// "average", "joints", "joint_1", "tip_angle", "tip_position" or "gauge_pa". @throws ParameterError for anything else.
 CalibrationQuantity parseQuantity(const std::string& name);
 const char* quantityName(CalibrationQuantity quantity);
 
@@ -114,7 +130,9 @@ bool isFittableKey(const std::string& key);
 /// Model against one measurement. "Measured" tip angle and position come from the file when it has them, else from
 /// the measured joints (their sum, and the backbone of eq 38 with the model's segment lengths), else NaN.
 struct Residual {
-  double gauge_pa;
+  double gauge_pa;  ///< the row's pressure: measured where it was, else the model's at the row's supplied volume
+  double supplied_volume_m3;  ///< the row's supplied volume (NaN: not measured)
+  double measured_gauge_pa, model_gauge_pa;  ///< the pressure: model's differs only where the row is driven by volume
   double measured_avg_rad, model_avg_rad;        ///< joints 2..N (measured NaN without joints)
   double measured_joint1_rad, model_joint1_rad;  ///< joint 1 (the paper left it out)
   std::vector<double> measured_joint_rad, model_joint_rad;  ///< q_1..q_N (measured empty without joints)
@@ -123,6 +141,7 @@ struct Residual {
   double error_rad() const { return model_avg_rad - measured_avg_rad; }
   double joint1_error_rad() const { return model_joint1_rad - measured_joint1_rad; }
   double tip_angle_error_rad() const { return model_tip_angle_rad - measured_tip_angle_rad; }
+  double gauge_error_pa() const { return model_gauge_pa - measured_gauge_pa; }
   double tip_position_error_m() const {
     return std::hypot(model_tip_x_m - measured_tip_x_m, model_tip_y_m - measured_tip_y_m);
   }

@@ -19,6 +19,8 @@ struct CalibrationRequest {
   std::string objective = "minimax";
   std::string compare;         ///< a quantityName; empty: average with an average column, else defaultQuantity
   std::string average_column;  ///< the column that gives the joints 2..N average (e.g. paper_avg_rad), or empty
+  std::string drive;           ///< what set each row: "pressure" (gauge_pa) or "volume" (supplied_volume_m3); empty:
+                               ///< pressure where the data has gauge_pa, else volume
   bool leave_one_out = true;   ///< predict each row by a fit to the others (always, when laws are compared)
 };
 
@@ -26,6 +28,7 @@ struct CalibrationRequest {
 struct CalibrationRun {
   CalibrationQuantity quantity = CalibrationQuantity::kEveryJoint;
   CalibrationObjective objective = CalibrationObjective::kMinimax;
+  bool by_volume = false;  ///< the rows were set by their supplied volume (CalibrationRequest::drive)
   std::vector<WallLawFit> fits;
   std::size_t chosen = 0;
   /// The error bar (tipUncertainty of the chosen fit and its leave-one-out); empty without leave-one-out.

@@ -1,0 +1,165 @@
+// Calibration of a finger set by its supplied volume (calibration.hpp: Measurement::supplied_volume_m3,
+// driveByVolume, the gauge_pa quantity and the dead_volume_m3 key). The data are made by the model at known keys,
+// through evaluateVolume or suppliedVolumeAt, and the fit must find those keys again.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/core/calibration.hpp"
+#include "pneumatic_finger/core/calibration_run.hpp"
+#include "test_support.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+// Rows measured on @p truth filled by volume: each volume's tip angle and pressure (gauge_pa NaN unless
+// @p with_gauge), on a volume ramp from a quarter of the volume at the limit point to @p past times it.
+std::vector<pf::Measurement> filledByVolume(const pf::FingerParameters& truth, double past, bool with_gauge) {
+  pf::FingerModel model(truth);
+  pf::FingerWorkspace ws(model);
+  const double at_limit = model.suppliedVolumeAt(0.999 * model.limitGaugePa());
+  std::vector<pf::Measurement> rows;
+  for (int k = 1; k <= 8; ++k) {
+    pf::Measurement m;
+    m.line = k;
+    m.supplied_volume_m3 = at_limit * (0.25 + (past - 0.25) * (k - 1) / 7.0);
+    const pf::FingerState& s = model.evaluateVolume(m.supplied_volume_m3, ws);
+    EXPECT_TRUE(s.status == pf::EvaluationStatus::kOk || s.status == pf::EvaluationStatus::kSnappedThrough)
+        << "row " << k << ": the truth has no shape at " << m.supplied_volume_m3 << " m^3";
+    m.tip_angle_rad = s.tip_angle_rad;
+    m.gauge_pa = with_gauge ? s.gauge_pa : NAN;
+    rows.push_back(m);
+  }
+  return rows;
+}
+
+std::string refusal(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const pf::ParameterError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+// Bends against volume, past the limit point: the pressure there falls while the volume and the bend rise, so a
+// pressure-driven fit could not use those rows; driven by volume they are data, and the gap comes back. (The
+// modulus cannot: with an incompressible fluid the volume alone sets the shape, RefusesWhatTheDriveCannotGive.)
+TEST(CalibrationByVolume, RecoversTheGapFromBendsFilledPastTheLimitPoint) {
+  const pf::FingerParameters truth = pf_test::membraneFinger(0.0, "chamber_gap_m: 1e-3\n");
+  std::vector<pf::Measurement> rows = filledByVolume(truth, 2.0, false);
+  pf::driveByVolume(rows);
+  pf::FingerParameters start = truth;
+  start.chamber_gap_m.assign(start.chamber_gap_m.size(), 0.0);
+  const pf::CalibrationResult fit = pf::calibrate(start, {"chamber_gap_m"}, rows, pf::CalibrationObjective::kMinimax,
+                                                  pf::CalibrationQuantity::kTipAngle);
+  EXPECT_NEAR(fit.values[0], 1e-3, 1e-3 * 1e-6);
+  for (const pf::Residual& r : fit.residuals) {
+    EXPECT_NEAR(r.tip_angle_error_rad(), 0.0, 1e-9);
+    EXPECT_FALSE(std::isnan(r.model_gauge_pa)) << "the model's pressure at " << r.supplied_volume_m3 << " m^3";
+  }
+  // The ramp went past the limit point: the model's pressure rose, then fell.
+  double highest = 0.0;
+  for (const pf::Residual& r : fit.residuals) highest = std::max(highest, r.model_gauge_pa);
+  EXPECT_LT(fit.residuals.back().model_gauge_pa, highest);
+}
+
+// Pressure against volume: the gas of the drive (dead_volume_m3) is what turns the chambers' growth into the volume
+// supplied; fitted to the measured pressures at each supplied volume, it comes back.
+TEST(CalibrationByVolume, RecoversTheDeadGasFromThePressureAgainstTheVolume) {
+  const pf::FingerParameters truth = pf_test::membraneFinger(20.0, "dead_volume_m3: 3e-5\n");
+  std::vector<pf::Measurement> rows;
+  pf::FingerModel model(truth);
+  for (int k = 1; k <= 6; ++k) {  // below the limit point, where the pressure sets the volume
+    pf::Measurement m;
+    m.line = k;
+    m.gauge_pa = model.limitGaugePa() * 0.15 * k;
+    m.supplied_volume_m3 = model.suppliedVolumeAt(m.gauge_pa);
+    rows.push_back(m);
+  }
+  pf::driveByVolume(rows);
+  pf::FingerParameters start = truth;
+  start.dead_volume_m3 = 0.0;
+  for (auto objective : {pf::CalibrationObjective::kMinimax, pf::CalibrationObjective::kLeastSquares}) {
+    const pf::CalibrationResult fit =
+        pf::calibrate(start, {"dead_volume_m3"}, rows, objective, pf::CalibrationQuantity::kGauge);
+    EXPECT_NEAR(fit.values[0], 3e-5, 3e-5 * 1e-6) << pf::objectiveName(objective);
+    for (const pf::Residual& r : fit.residuals) EXPECT_NEAR(r.gauge_error_pa(), 0.0, 1e-3) << r.measured_gauge_pa;
+  }
+}
+
+TEST(CalibrationByVolume, ReadsTheVolumeColumnWithOrWithoutThePressure) {
+  const pf::MeasurementSet both =
+      pf::parseMeasurementSet("gauge_pa,supplied_volume_m3,tip_angle_rad\n1000,1e-6,0.1\n2000,2e-6,0.2\n", "m.csv", 2);
+  EXPECT_DOUBLE_EQ(both.rows[1].gauge_pa, 2000.0);
+  EXPECT_DOUBLE_EQ(both.rows[1].supplied_volume_m3, 2e-6);
+  EXPECT_TRUE(both.notes.empty()) << both.notes.front();
+  const pf::MeasurementSet volume =
+      pf::parseMeasurementSet("supplied_volume_m3,tip_angle_rad\n1e-6,0.1\n2e-6,0.2\n", "m.csv", 2);
+  EXPECT_TRUE(std::isnan(volume.rows[0].gauge_pa));
+  EXPECT_EQ(refusal([] { pf::parseMeasurementSet("tip_angle_rad\n0.1\n", "m.csv", 1); }),
+            "m.csv:1: header has no 'gauge_pa' column (nor 'supplied_volume_m3', for a finger set by volume)");
+}
+
+TEST(CalibrationByVolume, RefusesWhatTheDriveCannotGive) {
+  const pf::FingerParameters base = pf_test::membraneFinger(20.0);
+  std::vector<pf::Measurement> volume_only =
+      pf::parseMeasurementSet("supplied_volume_m3,tip_angle_rad\n1e-6,0.1\n2e-6,0.2\n3e-6,0.3\n", "m.csv", 2).rows;
+  EXPECT_EQ(refusal([&] { pf::driveByVolume(volume_only, false); }),
+            "line 2: no gauge_pa to drive the finger by pressure (drive it by volume, or give the column)");
+  std::vector<pf::Measurement> pressure_only =
+      pf::parseMeasurementSet("gauge_pa,tip_angle_rad\n1000,0.1\n2000,0.2\n3000,0.3\n", "m.csv", 2).rows;
+  EXPECT_EQ(refusal([&] { pf::driveByVolume(pressure_only); }),
+            "line 2: no supplied_volume_m3 to drive the finger by volume");
+  EXPECT_NE(refusal([&] {
+              pf::calibrate(base, {"dead_volume_m3"}, pressure_only, pf::CalibrationObjective::kMinimax,
+                            pf::CalibrationQuantity::kTipAngle);
+            }).find("dead_volume_m3 takes no part in a finger set by its pressure"),
+            std::string::npos);
+  EXPECT_NE(refusal([&] {
+              pf::calibrate(base, {"shear_modulus_pa"}, pressure_only, pf::CalibrationObjective::kMinimax,
+                            pf::CalibrationQuantity::kGauge);
+            }).find("drive the rows by volume"),
+            std::string::npos);
+  pf::driveByVolume(volume_only);
+  EXPECT_EQ(refusal([&] {
+              pf::calibrate(base, {"shear_modulus_pa", "chamber_gap_m"}, volume_only,
+                            pf::CalibrationObjective::kMinimax, pf::CalibrationQuantity::kTipAngle);
+            }),
+            "shear_modulus_pa cannot be fitted to shapes set by the volume of an incompressible fluid "
+            "(dead_volume_m3 = 0): the volume alone sets the shape, the modulus only the pressure (compare gauge_pa, "
+            "or fit or give dead_volume_m3)");
+  EXPECT_EQ(refusal([&] {
+              pf::calibrate(base, {"dead_volume_m3"}, volume_only, pf::CalibrationObjective::kMinimax,
+                            pf::CalibrationQuantity::kGauge);
+            }),
+            "line 2: no gauge_pa to compare the model's pressure with");
+  EXPECT_EQ(refusal([] { pf::parseDrive("syringe"); }),
+            "unknown drive 'syringe'; known: pressure (rows set by gauge_pa), volume (rows set by supplied_volume_m3)");
+}
+
+// runCalibration (finger_calibrate, pf.calibrate): with no drive named, a file without gauge_pa is driven by volume.
+TEST(CalibrationByVolume, ARunWithoutPressuresIsDrivenByVolume) {
+  const pf::FingerParameters truth = pf_test::membraneFinger(0.0, "chamber_gap_m: 1e-3\n");
+  pf::MeasurementSet set;
+  set.rows = filledByVolume(truth, 2.0, false);
+  pf::CalibrationRequest request;
+  request.keys = {"chamber_gap_m"};
+  request.compare = "tip_angle";
+  request.leave_one_out = false;
+  pf::FingerParameters start = truth;
+  start.chamber_gap_m.assign(start.chamber_gap_m.size(), 0.0);
+  const pf::CalibrationRun run = pf::runCalibration(start, set, request);
+  EXPECT_TRUE(run.by_volume);
+  EXPECT_NEAR(run.best().fit.values[0], 1e-3, 1e-3 * 1e-6);
+  request.drive = "pressure";
+  EXPECT_EQ(refusal([&] { pf::runCalibration(start, set, request); }),
+            "line 1: no gauge_pa to drive the finger by pressure (drive it by volume, or give the column)");
+}
