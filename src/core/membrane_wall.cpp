@@ -1,5 +1,6 @@
 #include "pneumatic_finger/core/membrane_wall.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -41,6 +42,40 @@ double gentLimitStretchExcess(const MembraneWall& w) {
   const double start = std::pow(7.0, 1.0 / 6.0) - 1.0;
   if (!(w.locking_stretch_excess > start)) return kInf;
   return firstFallBelowZero([&w](double x) { return slopeSign(w, x); }, start, w.locking_stretch_excess);
+}
+
+// The thin membrane's P and dP/ddelta at @p d, together (they share lambda^6 - 1 and the Gent factor):
+// d/dlambda (1/lambda - 1/lambda^7) = (7 - lambda^6)/lambda^8, and d ln(J_m/(J_m - e)) = e'/(J_m - e), with
+// e' = 4 (lambda^6 - 1)/lambda^5. P = +inf (and the slope) at or beyond the lock.
+void thinGaugeAndSlope(const MembraneWall& w, double d, double& gauge_pa, double& slope_pa) {
+  const double lam = 1.0 + d, u = sixthPowerMinusOne(d), lam2 = lam * lam, lam4 = lam2 * lam2;
+  const double lam7 = lam4 * lam2 * lam;
+  gauge_pa = w.pressure_scale_pa * (u / lam7);
+  slope_pa = w.pressure_scale_pa * ((6.0 - u) / (lam7 * lam));
+  if (w.locking_jm == 0.0) return;
+  const double room = w.locking_jm - firstInvariantExcess(d);
+  if (!(room > 0.0)) {
+    gauge_pa = slope_pa = kInf;
+    return;
+  }
+  const double gent = w.locking_jm / room;
+  slope_pa = (slope_pa + gauge_pa * (4.0 * u / (lam4 * lam)) / room) * gent;
+  gauge_pa *= gent;
+}
+
+// The starting table (MembraneWall::guess_*): nodes delta_i = top (1 - (1 - i/n)^2) on [0, top].
+void buildGuess(MembraneWall& w) {
+  const double top = std::isfinite(w.limit_stretch_excess) ? w.limit_stretch_excess : w.locking_stretch_excess;
+  if (w.thick || !std::isfinite(top)) return;
+  constexpr int n = MembraneWall::kGuessNodes;
+  for (int i = 0; i <= n; ++i) {
+    const double t = 1.0 - static_cast<double>(i) / n;
+    const auto k = static_cast<std::size_t>(i);
+    w.guess_stretch_excess[k] = i == n ? top : top * (1.0 - t * t);
+    thinGaugeAndSlope(w, w.guess_stretch_excess[k], w.guess_gauge_pa[k], w.guess_slope_pa[k]);
+  }
+  w.guess_gauge_pa[static_cast<std::size_t>(n)] = std::isfinite(w.limit_stretch_excess) ? w.limit_gauge_pa : kInf;
+  w.has_guess = true;
 }
 
 }  // namespace
@@ -93,6 +128,7 @@ MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, doub
       w.far_turning_gauge_pa = membraneGaugeForStretchExcess(w, w.far_turning_stretch_excess);
     }
   }
+  buildGuess(w);
   return w;
 }
 
@@ -138,11 +174,50 @@ double risingStretchExcess(const MembraneWall& w, double gauge_pa, double lo, do
   return d;
 }
 
+// The thin membrane's rising branch from its table: the node interval that holds @p gauge_pa brackets the root, and
+// the inverse's cubic Hermite interpolation there (d delta/dP = 1/slope at both nodes; linear where a node's slope
+// is 0 or infinite: the limit point, the lock) starts Newton steps on P itself, within 1e-4 or so of the root, so
+// that two or three steps reach it. A step that would leave the bracket halves it instead.
+double tabulatedStretchExcess(const MembraneWall& w, double gauge_pa) {
+  const auto& p = w.guess_gauge_pa;
+  const auto i = static_cast<std::size_t>(std::upper_bound(p.begin(), p.end(), gauge_pa) - p.begin()) - 1;
+  double lo = w.guess_stretch_excess[i], hi = w.guess_stretch_excess[i + 1];
+  const double dp = p[i + 1] - p[i], t = (gauge_pa - p[i]) / dp;
+  const double s0 = w.guess_slope_pa[i], s1 = w.guess_slope_pa[i + 1];
+  double d = lo + t * (hi - lo);
+  if (s0 > 0.0 && s1 > 0.0 && std::isfinite(dp) && std::isfinite(s1)) {
+    const double t2 = t * t, t3 = t2 * t;
+    d = (2 * t3 - 3 * t2 + 1) * lo + (t3 - 2 * t2 + t) * dp / s0 + (3 * t2 - 2 * t3) * hi + (t3 - t2) * dp / s1;
+  }
+  if (!(d > lo && d < hi)) d = 0.5 * (lo + hi);
+  double prev_d = 0.0, prev_slope = 0.0;
+  for (int k = 0; k < 100; ++k) {
+    double g = 0.0, slope = 0.0;
+    thinGaugeAndSlope(w, d, g, slope);
+    if (g == gauge_pa) return d;
+    (g < gauge_pa ? lo : hi) = d;
+    double next = d - (g - gauge_pa) / slope;
+    if (std::fabs(next - d) <= 2e-16 * d) return d;  // the step rounds away: d is the root to the last bit
+    const bool newton = next > lo && next < hi;
+    if (!newton) next = 0.5 * (lo + hi);
+    const double step = std::fabs(next - d);
+    // Newton's error after a Newton step is about (P''/2P') step^2, P'' from the last two slopes: once that is below
+    // the last bit, further steps would only dither in the pressure's rounding.
+    const double curvature = k > 0 ? std::fabs((slope - prev_slope) / (d - prev_d)) / (2.0 * slope) : kInf;
+    if (newton && curvature * step * step <= 1e-17 * next) return next;
+    prev_d = d;
+    prev_slope = slope;
+    d = next;
+  }
+  return d;
+}
+
 }  // namespace
 
 double membraneStretchExcess(const MembraneWall& w, double gauge_pa) {
   if (!(gauge_pa >= 0.0) || !(gauge_pa < w.limit_gauge_pa)) return std::numeric_limits<double>::quiet_NaN();
   if (gauge_pa == 0.0) return 0.0;
+  if (w.has_guess) return tabulatedStretchExcess(w, gauge_pa);
   // P rises on [0, limit] (on [0, lock) without a limit). Near rest P = 6 (4 mu t/L) delta (1 + O(delta)), the
   // first guess.
   const double hi = std::isfinite(w.limit_stretch_excess) ? w.limit_stretch_excess : w.locking_stretch_excess;

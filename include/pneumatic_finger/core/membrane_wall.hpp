@@ -12,6 +12,8 @@
 // the rising branch. Stage 4 (Wang's flexion) and the rest of the chain are the paper's.
 #pragma once
 
+#include <array>
+
 #include "pneumatic_finger/core/stages.hpp"
 
 namespace pneumatic_finger {
@@ -38,6 +40,12 @@ struct MembraneWall {
   /// lower turning point. +inf for both when there is no far branch (Neo-Hookean: the wall balloons without bound).
   double far_turning_stretch_excess;  ///< delta at the pressure minimum past the limit point
   double far_turning_gauge_pa;        ///< P there (Pa): the far branch holds down to it, then snaps back
+  /// Where the rising branch's Newton steps start (membraneStretchExcess), for the thin membrane: P and dP/ddelta at
+  /// kGuessNodes + 1 stretches from rest to the limit point (or the lock), closer together towards it, where the
+  /// stretch changes fastest with the pressure. Empty (has_guess false) for the thick wall, whose P is an integral.
+  static constexpr int kGuessNodes = 32;
+  bool has_guess = false;
+  std::array<double, kGuessNodes + 1> guess_stretch_excess{}, guess_gauge_pa{}, guess_slope_pa{};
 };
 
 /// The membrane of a wall of height @p chamber_height_m (L), thickness @p wall_thickness_m (t), shear modulus
