@@ -113,6 +113,23 @@ double FingerModel::suppliedVolumeAtStretch(double delta) const {
   return volume_coefficient_[0] * membraneVolumeGrowthFactor(delta) + gas;
 }
 
+double FingerModel::stretchForSuppliedVolume(double v) const {
+  // The chambers take all of v when the fluid is incompressible, lambda^3 - 1 = v / V_o, and at most v otherwise (the
+  // gas takes its share): that stretch bounds the root, below the volume's own limit.
+  const double v_o = volume_coefficient_[0], v_g = parameters_.dead_volume_m3, p_o = parameters_.atmospheric_pressure_pa;
+  const double incompressible = std::expm1(std::log1p(v / v_o) / 3.0);
+  if (v_g == 0.0) return incompressible;
+  const MembraneWall& wall = groups_[0].membrane;
+  const auto volume_and_slope = [&wall, v_o, v_g, p_o](double d, double& volume, double& slope) {
+    double p = 0.0, dp = 0.0;
+    membraneGaugeAndSlope(wall, d, p, dp);
+    volume = v_o * membraneVolumeGrowthFactor(d) + v_g * (p / (p_o + p));
+    slope = v_o * membraneVolumeGrowthSlope(d) + v_g * p_o * dp / ((p_o + p) * (p_o + p));
+  };
+  const double hi = std::min(incompressible, volume_limit_stretch_excess_);
+  return increasingNewtonRoot(volume_and_slope, v, 0.0, hi, 0.5 * hi);
+}
+
 bool FingerModel::writeStretchState(double delta, FingerState& out) const {
   const ChamberGroup& group = groups_[0];
   const double bulge_m = membraneBulgeM(group.membrane, delta);
@@ -148,12 +165,7 @@ const FingerState& FingerModel::evaluateVolume(double supplied_volume_m3, Finger
     return state;
   }
   if (volume_by_stretch_) {
-    const double top = volume_limit_stretch_excess_;
-    double hi = std::isfinite(top) ? top : 1.0;
-    while (!std::isfinite(top) && suppliedVolumeAtStretch(hi) < v) hi *= 2.0;
-    const double delta =
-        increasingRoot([this](double d) { return suppliedVolumeAtStretch(d); }, v, 0.0, hi);
-    written = writeStretchState(delta, state);
+    written = writeStretchState(stretchForSuppliedVolume(v), state);
   } else {
     double hi = std::isfinite(limit_gauge_pa_) ? belowLimitGaugePa() : 1e3;
     while (!std::isfinite(limit_gauge_pa_) && suppliedVolumeAt(hi) < v && hi < 1e300) hi *= 2.0;

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 
+#include "pneumatic_finger/core/units.hpp"
 #include "first_zero.hpp"
 #include "thick_wall.hpp"
 
@@ -63,16 +64,16 @@ void thinGaugeAndSlope(const MembraneWall& w, double d, double& gauge_pa, double
   gauge_pa *= gent;
 }
 
-// The starting table (MembraneWall::guess_*): nodes delta_i = top (1 - (1 - i/n)^2) on [0, top].
+// The starting table (MembraneWall::guess_*): Chebyshev-Lobatto nodes delta_i = top (1 - cos(pi i/n))/2 on [0, top],
+// close together at both ends: near rest, where P bends from its first slope, and near the limit point or the lock.
 void buildGuess(MembraneWall& w) {
   const double top = std::isfinite(w.limit_stretch_excess) ? w.limit_stretch_excess : w.locking_stretch_excess;
-  if (w.thick || !std::isfinite(top)) return;
+  if (!std::isfinite(top)) return;
   constexpr int n = MembraneWall::kGuessNodes;
   for (int i = 0; i <= n; ++i) {
-    const double t = 1.0 - static_cast<double>(i) / n;
     const auto k = static_cast<std::size_t>(i);
-    w.guess_stretch_excess[k] = i == n ? top : top * (1.0 - t * t);
-    thinGaugeAndSlope(w, w.guess_stretch_excess[k], w.guess_gauge_pa[k], w.guess_slope_pa[k]);
+    w.guess_stretch_excess[k] = i == n ? top : 0.5 * top * (1.0 - std::cos(kPi * i / n));
+    membraneGaugeAndSlope(w, w.guess_stretch_excess[k], w.guess_gauge_pa[k], w.guess_slope_pa[k]);
   }
   w.guess_gauge_pa[static_cast<std::size_t>(n)] = std::isfinite(w.limit_stretch_excess) ? w.limit_gauge_pa : kInf;
   w.has_guess = true;
@@ -153,6 +154,12 @@ double membraneLogSlope(const MembraneWall& w, double d) {
   return slope;
 }
 
+void membraneGaugeAndSlope(const MembraneWall& w, double delta, double& gauge_pa, double& slope_pa) {
+  if (!w.thick) return thinGaugeAndSlope(w, delta, gauge_pa, slope_pa);
+  gauge_pa = thickGaugeForStretchExcess(w, delta);
+  slope_pa = thickGaugeSlope(w, delta);
+}
+
 namespace {
 
 // The stretch excess where P = gauge_pa on a rising stretch of the law, bracketed by [lo, hi] (hi may be +inf), from
@@ -176,40 +183,21 @@ double risingStretchExcess(const MembraneWall& w, double gauge_pa, double lo, do
 
 // The thin membrane's rising branch from its table: the node interval that holds @p gauge_pa brackets the root, and
 // the inverse's cubic Hermite interpolation there (d delta/dP = 1/slope at both nodes; linear where a node's slope
-// is 0 or infinite: the limit point, the lock) starts Newton steps on P itself, within 1e-4 or so of the root, so
-// that two or three steps reach it. A step that would leave the bracket halves it instead.
+// is 0 or infinite: the limit point, the lock) starts Newton steps on P itself (increasingNewtonRoot), within 1e-4 or
+// so of the root, so that two or three steps reach it.
 double tabulatedStretchExcess(const MembraneWall& w, double gauge_pa) {
   const auto& p = w.guess_gauge_pa;
   const auto i = static_cast<std::size_t>(std::upper_bound(p.begin(), p.end(), gauge_pa) - p.begin()) - 1;
-  double lo = w.guess_stretch_excess[i], hi = w.guess_stretch_excess[i + 1];
   const double dp = p[i + 1] - p[i], t = (gauge_pa - p[i]) / dp;
   const double s0 = w.guess_slope_pa[i], s1 = w.guess_slope_pa[i + 1];
+  const double lo = w.guess_stretch_excess[i], hi = w.guess_stretch_excess[i + 1];
   double d = lo + t * (hi - lo);
   if (s0 > 0.0 && s1 > 0.0 && std::isfinite(dp) && std::isfinite(s1)) {
     const double t2 = t * t, t3 = t2 * t;
     d = (2 * t3 - 3 * t2 + 1) * lo + (t3 - 2 * t2 + t) * dp / s0 + (3 * t2 - 2 * t3) * hi + (t3 - t2) * dp / s1;
   }
-  if (!(d > lo && d < hi)) d = 0.5 * (lo + hi);
-  double prev_d = 0.0, prev_slope = 0.0;
-  for (int k = 0; k < 100; ++k) {
-    double g = 0.0, slope = 0.0;
-    thinGaugeAndSlope(w, d, g, slope);
-    if (g == gauge_pa) return d;
-    (g < gauge_pa ? lo : hi) = d;
-    double next = d - (g - gauge_pa) / slope;
-    if (std::fabs(next - d) <= 2e-16 * d) return d;  // the step rounds away: d is the root to the last bit
-    const bool newton = next > lo && next < hi;
-    if (!newton) next = 0.5 * (lo + hi);
-    const double step = std::fabs(next - d);
-    // Newton's error after a Newton step is about (P''/2P') step^2, P'' from the last two slopes: once that is below
-    // the last bit, further steps would only dither in the pressure's rounding.
-    const double curvature = k > 0 ? std::fabs((slope - prev_slope) / (d - prev_d)) / (2.0 * slope) : kInf;
-    if (newton && curvature * step * step <= 1e-17 * next) return next;
-    prev_d = d;
-    prev_slope = slope;
-    d = next;
-  }
-  return d;
+  return increasingNewtonRoot([&w](double x, double& g, double& slope) { membraneGaugeAndSlope(w, x, g, slope); },
+                              gauge_pa, lo, hi, d, lo, s0);
 }
 
 }  // namespace

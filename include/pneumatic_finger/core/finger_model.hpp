@@ -357,6 +357,9 @@ class FingerModel {
   double groupGrowthM3(std::size_t group, double bulge_m) const;
   /// The supplied volume (m^3) of identical membrane chambers at stretch excess @p delta (>= 0, below the lock).
   double suppliedVolumeAtStretch(double delta) const;
+  // Identical membrane chambers: the stretch excess at which the supply has pushed in @p v (m^3, below
+  // volume_limit_m3_): closed-form for an incompressible fluid, else Newton steps on V_s(delta).
+  double stretchForSuppliedVolume(double v) const;
   /// The state of identical membrane chambers at stretch excess @p delta into @p out (gauge_pa included); false for a
   /// non-finite half angle.
   bool writeStretchState(double delta, FingerState& out) const;

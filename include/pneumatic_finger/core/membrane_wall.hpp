@@ -40,9 +40,9 @@ struct MembraneWall {
   /// lower turning point. +inf for both when there is no far branch (Neo-Hookean: the wall balloons without bound).
   double far_turning_stretch_excess;  ///< delta at the pressure minimum past the limit point
   double far_turning_gauge_pa;        ///< P there (Pa): the far branch holds down to it, then snaps back
-  /// Where the rising branch's Newton steps start (membraneStretchExcess), for the thin membrane: P and dP/ddelta at
-  /// kGuessNodes + 1 stretches from rest to the limit point (or the lock), closer together towards it, where the
-  /// stretch changes fastest with the pressure. Empty (has_guess false) for the thick wall, whose P is an integral.
+  /// Where the rising branch's Newton steps start (membraneStretchExcess): P and dP/ddelta at kGuessNodes + 1
+  /// stretches from rest to the limit point (or the lock), closer together towards both ends. Empty (has_guess
+  /// false) where P rises without a limit or a lock.
   static constexpr int kGuessNodes = 32;
   bool has_guess = false;
   std::array<double, kGuessNodes + 1> guess_stretch_excess{}, guess_gauge_pa{}, guess_slope_pa{};
@@ -64,6 +64,10 @@ double membraneStretchForBulge(const MembraneWall& wall, double bulge_m);
 /// (1/lambda - 1/lambda^7 = (lambda^6 - 1)/lambda^7 with lambda^6 - 1 a polynomial in delta). +inf at or beyond the
 /// locking stretch.
 double membraneGaugeForStretchExcess(const MembraneWall& wall, double delta);
+
+/// P (Pa) and dP/ddelta (Pa) at @p delta >= 0 together (Newton steps need both; they share most of their terms). +inf
+/// for both at or beyond the lock.
+void membraneGaugeAndSlope(const MembraneWall& wall, double delta, double& gauge_pa, double& slope_pa);
 
 /// d ln P / d delta at @p delta > 0 (the Newton step's slope; the limit point is its zero).
 double membraneLogSlope(const MembraneWall& wall, double delta);
