@@ -139,6 +139,19 @@ table_err = runs["table/validated"]["max_theta_error_rad"]
 
 # The package's targets, defined once here; every verdict below is computed from this run.
 TARGET_ROBUST_NS, TARGET_TABLE_NS, TARGET_ERROR_RAD, TARGET_P99_US = 100.0, 30.0, 1e-12, 1000.0
+TARGET_LAW_RATIO = 2.0  # the membrane and thick-wall laws: at most this times the paper law's robust evaluation
+TARGET_VOLUME_RATIO = 2.0  # volume as the input: at most this times the same law's pressure evaluation
+membrane_ns, thick_ns = runs["membrane/validated"]["real_time"], runs["thick/validated"]["real_time"]
+volume_ns = runs["membrane/volume"]["real_time"]
+law_rows = "\n".join([
+    md_row("paper law, robust (the default)", f"{robust_ns:.0f}", "1.0",
+           fmt_err(runs["robust/validated"]["max_theta_error_rad"]) + " (θ, rad)"),
+    md_row("membrane law (Gent, J_m = 50), pressure in", f"{membrane_ns:.0f}", f"{membrane_ns / robust_ns:.1f}",
+           fmt_err(runs["membrane/validated"]["max_theta_error_rad"]) + " (θ, rad)"),
+    md_row("membrane law, volume in (10 mL of gas in the drive)", f"{volume_ns:.0f}", f"{volume_ns / robust_ns:.1f}",
+           fmt_err(runs["membrane/volume"]["max_gauge_relative_error"]) + " (pressure given back, relative)"),
+    md_row("thick-wall law (Gent, J_m = 50), pressure in", f"{thick_ns:.0f}", f"{thick_ns / robust_ns:.1f}",
+           "tested against the quad reference (test/test_thick_wall.cpp)")])
 TARGET_CONTACT_NS = 1000.0
 TARGET_BATCH_PER_S = 20e6
 TARGET_PYTHON_TIP_PER_S, TARGET_PYTHON_OUT_PER_S = 20e6, 10e6  # from Python, 2 M pressures: tip only; every output into out=
@@ -300,6 +313,20 @@ finger's table has {runs[f"table_polynomials/{table_widest}"]["segments"]:.0f} s
 |---|---|
 {table_poly_rows}
 
+## The wall laws a lab's actuator gets, beside the paper's
+
+`finger_bench`'s `membrane/validated`, `membrane/volume` and `thick/validated`, in the same run as the first table:
+the paper's finger with a silicone wall (μ = 20 kPa, t = 2 mm, Gent J_m = 50, so a limit point), 64 pressures from
+rest to 0.99 of the limit point, one at a time; the volume input at the volumes those pressures take. Each law's
+rising branch starts from a table of P(δ) its wall builds once (33 Chebyshev nodes, inverse cubic Hermite), then
+Newton steps on P with P and dP/dδ together (`src/core/membrane_wall.cpp`, `increasingNewtonRoot` in
+`src/core/first_zero.hpp`); the volume is closed-form for an incompressible fill and Newton on V_s(δ) with a gas.
+The thick wall's P is an integral (its Gent form has no closed one), which it pays two or three times per solve.
+
+| law | ns | × paper law | largest error |
+|---|---|---|---|
+{law_rows}
+
 ## Many pressures at once: the batch entry point
 
 `FingerModel::evaluateMany` (what the Python API's `evaluate(array)` and `finger_design` call) over the same 1024
@@ -379,6 +406,13 @@ Each verdict is computed by `scripts/benchmarks.py` from the figures above; the 
   {robust_ns * mhz / 1000:.0f} per evaluation against the target's {TARGET_ROBUST_NS * 2:.0f} at 2.0 GHz: the same cycles
   there would take {robust_ns * mhz / 2000:.0f} ns (clock ratio alone; the two cores' work per cycle differs, so this is
   an estimate, not a measurement). {history}
+- **The membrane and thick-wall laws within {TARGET_LAW_RATIO:.0f}× the paper law's evaluation:** membrane
+  {verdict(membrane_ns <= TARGET_LAW_RATIO * robust_ns)}: {membrane_ns:.0f} ns, {membrane_ns / robust_ns:.2f}× the
+  {robust_ns:.0f} ns of the same run; thick wall {verdict(thick_ns <= TARGET_LAW_RATIO * robust_ns)}: {thick_ns:.0f} ns,
+  {thick_ns / robust_ns:.1f}× (an integral per pressure evaluation). **The volume input within
+  {TARGET_VOLUME_RATIO:.0f}× the pressure's:** {verdict(volume_ns <= TARGET_VOLUME_RATIO * membrane_ns)}: {volume_ns:.0f} ns,
+  {volume_ns / membrane_ns:.2f}× the membrane law's pressure evaluation. Neither law runs in the batch's SIMD packs
+  yet: the batch takes them one pressure at a time.
 - **Batch ≥ {TARGET_BATCH_PER_S / 1e6:.0f} M full-finger evaluations/s on one core (robust, 1e-12 rad):**
   {verdict(best_batch >= TARGET_BATCH_PER_S)}: {best_batch / 1e6:.1f} M/s with the {best_batch_key} packs (the widest this
   CPU has), every output written, at {fmt_err(runs[f"batch/{best_batch_key}"]["max_theta_error_rad"])} rad.
