@@ -107,6 +107,13 @@ TEST(FingerVolume, SuppliedVolumeHasNoPressureBeyondTheLimitAndAVacuumOnlyForAGa
   EXPECT_DOUBLE_EQ(membrane.suppliedVolumeAt(-1e4), 8e-5 * -1e4 / (kAtmosphere - 1e4));
   const pf::FingerModel water(pf::FingerParameters::defaults());
   EXPECT_EQ(water.suppliedVolumeAt(-1e4), 0.0);
+  // The volume at the limit point, which tells a volume past it (the node's diagnostics): the reference's volume at
+  // the reference's limit stretch.
+  const reference::Membrane wall{kMu, kThickness, kHeight, 0.0};
+  EXPECT_LT(relativeError(membrane.limitPointVolumeM3(),
+                          referenceMembraneVolume(reference::membraneLimitStretchExcess(wall), 0.0, 8e-5)),
+            1e-12);
+  EXPECT_TRUE(std::isinf(water.limitPointVolumeM3()));
 }
 
 // Volume control of identical membrane chambers: the volume sets the stretch before, at and past the limit point,

@@ -34,10 +34,15 @@ void FingerModel::buildVolumeModel() {
         membrane_ ? l * parameters_.chamber_thickness_m[k] * e : paperVolumePerBulgeM2(l, e);
   }
   volume_by_stretch_ = membrane_ && groups_.size() == 1;
+  // At the limit point itself where the stretch is known there; else just below it (the pressure's last double).
+  const double below_limit_m3 = std::isfinite(limit_gauge_pa_) ? suppliedVolumeAt(belowLimitGaugePa()) : kInf;
+  limit_point_volume_m3_ = volume_by_stretch_ && std::isfinite(limit_gauge_pa_)
+                               ? suppliedVolumeAtStretch(groups_[0].membrane.limit_stretch_excess)
+                               : below_limit_m3;
   volume_limit_stretch_excess_ = kInf;
   if (!volume_by_stretch_) {
     // The pressure sets the volume, increasingly, up to the limit point (if any).
-    volume_limit_m3_ = std::isfinite(limit_gauge_pa_) ? suppliedVolumeAt(belowLimitGaugePa()) : kInf;
+    volume_limit_m3_ = below_limit_m3;
     return;
   }
   const MembraneWall& wall = groups_[0].membrane;

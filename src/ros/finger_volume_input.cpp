@@ -61,7 +61,7 @@ void FingerNode::onVolume(const std_msgs::Float64::ConstPtr& msg) {
     ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), input_.lastProblem().c_str());
   }
   // Past the limit point the pressure falls while the volume grows: a valid state under volume control, said so.
-  input_.noteGaugeFromVolume(state.gauge_pa, volume_m3 > model_->suppliedVolumeAt(model_->belowLimitGaugePa()));
+  input_.noteGaugeFromVolume(state.gauge_pa, volume_m3 > model_->limitPointVolumeM3());
   have_pressure_ = true;
   last_gauge_pa_ = state.gauge_pa;
   last_clamped_ = false;

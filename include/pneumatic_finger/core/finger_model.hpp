@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -193,6 +194,10 @@ class FingerModel {
   /// under volume control); the lock of a Gent wall; with unequal membrane chambers, the volume at the pressure's
   /// limit point.
   double volumeLimitM3() const { return volume_limit_m3_; }
+
+  /// The supplied volume at the pressure's limit point (m^3): a volume above it is past the limit point, where the
+  /// pressure falls while the volume grows (+inf without a limit point). Computed once, with the model.
+  double limitPointVolumeM3() const { return limit_point_volume_m3_; }
 
   const FingerParameters& parameters() const { return parameters_; }
   const ModelOptions& options() const { return options_; }
@@ -399,6 +404,7 @@ class FingerModel {
   std::vector<double> volume_coefficient_;
   bool volume_by_stretch_ = false;  // identical membrane chambers: the volume input is solved in delta, past the limit
   double volume_limit_stretch_excess_ = 0.0;  // delta where volumeLimitM3() is reached (volume_by_stretch_)
+  double limit_point_volume_m3_ = std::numeric_limits<double>::infinity();
   double volume_limit_m3_ = 0.0;
   bool membrane_ = false;  // the membrane wall law (parameters_.wall_law)
   double table_error_rad_ = 0.0;
