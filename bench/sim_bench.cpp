@@ -72,8 +72,7 @@ void benchCell(benchmark::State& state) {
   pf::CellPhysics physics(pf::readRobotUrdfFile(root + "/urdf/industrial_arm.urdf"), fingers,
                           cell["arm_joint_names"].as<std::vector<std::string>>(),
                           cell["pick"].as<std::vector<double>>(), scene, pf::MjcfOptions());
-  const pf::FingerParameters& p = fingers.front().parameters;
-  const double rate = pf::fillRatePaPerS(pf::kCellRegulatorFlowM3PerS, pf::restVolumeM3(p, 3), p.atmospheric_pressure_pa);
+  const double rate = pf::gripperFillRatePaPerS(pf::kCellRegulatorFlowM3PerS, fingers.front().parameters, 3);
   const double dt = physics.model().opt.timestep;
   double gauge = 0.0;
   std::string why;

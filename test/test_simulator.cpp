@@ -439,8 +439,7 @@ TEST(SimulatorCell, TheArmLiftsTheTenGramPartOffItsTableAndLeavesTwoHundredGrams
   const auto names = cell["arm_joint_names"].as<std::vector<std::string>>();
   const auto pick = cell["pick"].as<std::vector<double>>(), above = cell["above_pick"].as<std::vector<double>>();
   const pf::FingerModel twin(g.fingers.front().parameters);
-  const double rate = pf::fillRatePaPerS(pf::kCellRegulatorFlowM3PerS, pf::restVolumeM3(twin.parameters(), 3),
-                                         twin.parameters().atmospheric_pressure_pa);
+  const double rate = pf::gripperFillRatePaPerS(pf::kCellRegulatorFlowM3PerS, twin.parameters(), 3);
   for (const auto& [mass, carried] : {std::tuple{0.01, true}, std::tuple{0.2, false}}) {
     SCOPED_TRACE(std::to_string(mass) + " kg");
     g.scene.object_mass_kg = mass;

@@ -122,9 +122,8 @@ ArmLift armLift(const Sweep& s, const std::vector<pf::GripperFinger>& fingers, c
   const auto pick = cell["pick"].as<std::vector<double>>(), above = cell["above_pick"].as<std::vector<double>>();
   pf::CellPhysics physics(pf::readRobotUrdfFile(s.arm), fingers, cell["arm_joint_names"].as<std::vector<std::string>>(),
                           pick, scene, s.mjcf);
-  const pf::FingerParameters& p = fingers.front().parameters;
-  const double rate = pf::fillRatePaPerS(pf::kCellRegulatorFlowM3PerS, pf::restVolumeM3(p, static_cast<int>(fingers.size())),
-                                         p.atmospheric_pressure_pa);
+  const double rate = pf::gripperFillRatePaPerS(pf::kCellRegulatorFlowM3PerS, fingers.front().parameters,
+                                                static_cast<int>(fingers.size()));
   const double dt = physics.model().opt.timestep, hold_s = 1.5;
   double gauge = 0.0, part_z0 = 0.0, tool_z0 = 0.0;
   std::string why;

@@ -14,16 +14,6 @@ CellPhysics::CellPhysics(const std::string& arm_urdf_xml, const std::vector<Grip
                                         place_joints_rad))),
       data_(mj_makeData(model_.get())) {
   mjModel* m = model_.get();
-  fingers_.reserve(fingers.size());
-  finger_of_body_.assign(static_cast<std::size_t>(m->nbody), -1);
-  for (std::size_t f = 0; f < fingers.size(); ++f) {
-    twins_.push_back(std::make_unique<FingerModel>(fingers[f].parameters));
-    fingers_.emplace_back(*twins_.back(), m, fingers[f].mount.prefix);
-    for (int b = 0; b < m->nbody; ++b) {
-      const char* name = mj_id2name(m, mjOBJ_BODY, b);
-      if (name && std::string(name).rfind(fingers[f].mount.prefix, 0) == 0) finger_of_body_[b] = static_cast<int>(f);
-    }
-  }
   for (const std::string& name : arm_joint_names) {
     arm_joints_.push_back(mj_name2id(m, mjOBJ_JOINT, name.c_str()));
     arm_qpos_.push_back(m->jnt_qposadr[arm_joints_.back()]);
@@ -34,6 +24,7 @@ CellPhysics::CellPhysics(const std::string& arm_urdf_xml, const std::vector<Grip
   dampArm();
   part_body_ = mj_name2id(m, mjOBJ_BODY, kSceneObjectName);
   part_geom_ = mj_name2id(m, mjOBJ_GEOM, kSceneObjectName);
+  gripper_ = std::make_unique<DrivenGripper>(fingers, m, part_geom_);
   tool_body_ = mj_name2id(m, mjOBJ_BODY, kSceneToolName);
   const int part_joint = m->body_jntadr[part_body_];
   part_qpos_ = m->jnt_qposadr[part_joint];
@@ -67,7 +58,7 @@ void CellPhysics::jointStates(std::vector<std::string>& names, std::vector<doubl
     names.emplace_back(mj_id2name(model_.get(), mjOBJ_JOINT, arm_joints_[j]));
     angles_rad.push_back(data_->qpos[arm_qpos_[j]]);
   }
-  for (const PressureDrivenFinger& f : fingers_) {
+  for (const PressureDrivenFinger& f : gripper_->fingers()) {
     for (int id : f.jointIds()) {
       names.emplace_back(mj_id2name(model_.get(), mjOBJ_JOINT, id));
       angles_rad.push_back(data_->qpos[model_->jnt_qposadr[id]]);
@@ -93,35 +84,18 @@ void CellPhysics::setArmTargets(const std::vector<double>& joints_rad) {
 }
 
 bool CellPhysics::step(double gauge_pa, std::string& why) {
-  for (PressureDrivenFinger& f : fingers_) {
-    if (!f.applyPressureWithHeldMoments(gauge_pa, *data_, why)) return false;
-  }
+  if (!gripper_->apply(gauge_pa, *data_, true, why)) return false;
   mj_step(model_.get(), data_.get());
-  for (int k = 0; k < model_->nq; ++k) {
-    if (!std::isfinite(data_->qpos[k])) {
-      why = "the simulation's state is not finite at " + formatMessage(data_->time) + " s";
-      return false;
-    }
+  if (!stateIsFinite(*model_, *data_)) {
+    why = "the simulation's state is not finite at " + formatMessage(data_->time) + " s";
+    return false;
   }
   return true;
 }
 
-std::vector<int> CellPhysics::fingerContacts() const {
-  std::vector<int> count(fingers_.size(), 0);
-  for (int c = 0; c < data_->ncon; ++c) {
-    const mjContact& contact = data_->contact[c];
-    const int other = contact.geom1 == part_geom_ ? contact.geom2 : contact.geom2 == part_geom_ ? contact.geom1 : -1;
-    const int finger = other < 0 ? -1 : finger_of_body_[static_cast<std::size_t>(model_->geom_bodyid[other])];
-    if (finger >= 0) ++count[static_cast<std::size_t>(finger)];
-  }
-  return count;
-}
+std::vector<int> CellPhysics::fingerContacts() const { return gripper_->partContacts(*data_); }
 
-int CellPhysics::warnings() const {
-  int n = 0;
-  for (int w = 0; w < mjNWARNING; ++w) n += data_->warning[w].number;
-  return n;
-}
+int CellPhysics::warnings() const { return mujocoWarnings(*data_); }
 
 Eigen::Isometry3d CellPhysics::pose(int body) const {
   Eigen::Isometry3d pose = Eigen::Isometry3d::Identity();

@@ -40,22 +40,13 @@ GraspLiftTrial::GraspLiftTrial(const std::vector<GripperFinger>& fingers, const 
     : fingers_(fingers), model_(loadMjcfText(graspSceneMjcf(fingers, scene, mjcf))), data_(mj_makeData(model_.get())) {
   if (fingers.empty()) throw ParameterError("the grasp scene needs at least one finger");
   mjModel* m = model_.get();
-  driven_.reserve(fingers.size());
-  finger_of_body_.assign(static_cast<std::size_t>(m->nbody), -1);
-  for (std::size_t f = 0; f < fingers.size(); ++f) {
-    twins_.push_back(std::make_unique<FingerModel>(fingers[f].parameters));
-    driven_.emplace_back(*twins_.back(), m, fingers[f].mount.prefix);
-    for (int b = 0; b < m->nbody; ++b) {
-      const char* name = mj_id2name(m, mjOBJ_BODY, b);
-      if (name && std::string(name).rfind(fingers[f].mount.prefix, 0) == 0) finger_of_body_[b] = static_cast<int>(f);
-    }
-  }
   const int lift = requireId(m, mjOBJ_JOINT, kLiftJointName);
   lift_dof_ = m->jnt_dofadr[lift];
   lift_qpos_ = m->jnt_qposadr[lift];
   lift_actuator_ = requireId(m, mjOBJ_ACTUATOR, kLiftJointName);
   object_body_ = requireId(m, mjOBJ_BODY, kSceneObjectName);
   object_geom_ = requireId(m, mjOBJ_GEOM, kSceneObjectName);
+  gripper_ = std::make_unique<DrivenGripper>(fingers, m, object_geom_);
   m->dof_damping[lift_dof_] = 0.0;
   m->dof_armature[lift_dof_] = kCarriageArmatureKg;
   gravity_z_ = m->opt.gravity[2];
@@ -65,7 +56,7 @@ bool GraspLiftTrial::step(double gauge_pa, double z_m, double v_mps, double a_mp
                           std::string& problem) {
   mjModel* m = model_.get();
   mjData* d = data_.get();
-  if (!applySprings(gauge_pa, problem)) return false;
+  if (!gripper_->apply(gauge_pa, *d, held_moments_, problem)) return false;
   m->opt.gravity[2] = gravity ? gravity_z_ : 0.0;
   const int carriage = m->dof_bodyid[lift_dof_];
   d->qpos[lift_qpos_] = z_m;
@@ -73,38 +64,11 @@ bool GraspLiftTrial::step(double gauge_pa, double z_m, double v_mps, double a_mp
   d->ctrl[lift_actuator_] = z_m;
   d->qfrc_applied[lift_dof_] = kCarriageArmatureKg * a_mps2 - m->body_subtreemass[carriage] * m->opt.gravity[2];
   mj_step(m, d);
-  for (int k = 0; k < m->nq; ++k) {
-    if (!std::isfinite(d->qpos[k])) {
-      problem = "the simulation's state is not finite";
-      return false;
-    }
+  if (!stateIsFinite(*m, *d)) {
+    problem = "the simulation's state is not finite";
+    return false;
   }
   return true;
-}
-
-bool GraspLiftTrial::applySprings(double gauge_pa, std::string& problem) {
-  for (PressureDrivenFinger& finger : driven_) {
-    const bool ok = held_moments_ ? finger.applyPressureWithHeldMoments(gauge_pa, *data_, problem)
-                                  : finger.applyPressure(gauge_pa, problem);
-    if (!ok) return false;
-  }
-  return true;
-}
-
-void GraspLiftTrial::readNormalForces(std::vector<double>& force_n) const {
-  const mjModel* m = model_.get();
-  const mjData* d = data_.get();
-  force_n.assign(fingers_.size(), 0.0);
-  for (int c = 0; c < d->ncon; ++c) {
-    const mjContact& contact = d->contact[c];
-    const int other = contact.geom1 == object_geom_ ? contact.geom2 : contact.geom2 == object_geom_ ? contact.geom1 : -1;
-    if (other < 0) continue;
-    const int finger = finger_of_body_[static_cast<std::size_t>(m->geom_bodyid[other])];
-    if (finger < 0) continue;
-    mjtNum wrench[6];
-    mj_contactForce(m, d, c, wrench);
-    force_n[static_cast<std::size_t>(finger)] += wrench[0];  // the contact frame's first axis is the normal
-  }
 }
 
 GraspTrialOutcome GraspLiftTrial::run(double grasp_gauge_pa, const LiftMotion& lift,
@@ -115,9 +79,8 @@ GraspTrialOutcome GraspLiftTrial::run(double grasp_gauge_pa, const LiftMotion& l
   mj_resetData(m, d);
   held_moments_ = settings.held_moments;
   const double dt = m->opt.timestep;
-  const FingerParameters& p = fingers_.front().parameters;
-  const double rate = fillRatePaPerS(settings.flow_m3_per_s, restVolumeM3(p, static_cast<int>(fingers_.size())),
-                                     p.atmospheric_pressure_pa);
+  const double rate = gripperFillRatePaPerS(settings.flow_m3_per_s, fingers_.front().parameters,
+                                            static_cast<int>(fingers_.size()));
   double gauge = 0.0;
   bool ok = true;
   // The fill at the regulator's rate, then the settle: the object floats where the cell would hold it.
@@ -127,7 +90,7 @@ GraspTrialOutcome GraspLiftTrial::run(double grasp_gauge_pa, const LiftMotion& l
   }
   for (double t = 0; ok && t < settings.settle_s; t += dt) ok = step(gauge, 0, 0, 0, false, out.problem);
   for (double t = 0; ok && t < settings.hang_s; t += dt) ok = step(gauge, 0, 0, 0, true, out.problem);
-  readNormalForces(out.finger_normal_force_n);
+  out.finger_normal_force_n = gripper_->partNormalForcesN(*d);
   const double held_below_m = d->qpos[lift_qpos_] - d->xpos[3 * object_body_ + 2];
   const double T = lift.durationS();
   for (double t = 0; ok && t < T + settings.after_s; t += dt) {
@@ -135,8 +98,7 @@ GraspTrialOutcome GraspLiftTrial::run(double grasp_gauge_pa, const LiftMotion& l
     lift.at(t, z, v, a);
     ok = step(gauge, z, v, a, true, out.problem);
   }
-  int warnings = 0;
-  for (int w = 0; w < mjNWARNING; ++w) warnings += d->warning[w].number;
+  const int warnings = mujocoWarnings(*d);
   if (ok && warnings > 0) out.problem = "MuJoCo warned " + std::to_string(warnings) + " times";
   out.slip_m = d->qpos[lift_qpos_] - d->xpos[3 * object_body_ + 2] - held_below_m;
   out.carried = out.problem.empty() && out.slip_m < settings.carried_slip_m;

@@ -16,6 +16,10 @@ double restVolumeM3(const FingerParameters& parameters, int finger_count);
 /// Gauge pressure rise rate of a constant flow (Pa/s): dP/dt = P_o Q / V_o (ideal spring).
 double fillRatePaPerS(double flow_m3_per_s, double rest_volume_m3, double atmospheric_pa);
 
+/// The rate at which @p flow_m3_per_s fills @p finger_count fingers of @p finger's parameters (Pa/s): fillRatePaPerS
+/// over their restVolumeM3, at the finger's atmospheric pressure.
+double gripperFillRatePaPerS(double flow_m3_per_s, const FingerParameters& finger, int finger_count);
+
 /// One step of a regulator that fills (or vents) at @p rate_pa_per_s toward @p setpoint_pa and then holds it.
 double regulatorStep(double gauge_pa, double setpoint_pa, double rate_pa_per_s, double dt_s);
 

@@ -11,6 +11,7 @@
 
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/sim/cell_scene.hpp"
+#include "pneumatic_finger/sim/driven_gripper.hpp"
 #include "pneumatic_finger/sim/mjcf_text.hpp"
 #include "pneumatic_finger/sim/pressure_driven_finger.hpp"
 
@@ -58,11 +59,10 @@ class CellPhysics {
   Eigen::Isometry3d pose(int body) const;
   void dampArm();
 
-  std::vector<std::unique_ptr<FingerModel>> twins_;
   MujocoModelPtr model_;
   MujocoDataPtr data_;
-  std::vector<PressureDrivenFinger> fingers_;
-  std::vector<int> arm_joints_, arm_qpos_, arm_actuators_, finger_of_body_;
+  std::unique_ptr<DrivenGripper> gripper_;
+  std::vector<int> arm_joints_, arm_qpos_, arm_actuators_;
   int part_body_ = -1, part_geom_ = -1, tool_body_ = -1, part_qpos_ = -1, part_dof_ = -1;
   double part_rest_[7] = {};  // the part's free joint at the start: position and quaternion
 };

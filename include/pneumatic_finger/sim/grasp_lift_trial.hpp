@@ -10,6 +10,7 @@
 
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/regulator.hpp"
+#include "pneumatic_finger/sim/driven_gripper.hpp"
 #include "pneumatic_finger/sim/grasp_scene.hpp"
 #include "pneumatic_finger/sim/mjcf_text.hpp"
 #include "pneumatic_finger/sim/pressure_driven_finger.hpp"
@@ -60,15 +61,11 @@ class GraspLiftTrial {
  private:
   // One step with the pressure's springs, the carriage on its path (z, v, a) and gravity on or off. false: a problem.
   bool step(double gauge_pa, double z_m, double v_mps, double a_mps2, bool gravity, std::string& problem);
-  bool applySprings(double gauge_pa, std::string& problem);
-  void readNormalForces(std::vector<double>& force_n) const;
 
   std::vector<GripperFinger> fingers_;
-  std::vector<std::unique_ptr<FingerModel>> twins_;
   MujocoModelPtr model_;
   MujocoDataPtr data_;
-  std::vector<PressureDrivenFinger> driven_;
-  std::vector<int> finger_of_body_;  // per body: the finger it belongs to, or -1
+  std::unique_ptr<DrivenGripper> gripper_;
   int lift_dof_ = -1, lift_qpos_ = -1, lift_actuator_ = -1, object_body_ = -1, object_geom_ = -1;
   double gravity_z_ = 0.0;
   bool held_moments_ = true;  // the run's GraspTrialSettings::held_moments
