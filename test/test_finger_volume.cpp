@@ -241,3 +241,52 @@ TEST(FingerVolume, BadVolumesAreRefusedOrGiveTheRestShape) {
   EXPECT_TRUE(std::isnan(water.evaluateVolume(-1e-6, ws_water).gauge_pa)) << "an incompressible fluid has no vacuum";
   EXPECT_EQ(water.evaluateVolume(0.0, ws_water).gauge_pa, 0.0);
 }
+
+// The inverse for a finger filled by volume: the volume at which the tip reaches an angle, on both sides of the
+// pressure's limit point, against the reference's volume at the stretch whose tip angle was asked for (the reference's
+// bulge through Wang's relation, in quad precision).
+TEST(FingerVolume, TheVolumeForATipAngleIsTheReferencesOnBothSidesOfTheLimitPoint) {
+  for (const auto& [jm, v_g] : {std::pair{0.0, 0.0}, std::pair{50.0, 8e-5}}) {
+    SCOPED_TRACE("J_m " + std::to_string(jm) + ", V_g " + std::to_string(v_g));
+    const pf::FingerModel model(membraneFinger(jm, v_g));
+    const pf::FingerParameters& p = model.parameters();
+    const double turns = 2 * p.chamber_count - 1 + p.base_wall_share;
+    const double limit_delta = reference::membraneLimitStretchExcess({kMu, kThickness, kHeight, jm});
+    int past_limit = 0;
+    // From walls well past their gap (where the half angle is well conditioned in the bulge) to twice the limit.
+    for (double delta = 0.05; delta < 2.0 * limit_delta; delta *= 1.1) {
+      const double tip = turns * reference::halfAngleForBulge(0.5 * kHeight * delta, p.chamber_gap_m[0],
+                                                              p.wall_critical_height_m[0]);
+      double v = 0.0;
+      std::string why;
+      ASSERT_TRUE(model.volumeForTipAngle(tip, 1.0, v, why)) << delta << ": " << why;
+      EXPECT_LT(relativeError(v, referenceMembraneVolume(delta, jm, v_g)), 1e-12) << delta;
+      past_limit += delta > limit_delta;
+    }
+    EXPECT_GT(past_limit, 3) << "angles no pressure holds";
+  }
+  // Below the limit point, and for the paper law, the volume at the pressure's inverse.
+  for (const pf::FingerModel& model : {pf::FingerModel(membraneFinger(50.0, 8e-5)),
+                                       pf::FingerModel(pf::FingerParameters::defaults())}) {
+    double gauge = 0.0, v = 0.0;
+    std::string why;
+    ASSERT_TRUE(model.gaugeForTipAngle(0.5, 1e9, gauge, why)) << why;
+    ASSERT_TRUE(model.volumeForTipAngle(0.5, 1.0, v, why)) << why;
+    EXPECT_LT(relativeError(v, model.suppliedVolumeAt(gauge)), 1e-12);
+  }
+}
+
+TEST(FingerVolume, AVolumeForATipAngleIsRefusedWithItsReason) {
+  const pf::FingerModel snaps(membraneFinger(0.0, 2e-3));  // its volume has a maximum: volume control snaps there
+  double v = 0.0;
+  std::string why;
+  EXPECT_FALSE(snaps.volumeForTipAngle(10.0, 1.0, v, why));
+  EXPECT_NE(why.find("beyond what volume control follows: the most is"), std::string::npos) << why;
+  EXPECT_FALSE(snaps.volumeForTipAngle(-0.1, 1.0, v, why));
+  EXPECT_NE(why.find("is not a finite angle >= 0"), std::string::npos) << why;
+  const pf::FingerModel water(membraneFinger(0.0, 0.0));
+  EXPECT_FALSE(water.volumeForTipAngle(1.0, 1e-9, v, why));
+  EXPECT_NE(why.find("m^3, more than the allowed 1e-09 m^3"), std::string::npos) << why;
+  EXPECT_FALSE(water.volumeForTipAngle(100.0, 1.0, v, why));
+  EXPECT_NE(why.find("beyond the model's limit"), std::string::npos) << why;
+}

@@ -261,7 +261,22 @@ def test_calibration_driven_by_volume_finds_the_gap_past_the_limit_point():
 
 
 MEMBRANE = {"wall_law": "membrane", "shear_modulus_pa": 2e4, "dead_volume_m3": 1e-5}
+
 MEMBRANE_ARGS = ["--set", "wall_law=membrane", "--set", "shear_modulus_pa=2e4", "--set", "dead_volume_m3=1e-5"]
+
+
+def test_volume_for_tip_angle_reaches_past_the_limit_point():
+    model = pf.FingerModel(overrides=MEMBRANE)
+    most = float(model.evaluate(model.limit_gauge_pa * (1 - 1e-9))["tip_angle_rad"])  # the most a pressure holds
+    targets = numpy.array([0.5 * most, 1.5 * most])
+    volume = model.volume_for_tip_angle(targets)
+    assert volume[1] > volume[0] > 0
+    assert model.evaluate_volume(volume, outputs=["tip_angle_rad"])["tip_angle_rad"] == pytest.approx(targets,
+                                                                                                       rel=1e-12)
+    with pytest.raises(ValueError, match="pressure"):
+        model.gauge_for_tip_angle(1.5 * most)  # no pressure holds it: the snap-through lies between
+    with pytest.raises(ValueError, match=r"tip_angle_rad\[1\]: .* more than the allowed"):
+        model.volume_for_tip_angle(targets, max_volume_m3=float(volume[0]) * 1.01)
 
 
 def test_supplied_volume_equals_the_cli_and_is_computed_only_when_asked():

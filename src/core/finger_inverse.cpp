@@ -125,6 +125,37 @@ bool FingerModel::gaugeOnFarBranch(double half_angle_rad, double tip_angle_rad, 
   return true;
 }
 
+bool FingerModel::volumeForTipAngle(double tip_angle_rad, double max_volume_m3, double& volume_m3,
+                                    std::string& message) const {
+  const double turns = 2 * parameters_.chamber_count - 1 + parameters_.base_wall_share;
+  double v = 0.0;
+  if (!volume_by_stretch_ || !(tip_angle_rad > 0.0) || !(tip_angle_rad < turns * kHalfPi)) {
+    double gauge = 0.0;  // the pressure's inverse refuses what no state holds, with its reason
+    if (!gaugeForTipAngle(tip_angle_rad, std::numeric_limits<double>::infinity(), gauge, message)) return false;
+    v = suppliedVolumeAt(gauge);
+  } else {
+    // Identical membrane chambers: Wang's relation inverted gives the bulge, the wall its stretch, and the stretch
+    // the volume, on either side of the limit point.
+    const ChamberGroup& g = groups_[0];
+    const double h = bulgeForHalfAngle(tip_angle_rad / turns, g.chamber_gap_m, g.wall_critical_height_m);
+    const double delta = membraneStretchForBulge(g.membrane, h);
+    if (!(delta < volume_limit_stretch_excess_)) {
+      message = "tip angle " + formatMessage(tip_angle_rad) + " rad lies beyond what volume control follows: the " +
+                "most is " + formatMessage(volumeLimitM3()) + " m^3, past which the finger snaps (or the wall locks)";
+      return false;
+    }
+    v = suppliedVolumeAtStretch(delta);
+  }
+  if (!(v <= max_volume_m3)) {
+    message = "tip angle " + formatMessage(tip_angle_rad) + " rad needs " + formatMessage(v) + " m^3, more than the " +
+              "allowed " + formatMessage(max_volume_m3) + " m^3";
+    return false;
+  }
+  volume_m3 = v;
+  message.clear();
+  return true;
+}
+
 double FingerModel::belowLimitGaugePa() const {
   return std::isfinite(limit_gauge_pa_) ? std::nextafter(limit_gauge_pa_, 0.0) : limit_gauge_pa_;
 }

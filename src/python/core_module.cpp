@@ -24,6 +24,7 @@
 #include "calibrate_module.hpp"
 #include "python_parameters.hpp"
 #include "output_arrays.hpp"
+#include "status_codes.hpp"
 
 namespace py = pybind11;
 namespace pf = pneumatic_finger;
@@ -32,27 +33,6 @@ namespace {
 
 using namespace pneumatic_finger_python;  // NOLINT(build/namespaces): the module's own helpers
 using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
-
-// The status codes' names, indexed by code: pf.STATUS and pf.CONTACT_STATUS in Python.
-const std::vector<const char*> kEvaluationStatus = {
-    pf::evaluationStatusName(pf::EvaluationStatus::kOk), pf::evaluationStatusName(pf::EvaluationStatus::kVacuum),
-    pf::evaluationStatusName(pf::EvaluationStatus::kNotFinite),
-    pf::evaluationStatusName(pf::EvaluationStatus::kSolverFailure),
-    pf::evaluationStatusName(pf::EvaluationStatus::kBeyondLimitPoint),
-    pf::evaluationStatusName(pf::EvaluationStatus::kClamped),
-    pf::evaluationStatusName(pf::EvaluationStatus::kSnappedThrough)};
-const std::vector<const char*> kContactStatus = {"free", "in contact", "overlaps at rest", "solver failure",
-                                                 "beyond limit point"};
-
-std::uint8_t contactStatusCode(pf::ContactState::Status status) {
-  using S = pf::ContactState::Status;
-  return status == S::kFree             ? 0
-         : status == S::kInContact      ? 1
-         : status == S::kOverlapsAtRest ? 2
-         : status == S::kSolverFailure  ? 3
-                                        : 4;
-}
-
 
 // The pressures of a call: a number (scalar: the results drop the pressure axis) or a 1-D sequence.
 // A number or a 1-D array of them (@p name says what, in the message, and @p unit its unit: pressures in Pa by
@@ -241,18 +221,31 @@ class PyFingerModel {
   // The inverse at one tip angle or an array of them (numpy-shaped as evaluate). A tip angle no pressure up to the
   // limit reaches is refused, by its index in an array.
   py::object gaugeForTipAngle(const py::object& tip_angle_rad, const py::object& max_gauge_pa) const {
-    const double limit = max_gauge_pa.is_none() ? range_.max_gauge_pa : max_gauge_pa.cast<double>();
+    return inverse(tip_angle_rad, max_gauge_pa.is_none() ? range_.max_gauge_pa : max_gauge_pa.cast<double>(),
+                   &pf::FingerModel::gaugeForTipAngle);
+  }
+
+  // The supplied volume (m^3) for a tip angle: the inverse of a finger filled by volume (volumeForTipAngle).
+  py::object volumeForTipAngle(const py::object& tip_angle_rad, const py::object& max_volume_m3) const {
+    return inverse(tip_angle_rad, max_volume_m3.is_none() ? INFINITY : max_volume_m3.cast<double>(),
+                   &pf::FingerModel::volumeForTipAngle);
+  }
+
+  // An inverse of the model (@p solve: gaugeForTipAngle, volumeForTipAngle) over a tip angle or an array of them;
+  // ValueError naming the angle it cannot reach and why.
+  template <class Solve>
+  py::object inverse(const py::object& tip_angle_rad, double limit, Solve solve) const {
     bool scalar = false;
     const Array angles = pressures(tip_angle_rad, scalar, "tip_angle_rad");
-    Array gauge(angles.size());
+    Array answer(angles.size());
     for (py::ssize_t i = 0; i < angles.size(); ++i) {
       std::string why;
-      if (!model_->gaugeForTipAngle(angles.data()[i], limit, gauge.mutable_data()[i], why)) {
+      if (!((*model_).*solve)(angles.data()[i], limit, answer.mutable_data()[i], why)) {
         throw py::value_error((scalar ? std::string() : "tip_angle_rad[" + std::to_string(i) + "]: ") + why);
       }
     }
-    if (scalar) return py::float_(gauge.data()[0]);
-    return std::move(gauge);
+    if (scalar) return py::float_(answer.data()[0]);
+    return std::move(answer);
   }
 
   // The finger closing on a disk of the finger's plane (docs/GRASP.md), at one pressure or an array of them; one
@@ -462,6 +455,10 @@ PYBIND11_MODULE(_core, m) {
            py::arg("max_gauge_pa") = py::none(),
            "The gauge pressure (Pa) for a tip angle (rad) or a 1-D array of them; ValueError when none up to "
            "max_gauge_pa (None: the model's)")
+      .def("volume_for_tip_angle", &PyFingerModel::volumeForTipAngle, py::arg("tip_angle_rad"),
+           py::arg("max_volume_m3") = py::none(),
+           "The supplied volume (m^3) for a tip angle (rad) or a 1-D array of them, for a finger filled by volume: past "
+           "the limit point too; ValueError beyond what volume control follows or above max_volume_m3 (None: no cap)")
       .def("contact", &PyFingerModel::contact, py::arg("gauge_pa"), py::arg("disk"), py::arg("outputs") = py::none(),
            py::arg("out") = py::none(),
            "The finger closing on a disk (x_m, y_m, radius_m) of its plane, or one disk per pressure (P, 3): "

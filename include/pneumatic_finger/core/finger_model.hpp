@@ -233,6 +233,14 @@ class FingerModel {
   /// @return false when the angle is negative, not finite, or beyond what any pressure up to @p max_gauge_pa gives
   bool gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, double& gauge_pa, std::string& message) const;
 
+  /// Inverse model for a finger filled by volume: the supplied volume (m^3) at which the tip direction reaches
+  /// @p tip_angle_rad. For identical membrane chambers the volume holds every angle up to volumeLimitM3(), before, at
+  /// and past the pressure's limit point (no snap: under volume control the state is unique); otherwise the volume at
+  /// gaugeForTipAngle's pressure.
+  /// @return false, with @p message saying why, for an angle that is negative, not finite, beyond what volume control
+  ///         follows, or needs more than @p max_volume_m3
+  bool volumeForTipAngle(double tip_angle_rad, double max_volume_m3, double& volume_m3, std::string& message) const;
+
   /// Identical chambers only: the gauge pressure (Pa) at which every wall's half angle is @p half_angle_rad (> 0),
   /// in closed form. False for unequal chambers, or an angle no pressure gives.
   bool gaugeForHalfAngle(double half_angle_rad, double& gauge_pa) const;
