@@ -401,7 +401,11 @@ void defineVolume(py::class_<PyFingerModel>& c) {
       .def_property_readonly("volume_limit_m3", &PyFingerModel::volumeLimitM3,
                              "the largest supplied volume (m^3) evaluate_volume follows: inf where the volume sets the "
                              "shape without end; finite with a large dead gas volume (the gas snaps the finger) or a "
-                             "Gent wall's lock");
+                             "Gent wall's lock")
+      .def("volume_for_tip_angle", &PyFingerModel::volumeForTipAngle, py::arg("tip_angle_rad"),
+           py::arg("max_volume_m3") = py::none(),
+           "The supplied volume (m^3) for a tip angle (rad) or a 1-D array of them, for a finger filled by volume: past "
+           "the limit point too; ValueError beyond what volume control follows or above max_volume_m3 (None: no cap)");
 }
 
 PYBIND11_MODULE(_core, m) {
@@ -455,10 +459,6 @@ PYBIND11_MODULE(_core, m) {
            py::arg("max_gauge_pa") = py::none(),
            "The gauge pressure (Pa) for a tip angle (rad) or a 1-D array of them; ValueError when none up to "
            "max_gauge_pa (None: the model's)")
-      .def("volume_for_tip_angle", &PyFingerModel::volumeForTipAngle, py::arg("tip_angle_rad"),
-           py::arg("max_volume_m3") = py::none(),
-           "The supplied volume (m^3) for a tip angle (rad) or a 1-D array of them, for a finger filled by volume: past "
-           "the limit point too; ValueError beyond what volume control follows or above max_volume_m3 (None: no cap)")
       .def("contact", &PyFingerModel::contact, py::arg("gauge_pa"), py::arg("disk"), py::arg("outputs") = py::none(),
            py::arg("out") = py::none(),
            "The finger closing on a disk (x_m, y_m, radius_m) of its plane, or one disk per pressure (P, 3): "
