@@ -55,8 +55,8 @@ void FingerModel::buildVolumeModel() {
     const double slope_end = std::pow(v_g * wall.decay_scale_pa / (3.0 * volume_coefficient_[0] * p_o), 0.25) - 1.0;
     if (!std::isfinite(end)) end = 1.01 * std::max(slope_end, wall.limit_stretch_excess);
     const auto slope = [this, &wall, v_g, p_o](double d) {
-      const double p = membraneGaugeForStretchExcess(wall, d);
-      const double dp = p * membraneLogSlope(wall, d);
+      double p = 0.0, dp = 0.0;
+      membraneGaugeAndSlope(wall, d, p, dp);
       return volume_coefficient_[0] * membraneVolumeGrowthSlope(d) + v_g * p_o * dp / ((p_o + p) * (p_o + p));
     };
     if (std::isfinite(wall.limit_stretch_excess)) {

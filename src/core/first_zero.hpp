@@ -9,8 +9,6 @@
 
 namespace pneumatic_finger {
 
-inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
-
 /// Bisection to the last bit of a sign change of f on [lo, hi] (f(lo) and f(hi) of opposite signs). Returns the end
 /// on lo's side.
 template <class F>
@@ -73,7 +71,7 @@ double increasingNewtonRoot(FDF&& fdf, double target, double lo, double hi, doub
     if (!(next > lo && next < hi)) return x;  // lo and hi are neighbours
     const double step = std::fabs(next - x);
     const double curvature =
-        std::isnan(prev_x) || prev_x == x ? kInfinity : std::fabs((df - prev_df) / (x - prev_x)) / (2.0 * df);
+        std::isnan(prev_x) || prev_x == x ? std::numeric_limits<double>::infinity() : std::fabs((df - prev_df) / (x - prev_x)) / (2.0 * df);
     if (newton && curvature * step * step <= 1e-17 * std::fabs(next)) return next;
     prev_x = x;
     prev_df = df;

@@ -142,18 +142,6 @@ double membraneGaugeForStretchExcess(const MembraneWall& w, double d) {
   return room > 0.0 ? neo_hookean * (w.locking_jm / room) : kInf;
 }
 
-double membraneLogSlope(const MembraneWall& w, double d) {
-  if (w.thick) return thickGaugeSlope(w, d) / thickGaugeForStretchExcess(w, d);
-  // d ln P / d lambda = (7 - lambda^6) / (lambda (lambda^6 - 1)) + e'(lambda) / (J_m - e), e' = 4 (lambda^6 - 1)/lambda^5.
-  const double lam = 1.0 + d, u = sixthPowerMinusOne(d);
-  double slope = (6.0 - u) / (lam * u);
-  if (w.locking_jm != 0.0) {
-    const double lam5 = lam * lam * lam * lam * lam;
-    slope += 4.0 * u / (lam5 * (w.locking_jm - firstInvariantExcess(d)));
-  }
-  return slope;
-}
-
 void membraneGaugeAndSlope(const MembraneWall& w, double delta, double& gauge_pa, double& slope_pa) {
   if (!w.thick) return thinGaugeAndSlope(w, delta, gauge_pa, slope_pa);
   gauge_pa = thickGaugeForStretchExcess(w, delta);
@@ -162,29 +150,18 @@ void membraneGaugeAndSlope(const MembraneWall& w, double delta, double& gauge_pa
 
 namespace {
 
-// The stretch excess where P = gauge_pa on a rising stretch of the law, bracketed by [lo, hi] (hi may be +inf), from
-// the guess d: Newton steps in ln P, kept inside the bracket, halving it where a step would leave it; they stop when
-// a step is below 2e-16 relative.
-double risingStretchExcess(const MembraneWall& w, double gauge_pa, double lo, double hi, double d) {
-  for (int i = 0; i < 200; ++i) {
-    const double p = membraneGaugeForStretchExcess(w, d);
-    if (p == gauge_pa) return d;
-    (p < gauge_pa ? lo : hi) = d;
-    // Newton in ln P: ln P is concave enough near the limit that the step stays on the bracket's inside.
-    // (The thick wall's slope over the p in hand: its membraneLogSlope would integrate p again.)
-    const double log_slope = w.thick ? thickGaugeSlope(w, d) / p : membraneLogSlope(w, d);
-    double next = d - (std::log(p) - std::log(gauge_pa)) / log_slope;
-    if (!(next > lo && next < hi)) next = std::isfinite(hi) ? 0.5 * (lo + hi) : 2.0 * d;
-    if (std::fabs(next - d) <= 2e-16 * d) return next;
-    d = next;
-  }
-  return d;
+// The stretch excess where P = gauge_pa on a rising part of the law, bracketed by (lo, hi), from @p start: Newton
+// steps on P with P and dP/ddelta together (increasingNewtonRoot); @p known_delta and @p known_slope_pa as there.
+double risingStretchExcess(const MembraneWall& w, double gauge_pa, double lo, double hi, double start,
+                           double known_delta = std::numeric_limits<double>::quiet_NaN(), double known_slope_pa = 0.0) {
+  return increasingNewtonRoot([&w](double x, double& g, double& slope) { membraneGaugeAndSlope(w, x, g, slope); },
+                              gauge_pa, lo, hi, start, known_delta, known_slope_pa);
 }
 
-// The thin membrane's rising branch from its table: the node interval that holds @p gauge_pa brackets the root, and
+// The rising branch from the wall's table: the node interval that holds @p gauge_pa brackets the root, and
 // the inverse's cubic Hermite interpolation there (d delta/dP = 1/slope at both nodes; linear where a node's slope
-// is 0 or infinite: the limit point, the lock) starts Newton steps on P itself (increasingNewtonRoot), within 1e-4 or
-// so of the root, so that two or three steps reach it.
+// is 0 or infinite: the limit point, the lock) starts the Newton steps within 1e-5 or so of the root, so that two
+// or three steps reach it.
 double tabulatedStretchExcess(const MembraneWall& w, double gauge_pa) {
   const auto& p = w.guess_gauge_pa;
   const auto i = static_cast<std::size_t>(std::upper_bound(p.begin(), p.end(), gauge_pa) - p.begin()) - 1;
@@ -196,8 +173,7 @@ double tabulatedStretchExcess(const MembraneWall& w, double gauge_pa) {
     const double t2 = t * t, t3 = t2 * t;
     d = (2 * t3 - 3 * t2 + 1) * lo + (t3 - 2 * t2 + t) * dp / s0 + (3 * t2 - 2 * t3) * hi + (t3 - t2) * dp / s1;
   }
-  return increasingNewtonRoot([&w](double x, double& g, double& slope) { membraneGaugeAndSlope(w, x, g, slope); },
-                              gauge_pa, lo, hi, d, lo, s0);
+  return risingStretchExcess(w, gauge_pa, lo, hi, d, lo, s0);
 }
 
 }  // namespace
@@ -206,13 +182,11 @@ double membraneStretchExcess(const MembraneWall& w, double gauge_pa) {
   if (!(gauge_pa >= 0.0) || !(gauge_pa < w.limit_gauge_pa)) return std::numeric_limits<double>::quiet_NaN();
   if (gauge_pa == 0.0) return 0.0;
   if (w.has_guess) return tabulatedStretchExcess(w, gauge_pa);
-  // P rises on [0, limit] (on [0, lock) without a limit). Near rest P = 6 (4 mu t/L) delta (1 + O(delta)), the
-  // first guess.
-  const double hi = std::isfinite(w.limit_stretch_excess) ? w.limit_stretch_excess : w.locking_stretch_excess;
-  // (The thick wall's P ~ 6 mu (1 - (A/B)^3) delta near rest: the same guess is a start, not an answer.)
-  double d = gauge_pa / (6.0 * (w.thick ? w.pressure_scale_pa * (1.0 - w.inner_outer_volume_ratio) : w.pressure_scale_pa));
-  if (!(d < hi)) d = std::isfinite(hi) ? 0.5 * hi : 1.0;
-  return risingStretchExcess(w, gauge_pa, 0.0, hi, d);
+  // No table: P rises without a limit or a lock (a thick Neo-Hookean wall whose maximum, if any, lies beyond the
+  // search's end). Bracket the root by doubling, then the same Newton steps.
+  double hi = 1.0;
+  for (int i = 0; i < 64 && membraneGaugeForStretchExcess(w, hi) < gauge_pa; ++i) hi *= 2.0;
+  return risingStretchExcess(w, gauge_pa, 0.0, hi, 0.5 * hi);
 }
 
 double membraneFarStretchExcess(const MembraneWall& w, double gauge_pa) {

@@ -69,9 +69,6 @@ double membraneGaugeForStretchExcess(const MembraneWall& wall, double delta);
 /// for both at or beyond the lock.
 void membraneGaugeAndSlope(const MembraneWall& wall, double delta, double& gauge_pa, double& slope_pa);
 
-/// d ln P / d delta at @p delta > 0 (the Newton step's slope; the limit point is its zero).
-double membraneLogSlope(const MembraneWall& wall, double delta);
-
 /// The stretch excess on the rising branch for @p gauge_pa in [0, limit_gauge_pa): safeguarded Newton steps on P,
 /// bracketed by [0, limit_stretch_excess]. NaN for a pressure at or beyond the limit point, negative or NaN.
 double membraneStretchExcess(const MembraneWall& wall, double gauge_pa);
