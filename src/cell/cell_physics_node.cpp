@@ -125,11 +125,14 @@ class CellPhysicsNode {
   // The sequencer's poses come at its publish rate (50 Hz): the engine's targets move from one to the next over the
   // period between them, so that the arm's servos are not jolted at every message (a step in the target is a spike
   // of acceleration that shakes a held part loose).
-  std::vector<double> targetAt(const ros::Time& t) const {
+  // (Written into a member: the engine asks at every step, 1 kHz, and a heap vector each time is waste.)
+  const std::vector<double>& targetAt(const ros::Time& t) {
     const double u = std::clamp((t - target_t0_).toSec() / target_period_s_, 0.0, 1.0);
-    std::vector<double> q(target_to_.size());
-    for (std::size_t j = 0; j < q.size(); ++j) q[j] = target_from_[j] + u * (target_to_[j] - target_from_[j]);
-    return q;
+    interpolated_.resize(target_to_.size());
+    for (std::size_t j = 0; j < interpolated_.size(); ++j) {
+      interpolated_[j] = target_from_[j] + u * (target_to_[j] - target_from_[j]);
+    }
+    return interpolated_;
   }
 
   // And they pass a critically damped second-order filter (kTargetFilterHz): the corners of the piecewise-linear path
@@ -168,6 +171,7 @@ class CellPhysicsNode {
   long cycles_ = 0;  // completed, as cell/cycles says
   bool arm_placed_ = false;
   std::vector<double> target_from_, target_to_;  // the arm's targets move from one pose to the next
+  std::vector<double> interpolated_;              // targetAt's answer
   ros::Time target_t0_;
   double target_period_s_ = 0.02;
   std::vector<double> filtered_, filtered_rate_;  // the targets after the filter, and their rates
