@@ -95,6 +95,45 @@ TEST(CalibrationByVolume, RecoversTheDeadGasFromThePressureAgainstTheVolume) {
   }
 }
 
+// Bends and pressures against volume together (tip_angle+gauge_pa): with an incompressible fill the bends alone say
+// nothing of the modulus (refused below), the pressures alone little of the gap; the two together give both back.
+TEST(CalibrationByVolume, FitsTheBendsAndThePressureTogether) {
+  const pf::FingerParameters truth = pf_test::membraneFinger(20.0, "chamber_gap_m: 1e-3\n");
+  std::vector<pf::Measurement> rows = filledByVolume(truth, 1.5, true);
+  pf::Measurement rest;  // a row at rest: measured at zero pressure, it has no relative error and gives its bend
+  rest.line = 9;
+  rest.supplied_volume_m3 = 0.0;
+  rest.gauge_pa = 0.0;
+  rest.tip_angle_rad = 0.0;
+  rows.push_back(rest);
+  pf::driveByVolume(rows);
+  pf::FingerParameters start = truth;
+  start.shear_modulus_pa.assign(start.shear_modulus_pa.size(), 4e4);
+  start.chamber_gap_m.assign(start.chamber_gap_m.size(), 0.0);
+  const pf::CalibrationResult fit =
+      pf::calibrate(start, {"shear_modulus_pa", "chamber_gap_m"}, rows, pf::CalibrationObjective::kLeastSquares,
+                    pf::CalibrationQuantity::kTipAngleAndGauge);
+  EXPECT_NEAR(fit.values[0], 2e4, 2e4 * 1e-6);
+  EXPECT_NEAR(fit.values[1], 1e-3, 1e-3 * 1e-6);
+  for (const pf::Residual& r : fit.residuals) {
+    const std::vector<double> terms = r.terms(pf::CalibrationQuantity::kTipAngleAndGauge);
+    ASSERT_EQ(terms.size(), r.measured_gauge_pa == 0.0 ? 1U : 2U) << r.supplied_volume_m3;
+    EXPECT_EQ(terms[0], r.tip_angle_error_rad());
+    if (terms.size() == 2) EXPECT_EQ(terms[1], (r.model_gauge_pa - r.measured_gauge_pa) / r.measured_gauge_pa);
+    EXPECT_NEAR(r.tip_angle_error_rad(), 0.0, 1e-9);
+    EXPECT_NEAR(r.gauge_error_pa(), 0.0, 1e-6 * truth.shear_modulus_pa[0]);
+  }
+  std::vector<pf::Measurement> by_pressure = rows;
+  pf::driveByVolume(by_pressure, false);  // every row but the rest has its pressure
+  EXPECT_EQ(refusal([&] {
+              pf::calibrate(start, {"chamber_gap_m"}, by_pressure, pf::CalibrationObjective::kMinimax,
+                            pf::CalibrationQuantity::kTipAngleAndGauge);
+            }),
+            "'tip_angle+gauge_pa' compares the model's pressure at each row's supplied volume with the measured one: "
+            "drive the rows by volume (--drive volume, drive=\"volume\")");
+  EXPECT_EQ(pf::parseQuantity("tip_angle+gauge_pa"), pf::CalibrationQuantity::kTipAngleAndGauge);
+}
+
 TEST(CalibrationByVolume, ReadsTheVolumeColumnWithOrWithoutThePressure) {
   const pf::MeasurementSet both =
       pf::parseMeasurementSet("gauge_pa,supplied_volume_m3,tip_angle_rad\n1000,1e-6,0.1\n2000,2e-6,0.2\n", "m.csv", 2);

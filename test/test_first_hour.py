@@ -216,6 +216,8 @@ def test_the_calibration_walkthrough_runs_as_written():
     # The ribbed segment filled by volume: its bends within 2.0 deg, and then its drive's gas.
     assert "largest |error|: tip angle 0.035266 rad (2.021 deg), pressure 10726 Pa" in out, out
     assert "# fitted: dead_volume_m3 = 0.000135" in out, out
+    # Both together: the bends within 2.5 deg, the pressure 38 % off at worst.
+    assert "largest |error|: tip angle 0.044032 rad (2.523 deg), pressure 12452 Pa (largest relative 38.4 %)" in out, out
     # The node published the file's bar at 147 kPa (147108 Pa gauge): about the third row's, 0.00242741 m.
     lines = out.splitlines()
     bar = float(lines[lines.index("---") - 1])

@@ -258,6 +258,13 @@ def test_calibration_driven_by_volume_finds_the_gap_past_the_limit_point():
         pf.calibrate(data, ["chamber_gap_m"], overrides=truth, compare="tip_angle", drive="pressure")
     with pytest.raises(ValueError, match="the volume alone sets the shape"):
         pf.calibrate(data, ["shear_modulus_pa"], overrides=truth, compare="tip_angle")
+    # With the pressures beside the bends, the modulus is in the data again: both together give it back.
+    both = {**data, "gauge_pa": made["gauge_pa"]}
+    fit = pf.calibrate(both, ["shear_modulus_pa", "chamber_gap_m"], compare="tip_angle+gauge_pa", drive="volume",
+                       overrides={**truth, "shear_modulus_pa": 4e4, "chamber_gap_m": 0.0}, objective="least_squares")
+    assert fit["compared"] == "tip_angle+gauge_pa"
+    assert fit["fitted"]["shear_modulus_pa"] == pytest.approx(2e4, rel=1e-6)
+    assert fit["fitted"]["chamber_gap_m"] == pytest.approx(1e-3, rel=1e-6)
 
 
 MEMBRANE = {"wall_law": "membrane", "shear_modulus_pa": 2e4, "dead_volume_m3": 1e-5}

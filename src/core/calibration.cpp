@@ -26,11 +26,12 @@ const char* objectiveName(CalibrationObjective objective) {
 CalibrationQuantity parseQuantity(const std::string& name) {
   for (CalibrationQuantity q : {CalibrationQuantity::kOuterAverage, CalibrationQuantity::kEveryJoint,
                                 CalibrationQuantity::kFirstJoint, CalibrationQuantity::kTipAngle,
-                                CalibrationQuantity::kTipPosition, CalibrationQuantity::kGauge}) {
+                                CalibrationQuantity::kTipPosition, CalibrationQuantity::kGauge,
+                                CalibrationQuantity::kTipAngleAndGauge}) {
     if (name == quantityName(q)) return q;
   }
   throw ParameterError("unknown quantity '" + name + "'; known: average, joints, joint_1, tip_angle, tip_position, "
-                       "gauge_pa");
+                       "gauge_pa, tip_angle+gauge_pa");
 }
 
 const char* quantityName(CalibrationQuantity quantity) {
@@ -41,6 +42,7 @@ const char* quantityName(CalibrationQuantity quantity) {
     case CalibrationQuantity::kTipAngle: return "tip_angle";
     case CalibrationQuantity::kTipPosition: return "tip_position";
     case CalibrationQuantity::kGauge: return "gauge_pa";
+    case CalibrationQuantity::kTipAngleAndGauge: return "tip_angle+gauge_pa";
   }
   return "average";
 }
@@ -73,6 +75,10 @@ std::vector<double> Residual::terms(CalibrationQuantity quantity) const {
     case CalibrationQuantity::kTipAngle: return {tip_angle_error_rad()};
     case CalibrationQuantity::kTipPosition: return {tip_position_error_m()};
     case CalibrationQuantity::kGauge: return {gauge_error_pa()};
+    case CalibrationQuantity::kTipAngleAndGauge:
+      // One radian of bend weighs as the whole pressure: a scale both errors share, with no unit to choose.
+      if (measured_gauge_pa == 0.0) return {tip_angle_error_rad()};
+      return {tip_angle_error_rad(), gauge_relative_error()};
   }
   return {};
 }
@@ -205,9 +211,11 @@ namespace {
 void checkTheDrive(const FingerParameters& base, const std::vector<std::string>& keys,
                    const std::vector<Measurement>& data, CalibrationQuantity quantity) {
   const bool by_volume = !data.empty() && data.front().driven_by_volume;
-  if (!by_volume && quantity == CalibrationQuantity::kGauge) {
-    throw ParameterError("'gauge_pa' compares the model's pressure at each row's supplied volume with the measured "
-                         "one: drive the rows by volume (--drive volume, drive=\"volume\")");
+  const bool pressure = quantity == CalibrationQuantity::kGauge || quantity == CalibrationQuantity::kTipAngleAndGauge;
+  if (!by_volume && pressure) {
+    throw ParameterError(std::string("'") + quantityName(quantity) + "' compares the model's pressure at each row's "
+                         "supplied volume with the measured one: drive the rows by volume (--drive volume, "
+                         "drive=\"volume\")");
   }
   if (!by_volume && std::count(keys.begin(), keys.end(), "dead_volume_m3") > 0) {
     throw ParameterError("dead_volume_m3 takes no part in a finger set by its pressure: drive the rows by volume "
@@ -217,7 +225,7 @@ void checkTheDrive(const FingerParameters& base, const std::vector<std::string>&
   // stiffness, which sets only the pressure (docs/MODEL.md, "Volume").
   const bool incompressible = base.dead_volume_m3 == 0.0 && std::count(keys.begin(), keys.end(), "dead_volume_m3") == 0;
   for (const char* pressure_only : {"shear_modulus_pa", "wall_locking_jm"}) {
-    if (by_volume && incompressible && quantity != CalibrationQuantity::kGauge &&
+    if (by_volume && incompressible && !pressure &&
         std::count(keys.begin(), keys.end(), pressure_only) > 0) {
       throw ParameterError(std::string(pressure_only) + " cannot be fitted to shapes set by the volume of an "
                            "incompressible fluid (dead_volume_m3 = 0): the volume alone sets the shape, the modulus "
@@ -225,7 +233,7 @@ void checkTheDrive(const FingerParameters& base, const std::vector<std::string>&
     }
   }
   for (const auto& m : data) {
-    if (quantity == CalibrationQuantity::kGauge && !m.hasGauge()) {
+    if (pressure && !m.hasGauge()) {
       throw ParameterError("line " + std::to_string(m.line) + ": no gauge_pa to compare the model's pressure with");
     }
   }
@@ -253,15 +261,16 @@ void checkKeysAndData(const FingerParameters& base, const std::vector<std::strin
   checkTheDrive(base, keys, data, quantity);
   for (const auto& m : data) {
     if (quantity == CalibrationQuantity::kGauge) continue;  // checkTheDrive saw to it
+    const bool angle = quantity == CalibrationQuantity::kTipAngle || quantity == CalibrationQuantity::kTipAngleAndGauge;
     const bool has = uses_joints ? m.hasJoints()
-                     : quantity == CalibrationQuantity::kTipAngle ? m.hasTipAngle() || m.hasJoints()
-                                                                   : m.hasTipPosition() || m.hasJoints();
+                     : angle     ? m.hasTipAngle() || m.hasJoints()
+                                 : m.hasTipPosition() || m.hasJoints();
     if (!has) {
       throw ParameterError("line " + std::to_string(m.line) + ": no measurement for '" + quantityName(quantity) +
                            "' (columns " +
-                           (uses_joints ? "joint_1_rad..joint_N_rad" : quantity == CalibrationQuantity::kTipAngle
-                                                                         ? "tip_angle_rad or the joints"
-                                                                         : "tip_x_m,tip_y_m or the joints") +
+                           (uses_joints ? "joint_1_rad..joint_N_rad"
+                            : angle     ? "tip_angle_rad or the joints"
+                                        : "tip_x_m,tip_y_m or the joints") +
                            ")");
     }
     if (m.hasJoints() && m.joint_rad.size() != static_cast<std::size_t>(base.chamber_count)) {
@@ -293,7 +302,8 @@ void refuseWhatTheDataCannotTell(const std::vector<std::string>& keys, std::size
                          "'joints' instead)");
   }
   if (share && keys.size() > 1 &&
-      (quantity == CalibrationQuantity::kTipAngle || quantity == CalibrationQuantity::kTipPosition)) {
+      (quantity == CalibrationQuantity::kTipAngle || quantity == CalibrationQuantity::kTipPosition ||
+       quantity == CalibrationQuantity::kTipAngleAndGauge)) {
     throw ParameterError("base_wall_share cannot be fitted with other keys to tip data alone: the tip cannot tell "
                          "the base face's share of the bending from the chambers' (measure the joints, or fit it "
                          "alone)");

@@ -46,14 +46,15 @@ std::string cell(double v, const char* format, int width) {
 
 // One table of errors (model - measured), in the data's own units: every joint, the joints 2..N average and the tip
 // angle (rad), the tip position (m), and for rows set by volume their volume and the pressure's error (Pa). Also
-// returns the largest |error| of each kind in @p worst (joint, average, tip angle, tip position, pressure).
-std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_volume, std::array<double, 5>& worst) {
+// returns the largest |error| of each kind in @p worst (joint, average, tip angle, tip position, pressure, and the
+// pressure's relative error where it was measured above zero).
+std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_volume, std::array<double, 6>& worst) {
   std::ostringstream t;
   t << "# " << (by_volume ? pad("volume_m3", 11) : "") << pad("gauge_pa", 10);
   for (int k = 1; k <= n; ++k) t << pad("joint_" + std::to_string(k), 9);
   t << pad("avg_2.." + std::to_string(n), 10) << pad("tip_angle", 10) << pad("tip_m", 9)
     << (by_volume ? pad("gauge_err_pa", 13) : "") << "\n";
-  worst = {0, 0, 0, 0, 0};
+  worst = {0, 0, 0, 0, 0, 0};
   auto keep = [](double& w, double e) {
     if (!std::isnan(e)) w = std::max(w, std::fabs(e));
   };
@@ -69,6 +70,7 @@ std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_vol
     keep(worst[2], r.tip_angle_error_rad());
     keep(worst[3], r.tip_position_error_m());
     keep(worst[4], r.gauge_error_pa());
+    keep(worst[5], r.measured_gauge_pa != 0.0 ? r.gauge_relative_error() : NAN);
     t << cell(r.error_rad(), "%*.4f", 10) << cell(r.tip_angle_error_rad(), "%*.4f", 10)
       << cell(r.tip_position_error_m(), "%*.5f", 9) << (by_volume ? cell(r.gauge_error_pa(), "%*.0f", 13) : "")
       << "\n";
@@ -80,7 +82,7 @@ std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_vol
 std::string angle(double rad) { return pf::formatMessage(rad) + " rad (" + fmt("%.3f", rad * kDeg) + " deg)"; }
 std::string length(double m) { return pf::formatMessage(m) + " m (" + fmt("%.3f", m * 1e3) + " mm)"; }
 
-std::string largest(const std::array<double, 5>& w, int n, bool paper) {
+std::string largest(const std::array<double, 6>& w, int n, bool paper) {
   std::vector<std::string> parts;
   if (w[0] > 0) parts.push_back("joints " + angle(w[0]));
   if (w[1] > 0) {
@@ -89,7 +91,9 @@ std::string largest(const std::array<double, 5>& w, int n, bool paper) {
   }
   if (w[2] > 0) parts.push_back("tip angle " + angle(w[2]));
   if (w[3] > 0) parts.push_back("tip position " + length(w[3]));
-  if (w[4] > 0) parts.push_back("pressure " + fmt("%.0f", w[4]) + " Pa");
+  if (w[4] > 0) {
+    parts.push_back("pressure " + fmt("%.0f", w[4]) + " Pa (largest relative " + fmt("%.1f", 100.0 * w[5]) + " %)");
+  }
   std::string s;
   for (const std::string& p : parts) s += (s.empty() ? " " : ", ") + p;
   return s;
@@ -146,7 +150,7 @@ std::string report(const std::string& data_name, bool paper_data, std::size_t ro
         << "; objective: " << pf::objectiveName(run.objective) << "; error = model - measured\n# fitted:";
   for (std::size_t i = 0; i < fit.keys.size(); ++i) table << " " << fit.keys[i] << " = " << pf::formatExact(fit.values[i]);
   table << uncertaintyLines(run);
-  std::array<double, 5> worst{}, worst_loo{};
+  std::array<double, 6> worst{}, worst_loo{};
   const bool by_volume = run.by_volume;
   const std::string fit_table = errorTable(fit.residuals, n, by_volume, worst);
   const std::string loo_table = errorTable(run.best().leave_one_out, n, by_volume, worst_loo);
@@ -157,9 +161,29 @@ std::string report(const std::string& data_name, bool paper_data, std::size_t ro
   return table.str();
 }
 
+// The largest and the root-mean-square relative error of the pressure over @p rows measured above zero (%).
+std::string relativeSummary(const std::vector<pf::Residual>& rows) {
+  double worst = 0.0, sum_sq = 0.0;
+  int count = 0;
+  for (const pf::Residual& r : rows) {
+    if (r.measured_gauge_pa == 0.0) continue;
+    const double e = r.gauge_relative_error();
+    if (std::isnan(e)) return "no pressure at some row (beyond the limit point)";
+    worst = std::max(worst, std::fabs(e));
+    sum_sq += e * e;
+    ++count;
+  }
+  return "largest " + fmt("%.1f", 100.0 * worst) + " %, rms " + fmt("%.1f", 100.0 * std::sqrt(sum_sq / std::max(count, 1))) +
+         " %";
+}
+
 // The largest and the root-mean-square |term| of @p rows, in rad (m for the tip position); "no shape" where a row
 // has none (beyond the limit point).
 std::string errorSummary(const std::vector<pf::Residual>& rows, pf::CalibrationQuantity quantity) {
+  if (quantity == pf::CalibrationQuantity::kTipAngleAndGauge) {  // each in its own unit
+    return "bend " + errorSummary(rows, pf::CalibrationQuantity::kTipAngle) + "; pressure " +
+           relativeSummary(rows);
+  }
   const bool metres = quantity == pf::CalibrationQuantity::kTipPosition;
   const bool pascals = quantity == pf::CalibrationQuantity::kGauge;
   double worst = 0.0, sum_sq = 0.0;
@@ -212,8 +236,10 @@ int main(int argc, char** argv) {
   app.add_option("--compare", compare,
                  "what the fit compares: joints (with base_wall_share: the chamber keys to the joints 2..N average, "
                  "then base_wall_share to joint 1), average (of joints 2..N, the paper's measure), joint_1, tip_angle, "
-                 "tip_position or gauge_pa (the pressure at each row's volume, with --drive volume); default: joints "
-                 "if the file has them, else tip_position, else tip_angle");
+                 "tip_position, gauge_pa (the pressure at each row's volume, with --drive volume) or "
+                 "tip_angle+gauge_pa (both, with --drive volume: the tip angle's error in rad and the pressure's "
+                 "relative error, 1 deg of bend weighing as 1.75 % of the pressure); default: joints if the file has "
+                 "them, else tip_position, else tip_angle");
   app.add_option("--fit", fit_keys,
                  "one to three parameter keys to fit, comma-separated; default: shear_modulus_pa,chamber_gap_m and, "
                  "when every joint is compared, base_wall_share (joint_1: base_wall_share alone)");

@@ -104,9 +104,12 @@ enum class CalibrationQuantity {
   kTipPosition,   ///< "tip_position": the distance of the model's tip from the measured one (m)
   kGauge,         ///< "gauge_pa": the model's pressure at the row's supplied volume against the measured (Pa); needs
                   ///< rows driven by volume with gauge_pa measured
+  kTipAngleAndGauge,  ///< "tip_angle+gauge_pa": both at once, rows driven by volume: the tip angle's error (rad) and
+                      ///< the pressure's relative error (model/measured - 1), so that 1 degree of bend weighs as
+                      ///< 1.75 % of the pressure; a row measured at zero pressure gives its bend alone
 };
 
-/// "average", "joints", "joint_1", "tip_angle", "tip_position" or "gauge_pa". @throws ParameterError for anything else.
+/// "average", "joints", "joint_1", "tip_angle", "tip_position", "gauge_pa" or "tip_angle+gauge_pa". @throws ParameterError for anything else.
 CalibrationQuantity parseQuantity(const std::string& name);
 const char* quantityName(CalibrationQuantity quantity);
 
@@ -142,10 +145,13 @@ struct Residual {
   double joint1_error_rad() const { return model_joint1_rad - measured_joint1_rad; }
   double tip_angle_error_rad() const { return model_tip_angle_rad - measured_tip_angle_rad; }
   double gauge_error_pa() const { return model_gauge_pa - measured_gauge_pa; }
+  /// model/measured - 1 (NaN where the model has no pressure; not defined at a measured zero)
+  double gauge_relative_error() const { return gauge_error_pa() / measured_gauge_pa; }
   double tip_position_error_m() const {
     return std::hypot(model_tip_x_m - measured_tip_x_m, model_tip_y_m - measured_tip_y_m);
   }
-  /// The numbers a fit over @p quantity compares for this row (rad, or m for the tip position).
+  /// The numbers a fit over @p quantity compares for this row (rad, m for the tip position, Pa for the pressure; the
+  /// tip angle and the pressure's relative error for kTipAngleAndGauge).
   std::vector<double> terms(CalibrationQuantity quantity) const;
 };
 
