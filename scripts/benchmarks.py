@@ -321,7 +321,8 @@ rest to 0.99 of the limit point, one at a time; the volume input at the volumes 
 rising branch starts from a table of P(δ) its wall builds once (33 Chebyshev nodes, inverse cubic Hermite), then
 Newton steps on P with P and dP/dδ together (`src/core/membrane_wall.cpp`, `increasingNewtonRoot` in
 `src/core/first_zero.hpp`); the volume is closed-form for an incompressible fill and Newton on V_s(δ) with a gas.
-The thick wall's P is an integral (its Gent form has no closed one), which it pays two or three times per solve.
+The thick wall's Gent P is a closed form of logarithms and an arctangent per evaluation (the partial fractions of
+docs/MODEL.md, "The thick wall"), with the outer face's stretch, a cube root, beside it; a solve pays for two or three.
 
 | law | ns | × paper law | largest error |
 |---|---|---|---|
@@ -409,7 +410,7 @@ Each verdict is computed by `scripts/benchmarks.py` from the figures above; the 
 - **The membrane and thick-wall laws within {TARGET_LAW_RATIO:.0f}× the paper law's evaluation:** membrane
   {verdict(membrane_ns <= TARGET_LAW_RATIO * robust_ns)}: {membrane_ns:.0f} ns, {membrane_ns / robust_ns:.2f}× the
   {robust_ns:.0f} ns of the same run; thick wall {verdict(thick_ns <= TARGET_LAW_RATIO * robust_ns)}: {thick_ns:.0f} ns,
-  {thick_ns / robust_ns:.1f}× (an integral per pressure evaluation). **The volume input within
+  {thick_ns / robust_ns:.1f}× (six logarithms, an arctangent and a cube root per pressure evaluation). **The volume input within
   {TARGET_VOLUME_RATIO:.0f}× the pressure's:** {verdict(volume_ns <= TARGET_VOLUME_RATIO * membrane_ns)}: {volume_ns:.0f} ns,
   {volume_ns / membrane_ns:.2f}× the membrane law's pressure evaluation. Neither law runs in the batch's SIMD packs
   yet: the batch takes them one pressure at a time.

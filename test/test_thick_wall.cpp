@@ -8,8 +8,10 @@
 #include <quadmath.h>
 
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <string>
+#include <vector>
 
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/membrane_wall.hpp"
@@ -64,11 +66,17 @@ struct Case {
 // Walls from a fifth of the chamber's radius to three times it (the cylindrical segment's), Neo-Hookean and Gent.
 const Case kCases[] = {{0.2 * kHeight / 2, 0.0}, {kHeight / 2, 0.0}, {3 * kHeight / 2, 0.0},
                        {0.2 * kHeight / 2, 50.0}, {kHeight / 2, 50.0}, {3 * kHeight / 2, 50.0}};
+// The closed form's hard ends: a lock close to rest (J_m = 1.16, the ribbed segment's, with no limit point before
+// it), and a lock so far away that the Gent factor's partial fractions nearly cancel (J_m = 1e4).
+const Case kPressureCases[] = {{0.2 * kHeight / 2, 1.16}, {kHeight / 2, 1.16}, {3 * kHeight / 2, 1.16},
+                               {0.2 * kHeight / 2, 1e4}, {3 * kHeight / 2, 1e4}};
 
 }  // namespace
 
 TEST(ThickWall, PressureMatchesTheQuadReferenceFromRestToNearTheLock) {
-  for (const Case& c : kCases) {
+  std::vector<Case> cases(std::begin(kCases), std::end(kCases));
+  cases.insert(cases.end(), std::begin(kPressureCases), std::end(kPressureCases));
+  for (const Case& c : cases) {
     SCOPED_TRACE("t " + std::to_string(c.thickness) + " J_m " + std::to_string(c.jm));
     const pf::MembraneWall w = pf::membraneWall(kMu, c.thickness, kHeight, c.jm, true);
     const double top = c.jm > 0 ? 0.95 * w.locking_stretch_excess : 5.0;

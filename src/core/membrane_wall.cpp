@@ -100,6 +100,7 @@ MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, doub
     while (firstInvariantExcess(hi) < locking_jm) hi *= 2.0;
     w.locking_stretch_excess =
         bisectSignChange([locking_jm](double d) { return firstInvariantExcess(d) - locking_jm; }, 0.0, hi);
+    if (thick) setThickGentRoots(w);
   }
   if (thick) {
     // No closed form: the first fall of dP/ddelta below zero, from rest to the lock (a Neo-Hookean thick wall's
@@ -144,8 +145,7 @@ double membraneGaugeForStretchExcess(const MembraneWall& w, double d) {
 
 void membraneGaugeAndSlope(const MembraneWall& w, double delta, double& gauge_pa, double& slope_pa) {
   if (!w.thick) return thinGaugeAndSlope(w, delta, gauge_pa, slope_pa);
-  gauge_pa = thickGaugeForStretchExcess(w, delta);
-  slope_pa = thickGaugeSlope(w, delta);
+  thickGaugeAndSlope(w, delta, gauge_pa, slope_pa);
 }
 
 namespace {

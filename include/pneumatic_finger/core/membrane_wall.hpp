@@ -32,6 +32,10 @@ struct MembraneWall {
   double decay_scale_pa = 0.0;
   double locking_jm = 0.0;         ///< J_m (-); 0: Neo-Hookean
   double locking_stretch_excess;   ///< delta where I1 - 3 = J_m (the wall locks; +inf for J_m = 0)
+  /// The thick Gent wall's pressure in closed form (thick_wall.cpp): the roots of 2x^3 - (J_m + 3)x^2 + 1, where the
+  /// Gent factor's denominator vanishes in x = lambda^2 (x_s in (0, 1), x_n < 0, and x_l, the lock's lambda^2),
+  /// their square roots (of -x_n for x_n) and partial-fraction weights 1/prod_{j != i}(x_i - x_j).
+  std::array<double, 3> gent_root_x{}, gent_root_sqrt{}, gent_weight{};
   double limit_stretch_excess;     ///< delta at the first pressure maximum (+inf: P rises to the lock)
   double limit_gauge_pa;           ///< P there (Pa; +inf without a maximum)
   /// The far branch (docs/MODEL.md, "The snap-through"): a Gent wall with a limit point stiffens again before its
