@@ -28,10 +28,11 @@ double deadGasUptakeM3(double dead_volume_m3, double gauge_pa, double atmospheri
 
 void FingerModel::buildVolumeModel() {
   volume_coefficient_.assign(groups_.size(), 0.0);
+  chamber_volume_coefficient_.assign(group_of_chamber_.size(), 0.0);
   for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
     const double l = parameters_.chamber_height_m[k], e = parameters_.chamber_width_m[k];
-    volume_coefficient_[static_cast<std::size_t>(group_of_chamber_[k])] +=
-        membrane_ ? l * parameters_.chamber_thickness_m[k] * e : paperVolumePerBulgeM2(l, e);
+    chamber_volume_coefficient_[k] = membrane_ ? l * parameters_.chamber_thickness_m[k] * e : paperVolumePerBulgeM2(l, e);
+    volume_coefficient_[static_cast<std::size_t>(group_of_chamber_[k])] += chamber_volume_coefficient_[k];
   }
   volume_by_stretch_ = membrane_ && groups_.size() == 1;
   // At the limit point itself where the stretch is known there; else just below it (the pressure's last double).
@@ -98,16 +99,30 @@ double FingerModel::suppliedVolumeOf(const FingerState& state) const {
   return suppliedVolumeForBulges(state.bulge_m.data(), state.gauge_pa);
 }
 
-double FingerModel::suppliedVolumeAt(double gauge_pa) const {
-  if (std::isnan(gauge_pa) || gauge_pa >= limit_gauge_pa_) return std::numeric_limits<double>::quiet_NaN();
+bool FingerModel::chamberBulgesAt(double gauge_pa, double* bulge_m) const {
+  if (std::isnan(gauge_pa) || gauge_pa >= limit_gauge_pa_) return false;
   const double p_o = parameters_.atmospheric_pressure_pa;
-  std::array<double, kMaxChamberCount> bulge_m{};
-  for (std::size_t k = 0; k < group_of_chamber_.size() && gauge_pa > 0.0; ++k) {
+  for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
     const ChamberGroup& group = groups_[static_cast<std::size_t>(group_of_chamber_[k])];
-    bulge_m[k] = membrane_ ? membraneBulgeM(group.membrane, membraneStretchExcess(group.membrane, gauge_pa))
-                           : bulge(stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa)),
-                                   group.chamber_height_m);
+    bulge_m[k] = !(gauge_pa > 0.0) ? 0.0
+                 : membrane_
+                     ? membraneBulgeM(group.membrane, membraneStretchExcess(group.membrane, gauge_pa))
+                     : bulge(stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa)), group.chamber_height_m);
   }
+  return true;
+}
+
+double FingerModel::chamberGrowthM3(int chamber, double bulge_m) const {
+  const auto k = static_cast<std::size_t>(chamber);
+  const double c = chamber_volume_coefficient_.at(k);
+  if (!membrane_) return c * bulge_m;
+  const MembraneWall& wall = groups_[static_cast<std::size_t>(group_of_chamber_[k])].membrane;
+  return c * membraneVolumeGrowthFactor(membraneStretchForBulge(wall, bulge_m));
+}
+
+double FingerModel::suppliedVolumeAt(double gauge_pa) const {
+  std::array<double, kMaxChamberCount> bulge_m{};
+  if (!chamberBulgesAt(gauge_pa, bulge_m.data())) return std::numeric_limits<double>::quiet_NaN();
   return suppliedVolumeForBulges(bulge_m.data(), gauge_pa);
 }
 

@@ -75,6 +75,19 @@ double totalContactForceN(const FingerModel& model, double gauge_pa, const Conta
 bool gaugeForContactForce(const FingerModel& model, const std::function<ContactState(double)>& contact_at,
                           double force_n, double max_gauge_pa, double& gauge_pa, std::string& why);
 
+/// The supplied volume (m^3) of the finger in @p contact at @p gauge_pa (docs/MODEL.md, "Volume", "With an object"):
+/// each chamber's two walls take half its growth each; a wall at a held joint keeps the bulge its chamber had when
+/// that joint was held (held_since_gauge_pa), every other wall has the free bulge at @p gauge_pa; plus the dead gas's
+/// compression. Without contact it is FingerModel::suppliedVolumeAt. NaN at or beyond the limit point.
+double suppliedVolumeInContact(const FingerModel& model, const ContactState& contact, double gauge_pa);
+
+/// The finger closing on an object driven by volume: the gauge pressure (Pa) at which it has taken
+/// @p supplied_volume_m3, where @p contact_at gives the contact state at a pressure (a ContactTracker's solve), up to
+/// @p max_gauge_pa and below the limit point. false, with @p why, for a volume that is not a finite number >= 0, or
+/// more than the finger takes there (saying how much it takes).
+bool gaugeForVolumeInContact(const FingerModel& model, const std::function<ContactState(double)>& contact_at,
+                             double supplied_volume_m3, double max_gauge_pa, double& gauge_pa, std::string& why);
+
 /// Applies the contact rule to a model. Holds no state of its own: safe beside the model's other const users.
 class ContactSolver {
  public:

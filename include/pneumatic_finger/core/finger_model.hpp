@@ -188,6 +188,13 @@ class FingerModel {
   /// The same from @p bulge_m, one bulge per chamber (N entries, as FingerState::bulge_m), at @p gauge_pa.
   double suppliedVolumeForBulges(const double* bulge_m, double gauge_pa) const;
 
+  /// Every chamber's bulge (m) at @p gauge_pa into @p bulge_m (N entries; 0 for a vacuum): the free walls' on the
+  /// rising branch. false (nothing written) at or beyond the limit point, and for NaN. Thread-safe.
+  bool chamberBulgesAt(double gauge_pa, double* bulge_m) const;
+
+  /// Chamber @p chamber's growth from its rest volume (m^3) at the wall bulge @p bulge_m, by the wall law.
+  double chamberGrowthM3(int chamber, double bulge_m) const;
+
   /// The largest supplied volume evaluateVolume() follows (m^3): +inf where the volume sets the shape without end;
   /// with a dead gas volume, the first maximum of the supplied volume along the inflation (where the gas's
   /// expansion, as the pressure falls past the limit point, outpaces the chambers' growth, and the finger snaps even
@@ -410,6 +417,7 @@ class FingerModel {
   // The volume model (buildVolumeModel): per group, what multiplies its state's growth: under the membrane law the
   // group's rest volume sum V_o (m^3, times lambda^3 - 1), under the paper law its sum (pi/2) L e (m^2, times h).
   std::vector<double> volume_coefficient_;
+  std::vector<double> chamber_volume_coefficient_;  // the same per chamber (chamberGrowthM3)
   bool volume_by_stretch_ = false;  // identical membrane chambers: the volume input is solved in delta, past the limit
   double volume_limit_stretch_excess_ = 0.0;  // delta where volumeLimitM3() is reached (volume_by_stretch_)
   double limit_point_volume_m3_ = std::numeric_limits<double>::infinity();
