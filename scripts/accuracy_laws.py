@@ -32,8 +32,8 @@ MU, GAP, JM, SHARE = "shear_modulus_pa", "chamber_gap_m", "wall_locking_jm", "ba
 # full fit and of the half fit. Table 1's four rows allow two keys (leave-one-out needs two rows more than keys), and
 # its halves of two rows one: mu alone, with no gap (c = 0, which assumes nothing of the data) for both laws. The
 # paper law cannot take the segments' lever (b > L), so it starts from its uniform wall, b = L/2, as --wall-law auto
-# does. The thick wall is fitted Neo-Hookean on the segments (two keys): its Gent form costs an integral per pressure,
-# and a three-key fit with leave-one-out of it takes longer than this page's run allows.
+# does. The thick wall is fitted Neo-Hookean on the segments (two keys): a three-key Gent fit with leave-one-out of it
+# takes ten minutes per segment, longer than this page's run allows.
 SETS = [
     {"name": "Table 1 (the paper's finger)", "data": "data/sierra2022_table1.csv", "config": "config/finger.yaml",
      "compare": "average", "column": "avg", "laws": {

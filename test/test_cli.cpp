@@ -13,6 +13,7 @@
 #include <sstream>
 #include <string>
 
+#include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 
@@ -417,14 +418,41 @@ TEST(Cli, VolumeInputRefusesWhatItCannotModel) {
   const CliRun both = run("--supplied-volume-m3 1e-6 --gauge-pa 1000");
   EXPECT_EQ(both.status, 2);
   EXPECT_NE(both.err.find("give one input"), std::string::npos) << both.err;
-  const CliRun held = run("--supplied-volume-m3 1e-6 --obstacle-disk 0.05,0.03,0.01");
-  EXPECT_EQ(held.status, 2);
-  EXPECT_NE(held.err.find("changes its volume, which is not modelled"), std::string::npos) << held.err;
+  const CliRun plate = run("--supplied-volume-m3 1e-6 --blocked-tip-force");
+  EXPECT_EQ(plate.status, 2);
+  EXPECT_NE(plate.err.find("changes its volume, which is not modelled"), std::string::npos) << plate.err;
+  const CliRun clamp = run("--supplied-volume-m3 1e-6 --max-gauge-pa 1e5");
+  EXPECT_EQ(clamp.status, 2);
+  EXPECT_NE(clamp.err.find("only with --obstacle-disk"), std::string::npos) << clamp.err;
   // Drawn out of an incompressible fluid: the straight finger, gauge nan, with a warning.
   const CliRun drawn = run("--supplied-volume-m3 -1e-6");
   ASSERT_EQ(drawn.status, 0) << drawn.err;
   EXPECT_EQ(fields(lines(drawn.out)[1])[0], "nan");
   EXPECT_NE(drawn.err.find("draws fluid out"), std::string::npos) << drawn.err;
+}
+
+// Volume as the input closing on a disk: the row's pressure is gaugeForVolumeInContact's, its joints the contact
+// rule's there, and its volume column the volume given; more than the finger takes on the disk is a nan row.
+TEST(Cli, VolumeInputClosesOnAnObstacleDisk) {
+  const pf::FingerModel model(pf::FingerParameters::fromRaw({{"dead_volume_m3", {{2e-5}, false}}}));
+  pf::ContactTracker tracker(model, pf::Obstacle::disk(0.075, 0.035, 0.01));
+  const double top = 294199.5, most = pf::suppliedVolumeInContact(model, tracker.solve(top), top);
+  double gauge = 0.0;
+  std::string why;
+  ASSERT_TRUE(pf::gaugeForVolumeInContact(model, [&](double p) { return tracker.solve(p); }, 0.8 * most, top, gauge,
+                                          why))
+      << why;
+  const pf::ContactState c = tracker.solve(gauge);
+  ASSERT_EQ(c.status, pf::ContactState::Status::kInContact);
+  const std::string args = "--set dead_volume_m3=2e-5 --obstacle-disk 0.075,0.035,0.01 --supplied-volume-m3 ";
+  const CliRun held = run(args + pf::formatExact(0.8 * most) + " --supplied-volume-m3 " + pf::formatExact(1.1 * most));
+  ASSERT_EQ(held.status, 0) << held.err;
+  const auto row = fields(lines(held.out)[1]);
+  EXPECT_EQ(row[0], pf::formatExact(gauge));
+  EXPECT_EQ(row[10], pf::formatExact(c.joint_angle_rad[6]));
+  EXPECT_EQ(row[13], pf::formatExact(0.8 * most));
+  EXPECT_EQ(fields(lines(held.out)[2])[0], "nan");
+  EXPECT_NE(held.err.find("is more than the finger takes on the object"), std::string::npos) << held.err;
 }
 
 // finger_urdf --mjcf: a MuJoCo model whose joints carry the twin's springs at --gauge-pa (test_simulator loads and

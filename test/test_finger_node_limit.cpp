@@ -3,7 +3,8 @@
 // new shape, finger_state repeats the last one with STATUS_BEYOND_LIMIT_POINT, diagnostics WARN and say why; a pressure
 // below the limit brings the shape back. A Gent wall (namespace gent) snaps through at its limit pressure to its far
 // branch, publishes that shape with STATUS_SNAPPED_THROUGH, and snaps back at the far branch's lower turning point.
-// Driven by volume (namespace volume, ~volume_topic), the Neo-Hookean wall is followed past its limit point.
+// Driven by volume (namespace volume, ~volume_topic), the Neo-Hookean wall is followed past its limit point; closing
+// on a grasp object (namespace volume_object), the paper's finger takes the contact rule's volume.
 #include <diagnostic_msgs/DiagnosticArray.h>
 #include <gtest/gtest.h>
 #include <ros/ros.h>
@@ -17,8 +18,12 @@
 #include <vector>
 
 #include "pneumatic_finger/FingerModelState.h"
+#include "pneumatic_finger/GraspObject.h"
+#include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
+#include "pneumatic_finger/description/finger_urdf.hpp"
 #include "ros_test_support.hpp"
 
 namespace pf = pneumatic_finger;
@@ -255,6 +260,65 @@ TEST(FingerNodeLimitPoint, DrivenByVolumeTheNeoHookeanWallIsFollowedPastItsLimit
   ros::WallDuration(0.5).sleep();
   EXPECT_EQ(countOf(volume_joints), joints_before) << "a NaN volume is refused";
   EXPECT_EQ(countOf(volume_states), states_before);
+}
+
+std::vector<pf::FingerModelState> object_states;
+
+void onObjectState(const pf::FingerModelState::ConstPtr& m) {
+  std::lock_guard<std::mutex> lock(mutex);
+  object_states.push_back(*m);
+}
+
+// Volume in, an object in reach (a sphere in the finger's own frame, cut by the bending plane into the disk the core
+// test uses): each volume's pressure is gaugeForVolumeInContact's, its joints the contact rule's there, and
+// finger_state's supplied_volume_m3 gives the volume back; joints the object holds are flagged.
+TEST(FingerNodeLimitPoint, DrivenByVolumeAFingerOnAnObjectTakesTheContactRulesVolume) {
+  ros::NodeHandle nh;
+  const ros::Subscriber sub_s = nh.subscribe("volume_object/finger_state", 100, onObjectState);
+  ros::Publisher pub = nh.advertise<std_msgs::Float64>("volume_object/supplied_volume", 10);
+  ros::Publisher object_pub = nh.advertise<pf::GraspObject>("volume_object/grasp_object", 1, true);
+  ASSERT_TRUE(waitFor([&] { return pub.getNumSubscribers() > 0 && sub_s.getNumPublishers() > 0; }, 30));
+  ASSERT_TRUE(waitFor([&] { return object_pub.getNumSubscribers() > 0; }, 30));
+  pf::GraspObject o;
+  o.header.frame_id = pf::segmentLinkName("vobj_", 0);
+  o.id = "sphere";
+  o.shape.type = shape_msgs::SolidPrimitive::SPHERE;
+  o.shape.dimensions = {0.01};
+  o.pose.position.x = 0.075, o.pose.position.y = 0.035, o.pose.orientation.w = 1.0;
+  object_pub.publish(o);
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml", raw);
+  raw["dead_volume_m3"] = {{2e-5}, false};
+  const pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
+  pf::ContactTracker tracker(model, pf::Obstacle::disk(0.075, 0.035, 0.01));
+  const auto contact_at = [&](double p) { return tracker.solve(p); };
+  const double most = pf::suppliedVolumeInContact(model, tracker.solve(pf::kModelMaxGaugePa), pf::kModelMaxGaugePa);
+  for (double share : {0.3, 0.9}) {
+    SCOPED_TRACE(share);
+    double gauge = 0.0;
+    std::string why;
+    ASSERT_TRUE(pf::gaugeForVolumeInContact(model, contact_at, share * most, pf::kModelMaxGaugePa, gauge, why)) << why;
+    const pf::ContactState want = tracker.solve(gauge);
+    std_msgs::Float64 m;
+    m.data = share * most;
+    // The object comes in on its own topic: volumes are sent until a state in contact at this pressure comes back.
+    ASSERT_TRUE(waitFor(
+        [&] {
+          pub.publish(m);
+          ros::WallDuration(0.05).sleep();
+          return countOf(object_states) > 0 && lastOf(object_states).gauge_pa == gauge;
+        },
+        10));
+    const pf::FingerModelState got = lastOf(object_states);
+    EXPECT_EQ(got.status, pf::FingerModelState::STATUS_OK);
+    EXPECT_NEAR(got.supplied_volume_m3, m.data, 1e-12 * most);
+    for (int i = 0; i < model.chamberCount(); ++i) {
+      EXPECT_EQ(got.joint_angle_rad[i], want.joint_angle_rad[i]) << i;
+      EXPECT_EQ(static_cast<bool>(got.held_by_contact[i]), static_cast<bool>(want.held[static_cast<std::size_t>(i)]))
+          << i;
+    }
+  }
+  EXPECT_EQ(tracker.solve(lastOf(object_states).gauge_pa).status, pf::ContactState::Status::kInContact);
 }
 
 int main(int argc, char** argv) { return pf_test::runRosTests(argc, argv, "finger_node_limit_test", 2); }

@@ -244,7 +244,7 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
   finger_state_.tip.orientation.w = std::cos(0.5 * tip_angle_rad);
   finger_state_.tip_angle_rad = tip_angle_rad;
   const bool held = contact && std::any_of(contact->held.begin(), contact->held.end(), [](bool h) { return h; });
-  finger_state_.supplied_volume_m3 = held                               ? NAN
+  finger_state_.supplied_volume_m3 = held                               ? suppliedVolumeInContact(*model_, *contact, state.gauge_pa)
                                      : std::isnan(supplied_volume_m3) ? model_->suppliedVolumeOf(state)
                                                                       : supplied_volume_m3;
   finger_state_.walls_in_contact = state.walls_in_contact;
@@ -338,8 +338,17 @@ void FingerNode::onGraspObject(const GraspObject::ConstPtr& msg) {
     ROS_INFO("%s: grasp object '%s' in '%s'", log_name_.c_str(), msg->id.c_str(), msg->header.frame_id.c_str());
     updateObject();
   }
-  // (Driven by volume the object is not closed on: nothing to re-solve.)
-  if (have_pressure_ && settings_.volume_topic.empty()) publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
+  republish();
+}
+
+// The last input again, with the object as it is now.
+void FingerNode::republish() {
+  if (!have_pressure_) return;
+  if (settings_.volume_topic.empty()) {
+    publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
+  } else {
+    followVolume(last_volume_m3_, ros::Time::now());
+  }
 }
 
 bool FingerNode::acceptObject(const GraspObject::ConstPtr& msg) {
@@ -368,9 +377,7 @@ bool FingerNode::acceptObject(const GraspObject::ConstPtr& msg) {
 }
 
 void FingerNode::onObjectTimer(const ros::TimerEvent&) {
-  if (updateObject() && have_pressure_ && settings_.volume_topic.empty()) {
-    publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
-  }
+  if (updateObject()) republish();
 }
 
 bool FingerNode::objectPose(Eigen::Isometry3d& finger_from_frame, std::string& why) const {

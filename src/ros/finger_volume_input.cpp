@@ -33,6 +33,13 @@ void FingerNode::onVolume(const std_msgs::Float64::ConstPtr& msg) {
                       d.problem.c_str());
     return;
   }
+  followVolume(volume_m3, now);
+}
+
+void FingerNode::followVolume(double volume_m3, const ros::Time& now) {
+  last_volume_m3_ = volume_m3;
+  // An object within reach holds the walls it touches, which then take less volume: the contact rule's own volume.
+  if (volume_m3 >= 0.0 && grasp_->inReach()) return followVolumeInContact(volume_m3, now);
   const FingerState& state = model_->evaluateVolume(volume_m3, *workspace_);
   const bool drawn_from_liquid = state.status == EvaluationStatus::kVacuum && std::isnan(state.gauge_pa);
   if (state.status == EvaluationStatus::kBeyondLimitPoint || state.status == EvaluationStatus::kSolverFailure ||
@@ -65,8 +72,37 @@ void FingerNode::onVolume(const std_msgs::Float64::ConstPtr& msg) {
   have_pressure_ = true;
   last_gauge_pa_ = state.gauge_pa;
   last_clamped_ = false;
-  // The grasp object is not closed on: a finger held by it changes its volume, which the model does not follow.
   publish(state, nullptr, now, false, volume_m3);
+}
+
+// The pressure at which the finger closing on the object has taken the volume (gaugeForVolumeInContact), then the
+// pressure's own path: the state, the contact rule and its forces. More than the finger takes on the object up to the
+// top of its range is clamped there, as a pressure would be; up to its limit point, kept as beyond it.
+void FingerNode::followVolumeInContact(double volume_m3, const ros::Time& now) {
+  double gauge_pa = 0.0;
+  std::string why;
+  const auto contact_at = [this](double p) { return grasp_->solve(p); };
+  const double top_pa = settings_.urdf.max_gauge_pa;
+  if (gaugeForVolumeInContact(*model_, contact_at, volume_m3, top_pa, gauge_pa, why)) {
+    input_.noteGaugeFromVolume(gauge_pa, false);
+    publishAt(gauge_pa, now, false);
+    return;
+  }
+  const std::string problem = why + " (closing on grasp object '" + object_->id + "')";
+  if (model_->belowLimitGaugePa() >= top_pa) {
+    input_.noteVolumeNotFollowed(problem + ": clamped to the top of the range", now.toSec());
+    ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), input_.lastProblem().c_str());
+    input_.noteGaugeFromVolume(top_pa, false);
+    publishAt(top_pa, now, true);
+    return;
+  }
+  input_.noteVolumeNotFollowed(problem + "; last state kept", now.toSec());
+  ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), input_.lastProblem().c_str());
+  if (have_pressure_) {
+    finger_state_.header.stamp = now;
+    finger_state_.status = FingerModelState::STATUS_BEYOND_LIMIT_POINT;
+    finger_state_pub_.publish(finger_state_);
+  }
 }
 
 }  // namespace pneumatic_finger

@@ -5,6 +5,7 @@
 #include <cstdlib>
 #include <iostream>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -160,7 +161,6 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
     }
     Eigen::VectorXd q = s.joint_angle_rad;
     Eigen::Vector2d tip = s.tip();
-    // The free finger's volume; a finger held by the obstacle has walls pressed flat, whose volume is not modelled.
     double volume_m3 = model.suppliedVolumeOf(s);
     if (obstacle) {
       // The finger closing on the obstacle: joints held where the backbone touched it (docs/GRASP.md).
@@ -172,7 +172,7 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
       if (c.status == pf::ContactState::Status::kInContact) {
         q = c.joint_angle_rad;
         tip = c.backbone_m.col(c.backbone_m.cols() - 1);
-        volume_m3 = std::numeric_limits<double>::quiet_NaN();
+        volume_m3 = pf::suppliedVolumeInContact(model, c, p);  // the held walls keep their growth
       }
     }
     printShape(out, s, q, tip);
@@ -182,13 +182,49 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
   std::cout << out.str();
 }
 
-// Volume as the input: a row per supplied volume, gauge_pa the pressure it makes (docs/MODEL.md, Volume).
-void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::vector<double>& volumes) {
+// Volume as the input closing on @p obstacle: the pressure at which the finger on it has taken @p v
+// (gaugeForVolumeInContact, up to @p max_gauge_pa), then the contact rule's shape there. false (the row is nan) with
+// a warning once where no pressure up to the top gives it.
+bool printVolumeRowInContact(const pf::FingerModel& model, pf::FingerWorkspace& ws, pf::ContactTracker& tracker,
+                             double v, double max_gauge_pa, bool& warned, std::ostream& out) {
+  double gauge_pa = 0.0;
+  std::string why;
+  if (!pf::gaugeForVolumeInContact(model, [&tracker](double p) { return tracker.solve(p); }, v, max_gauge_pa,
+                                   gauge_pa, why)) {
+    if (!warned) std::cerr << "finger_model: warning: " << why << "; such rows are nan\n";
+    warned = true;
+    return false;
+  }
+  const pf::FingerState& s = model.evaluate(gauge_pa, ws);
+  const pf::ContactState c = tracker.solve(gauge_pa);
+  if (c.status == pf::ContactState::Status::kInContact) {
+    printShape(out, s, c.joint_angle_rad, c.backbone_m.col(c.backbone_m.cols() - 1));
+  } else {
+    printShape(out, s, s.joint_angle_rad, s.tip());
+  }
+  out << ',' << pf::formatExact(v) << '\n';
+  return true;
+}
+
+// Volume as the input: a row per supplied volume, gauge_pa the pressure it makes (docs/MODEL.md, Volume); closing on
+// @p obstacle when one is given (then up to @p max_gauge_pa).
+void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::vector<double>& volumes,
+                    const pf::Obstacle* obstacle, double max_gauge_pa) {
   const int n = model.chamberCount();
   std::ostringstream out;
   printHeader(out, n, false, false);
   bool warned_limit = false, warned_vacuum = false;
+  std::unique_ptr<pf::ContactTracker> tracker;
+  if (obstacle) tracker = std::make_unique<pf::ContactTracker>(model, *obstacle);
   for (double v : volumes) {
+    if (tracker && v >= 0.0 && !tracker->outOfReach()) {
+      if (!printVolumeRowInContact(model, ws, *tracker, v, max_gauge_pa, warned_limit, out)) {
+        out << "nan";
+        for (int j = 0; j < n + 5; ++j) out << ",nan";
+        out << ',' << pf::formatExact(v) << '\n';
+      }
+      continue;
+    }
     const pf::FingerState& s = model.evaluateVolume(v, ws);
     if (s.status == pf::EvaluationStatus::kBeyondLimitPoint || s.status == pf::EvaluationStatus::kSolverFailure) {
       if (!warned_limit) {
@@ -336,10 +372,13 @@ int main(int argc, char** argv) {
       throw pf::ParameterError("no pressure given: use --gauge-pa P, --sweep-pa FROM:TO:COUNT, --flow-lpm Q or "
                                "--supplied-volume-m3 V");
     }
-    if (!supplied.empty() && (!disk.empty() || columns.blocked_tip_force || !max_gauge.empty())) {
-      throw pf::ParameterError("--supplied-volume-m3 takes no --obstacle-disk, --blocked-tip-force or --max-gauge-pa: "
-                               "a finger held by an object or a plate changes its volume, which is not modelled, "
-                               "and the pressure is an output there");
+    if (!supplied.empty() && columns.blocked_tip_force) {
+      throw pf::ParameterError("--supplied-volume-m3 takes no --blocked-tip-force: a finger held straight by a plate "
+                               "changes its volume, which is not modelled");
+    }
+    if (!supplied.empty() && disk.empty() && !max_gauge.empty()) {
+      throw pf::ParameterError("--supplied-volume-m3 takes --max-gauge-pa only with --obstacle-disk: the free finger's "
+                               "pressure is an output, not clamped");
     }
     columns.start_far = volume.start_branch == "far";
     if (!max_gauge.empty()) columns.range = pf::PressureRange::upTo(pf::parseFiniteOption("--max-gauge-pa", max_gauge));
@@ -350,12 +389,12 @@ int main(int argc, char** argv) {
     if (time_mode) timeModeRows(finger, flow_lpm, duration_s, step_s, times, pressures);
     pf::FingerModel model(finger, options);
     pf::FingerWorkspace ws(model);
-    if (!supplied.empty()) {
-      printVolumeCsv(model, ws, supplied);
-      return 0;
-    }
     const pf::Obstacle obstacle = parseDisk(disk);
     columns.obstacle = disk.empty() ? nullptr : &obstacle;
+    if (!supplied.empty()) {
+      printVolumeCsv(model, ws, supplied, columns.obstacle, columns.range.max_gauge_pa);
+      return 0;
+    }
     columns.times = times;
     printCsv(model, ws, pressures, columns);
     return 0;

@@ -120,7 +120,7 @@ CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data);
 /// The keys a fit over @p quantity takes when none are named: shear_modulus_pa and chamber_gap_m, and base_wall_share
 /// too when every joint is compared. Under the membrane law, wall_locking_jm as the third key where base_wall_share is
 /// not one (the Gent lock shapes the bend's rise after the limit point's bend); the thick wall keeps the file's J_m
-/// (its Gent form costs an integral per pressure).
+/// (its Gent pressure costs about twice the membrane's, and a third key ten minutes of leave-one-out).
 std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity, WallLaw law = WallLaw::kPaper);
 
 /// "minimax" or "least_squares". @throws ParameterError for anything else.

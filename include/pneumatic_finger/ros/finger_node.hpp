@@ -46,6 +46,11 @@ class FingerNode {
   void subscribeInput(ros::NodeHandle& nh);
   /// Volume as the input (~volume_topic): the same rules, the model driven by the supplied volume (finger_volume.cpp).
   void onVolume(const std_msgs::Float64::ConstPtr& msg);
+  /// The finger driven to @p volume_m3: free (evaluateVolume), or closing on the grasp object within reach.
+  void followVolume(double volume_m3, const ros::Time& now);
+  void followVolumeInContact(double volume_m3, const ros::Time& now);
+  /// The last pressure or volume again (the object moved, or another came).
+  void republish();
   bool onInverse(PressureForTipAngle::Request& req, PressureForTipAngle::Response& res);  // finger_services.cpp
   bool onContactForce(PressureForContactForce::Request& req, PressureForContactForce::Response& res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
@@ -134,6 +139,7 @@ class FingerNode {
   bool on_far_branch_ = false;              // the walls' branch after the last evaluation (the snap-through)
   long snaps_through_ = 0, snaps_back_ = 0;  // jumps between the branches, for diagnostics
   double last_gauge_pa_ = 0.0;
+  double last_volume_m3_ = 0.0;  // the last accepted supplied volume (~volume_topic), re-followed when the object moves
 };
 
 }  // namespace pneumatic_finger
