@@ -341,15 +341,6 @@ void FingerNode::onGraspObject(const GraspObject::ConstPtr& msg) {
   republish();
 }
 
-// The last input again, with the object as it is now.
-void FingerNode::republish() {
-  if (!have_pressure_) return;
-  if (settings_.volume_topic.empty()) {
-    publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
-  } else {
-    followVolume(last_volume_m3_, ros::Time::now());
-  }
-}
 
 bool FingerNode::acceptObject(const GraspObject::ConstPtr& msg) {
   // Validate before use: a bad object is refused by name and the finger stays free.

@@ -22,6 +22,16 @@ void FingerNode::subscribeInput(ros::NodeHandle& nh) {
            nh.resolveName(settings_.volume_topic).c_str());
 }
 
+// The last input again, with the object as it is now.
+void FingerNode::republish() {
+  if (!have_pressure_) return;
+  if (settings_.volume_topic.empty()) {
+    publishAt(last_gauge_pa_, ros::Time::now(), last_clamped_);
+  } else {
+    followVolume(last_volume_m3_, ros::Time::now());
+  }
+}
+
 void FingerNode::onVolume(const std_msgs::Float64::ConstPtr& msg) {
   const ros::Time now = ros::Time::now();
   const double volume_m3 = msg->data;
