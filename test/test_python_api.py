@@ -84,6 +84,30 @@ def test_contact_equals_the_cli_bit_for_bit():
     assert math.isnan(got["first_touch_gauge_pa"][0])
 
 
+def test_contact_driven_by_volume_gives_the_pressure_back_and_equals_the_cli():
+    # contact()'s supplied_volume_m3, fed to contact_volume(), gives its pressures and shapes back; the CLI's rows
+    # driven by volume on the disk are the same numbers.
+    model = pf.FingerModel(overrides={"dead_volume_m3": 2e-5})
+    disk = (0.075, 0.035, 0.01)
+    p = numpy.linspace(5e4, 2.8e5, 6)
+    at_p = model.contact(p, disk, outputs=["supplied_volume_m3", "joint_angle_rad", "held", "gauge_pa"])
+    assert at_p["held"][-1].any() and (at_p["gauge_pa"] == p).all()
+    assert at_p["supplied_volume_m3"][-1] < model.supplied_volume(p[-1])  # the held walls take no more
+    back = model.contact_volume(at_p["supplied_volume_m3"], disk)
+    assert back["gauge_pa"] == pytest.approx(p, rel=1e-12)
+    assert back["joint_angle_rad"] == pytest.approx(at_p["joint_angle_rad"], abs=1e-12)
+    assert (back["held"] == at_p["held"]).all()
+    rows = cli("--set", "dead_volume_m3=2e-5", "--obstacle-disk", ",".join(repr(v) for v in disk),
+               *[a for v in back["supplied_volume_m3"] for a in ("--supplied-volume-m3", repr(float(v)))])
+    for i, row in enumerate(rows):
+        assert float(row["gauge_pa"]) == back["gauge_pa"][i]
+        assert float(row["joint_7_rad"]) == back["joint_angle_rad"][i, 6]
+    with pytest.raises(ValueError, match=r"supplied_volume_m3\[1\]: .* is more than the finger takes on the object"):
+        model.contact_volume([at_p["supplied_volume_m3"][0], 1.0], disk)
+    with pytest.raises(ValueError, match="is not a finite volume >= 0"):
+        model.contact_volume(-1e-6, disk)
+
+
 def test_blocked_tip_force_equals_the_cli_bit_for_bit():
     model = pf.FingerModel()
     force = model.blocked_tip_force(numpy.array(PRESSURES))

@@ -23,6 +23,7 @@
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "calibrate_module.hpp"
 #include "python_parameters.hpp"
+#include "contact_rows.hpp"
 #include "output_arrays.hpp"
 #include "status_codes.hpp"
 
@@ -60,24 +61,9 @@ const std::vector<OutputField> kVolumeFields = [] {
   f.push_back({"gauge_pa", E::kFloat64, {}});
   return f;
 }();
-const std::vector<OutputField> kContactFields = {
-    {"joint_angle_rad", E::kFloat64, {-1}}, {"backbone_m", E::kFloat64, {-2, 2}}, {"held", E::kFlag, {-1}},
-    {"first_touch_gauge_pa", E::kFloat64, {}}, {"status", E::kCode, {}},
-    {"contact_point_m", E::kFloat64, {-1, 2}}, {"normal_force_n", E::kFloat64, {-1}}};
 const std::vector<OutputField> kDesignFields = {{"tip_angle_rad", E::kFloat64, {}}, {"tip_x_m", E::kFloat64, {}},
                                                 {"tip_y_m", E::kFloat64, {}},       {"contact_gauge_pa", E::kFloat64, {}},
                                                 {"status", E::kCode, {}}};
-
-// Where contact() writes (null: not asked for).
-struct ContactRows {
-  double* joint_angle_rad;
-  double* backbone_m;
-  bool* held;
-  double* first_touch_gauge_pa;
-  std::uint8_t* status;
-  double* contact_point_m;  // (N, 2) per pressure: the touches in order, NaN after the last
-  double* normal_force_n;   // (N,) per pressure: the normal force at each, NaN after the last (computed only if asked)
-};
 
 class PyFingerModel {
  public:
@@ -248,37 +234,28 @@ class PyFingerModel {
     return std::move(answer);
   }
 
-  // The finger closing on a disk of the finger's plane (docs/GRASP.md), at one pressure or an array of them; one
-  // disk (3,) for all, or one per pressure (P, 3). Consecutive pressures on the same disk share its tracker (its
-  // touch events), so a sweep of pressures per disk costs one search per disk.
-  py::dict contact(const py::object& gauge_pa, const py::object& disk, const py::object& outputs,
-                   const py::object& out) const {
+  // The finger closing on a disk of the finger's plane (docs/GRASP.md), at one pressure or an array of them, or at
+  // supplied volumes (@p by_volume: the pressure each makes on the disk is found first); one disk (3,) for all, or one
+  // per input (P, 3). Consecutive inputs on the same disk share its tracker (its touch events).
+  py::dict contact(const py::object& input, const py::object& disk, const py::object& outputs, const py::object& out,
+                   bool by_volume) const {
     bool scalar = false;
-    const Array p = pressures(gauge_pa, scalar);
-    if (scalar && !out.is_none()) throw py::value_error("out= needs gauge_pa as a 1-D array");
-    const Array disks = Array::ensure(disk);
-    const bool per_pressure = disks && disks.ndim() == 2;
-    if (!disks || !((disks.ndim() == 1 && disks.shape(0) == 3) ||
-                    (per_pressure && disks.shape(0) == p.size() && disks.shape(1) == 3 && !scalar))) {
-      throw py::value_error("disk must be (x_m, y_m, radius_m), or an array of shape (P, 3): one per pressure");
-    }
-    const auto count = static_cast<std::size_t>(p.size());
-    OutputArrays arrays(kContactFields, outputs, out, p.size(), model_->chamberCount());
-    arrays.refuseOverlap(p.data(), count * sizeof(double));
-    ContactRows rows{arrays.data<double>("joint_angle_rad"), arrays.data<double>("backbone_m"), arrays.data<bool>("held"),
-                     arrays.data<double>("first_touch_gauge_pa"), arrays.data<std::uint8_t>("status"),
-                     arrays.data<double>("contact_point_m"), arrays.data<double>("normal_force_n")};
-    std::vector<pf::Obstacle> obstacles;
-    for (py::ssize_t i = 0; i < (per_pressure ? disks.shape(0) : 1); ++i) {
-      const double* d = disks.data() + 3 * i;
-      obstacles.push_back(pf::Obstacle::disk(d[0], d[1], d[2]));
-      const std::string problem = obstacles.back().problem();
-      if (!problem.empty()) throw py::value_error((per_pressure ? "disk " + std::to_string(i) + ": " : "") + problem);
-    }
+    const char* name = by_volume ? "supplied_volume_m3" : "gauge_pa";
+    const Array x = pressures(input, scalar, name, by_volume ? "m^3" : "Pa");
+    if (scalar && !out.is_none()) throw py::value_error(std::string("out= needs ") + name + " as a 1-D array");
+    const std::vector<pf::Obstacle> obstacles = disksOf(disk, x.size(), scalar);
+    const auto count = static_cast<std::size_t>(x.size());
+    OutputArrays arrays(kContactFields, outputs, out, x.size(), model_->chamberCount());
+    arrays.refuseOverlap(x.data(), count * sizeof(double));
+    const ContactRows rows = contactRows(arrays);
+    std::vector<double> gauge(x.data(), x.data() + count);
+    std::string why;
     {
       py::gil_scoped_release release;
-      solveContacts(p.data(), count, obstacles, rows);
+      if (by_volume) why = gaugesForVolumes(*model_, x.data(), count, obstacles, range_.max_gauge_pa, gauge.data());
+      if (why.empty()) solveContacts(*model_, gauge.data(), count, obstacles, rows);
     }
+    if (!why.empty()) throw py::value_error(why);
     return arrays.result(scalar);
   }
 
@@ -332,53 +309,6 @@ class PyFingerModel {
 
 
  private:
-  void solveContacts(const double* gauge_pa, std::size_t count, const std::vector<pf::Obstacle>& obstacles,
-                     const ContactRows& rows) const {
-    const auto n = static_cast<std::size_t>(model_->chamberCount());
-    std::unique_ptr<pf::ContactTracker> tracker;  // const methods of the model only: thread-safe
-    for (std::size_t i = 0; i < count; ++i) {
-      const std::size_t which = obstacles.size() == 1 ? 0 : i;
-      if (!tracker || (which > 0 && !sameDisk(obstacles[which], obstacles[which - 1]))) {
-        tracker = std::make_unique<pf::ContactTracker>(*model_, obstacles[which]);
-      }
-      const pf::ContactState s = tracker->solve(gauge_pa[i]);
-      if (rows.joint_angle_rad) std::copy(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n, rows.joint_angle_rad + i * n);
-      if (rows.backbone_m) {
-        std::copy(s.backbone_m.data(), s.backbone_m.data() + 2 * (n + 2), rows.backbone_m + i * 2 * (n + 2));
-      }
-      for (std::size_t k = 0; rows.held && k < n; ++k) rows.held[i * n + k] = s.held[k];
-      if (rows.first_touch_gauge_pa) rows.first_touch_gauge_pa[i] = s.first_touch_gauge_pa;
-      if (rows.status) rows.status[i] = contactStatusCode(s.status);
-      writeTouches(s, gauge_pa[i], rows, i);
-    }
-  }
-
-  // The contact points and, only when asked for, their normal forces (contactNormalForcesN), NaN-padded to N.
-  void writeTouches(const pf::ContactState& s, double gauge_pa, const ContactRows& rows, std::size_t i) const {
-    const auto n = static_cast<std::size_t>(model_->chamberCount());
-    if (rows.contact_point_m) {
-      double* row = rows.contact_point_m + i * 2 * n;
-      std::fill(row, row + 2 * n, NAN);
-      for (std::size_t k = 0; k < s.contact_points_m.size() && k < n; ++k) {
-        row[2 * k] = s.contact_points_m[k].x();
-        row[2 * k + 1] = s.contact_points_m[k].y();
-      }
-    }
-    if (rows.normal_force_n) {
-      std::vector<double> force;
-      pf::contactNormalForcesN(*model_, gauge_pa, s, force);
-      double* row = rows.normal_force_n + i * n;
-      std::fill(row, row + n, NAN);
-      std::copy(force.begin(), force.begin() + static_cast<std::ptrdiff_t>(std::min(force.size(), n)), row);
-    }
-  }
-
-  static bool sameDisk(const pf::Obstacle& a, const pf::Obstacle& b) {
-    Eigen::Vector2d ca, cb;
-    double ra = 0, rb = 0;
-    return a.asDisk(ca, ra) && b.asDisk(cb, rb) && ca == cb && ra == rb;
-  }
-
   std::unique_ptr<const pf::FingerModel> model_;
   pf::PressureRange range_;  // what evaluate() clamps to, as finger_node's ~max_gauge_pa
 };
@@ -386,6 +316,29 @@ class PyFingerModel {
 }  // namespace
 
 // Volume as the input (docs/MODEL.md, Volume): FingerModel's evaluate_volume, supplied_volume and volume_limit_m3.
+// The finger closing on a disk, by pressure or by volume (docs/GRASP.md; docs/MODEL.md, Volume).
+void defineContact(py::class_<PyFingerModel>& c) {
+  c.def(
+          "contact",
+          [](const PyFingerModel& m, const py::object& p, const py::object& disk, const py::object& outputs,
+             const py::object& out) { return m.contact(p, disk, outputs, out, false); },
+          py::arg("gauge_pa"), py::arg("disk"), py::arg("outputs") = py::none(), py::arg("out") = py::none(),
+          "The finger closing on a disk (x_m, y_m, radius_m) of its plane, or one disk per pressure (P, 3): "
+          "joint_angle_rad (P, N), backbone_m (P, N+2, 2), held (P, N) bool, first_touch_gauge_pa (P,), status (P,) "
+          "uint8 codes (CONTACT_STATUS names them), contact_point_m (P, N, 2) and normal_force_n (P, N): each touch's "
+          "point and the normal force (N) the finger presses with there, in touch order, NaN after the last; "
+          "supplied_volume_m3 (P,): the volume the finger on the disk has taken (the held walls keep theirs), and "
+          "gauge_pa (P,); outputs and out as for evaluate")
+      .def(
+          "contact_volume",
+          [](const PyFingerModel& m, const py::object& v, const py::object& disk, const py::object& outputs,
+             const py::object& out) { return m.contact(v, disk, outputs, out, true); },
+          py::arg("supplied_volume_m3"), py::arg("disk"), py::arg("outputs") = py::none(), py::arg("out") = py::none(),
+          "contact() driven by volume: the finger closing on the disk at each supplied volume (m^3), gauge_pa the "
+          "pressure it makes there (up to max_gauge_pa and the limit point; ValueError naming a volume it cannot "
+          "take); the same outputs");
+}
+
 void defineVolume(py::class_<PyFingerModel>& c) {
   c.def("evaluate_volume", &PyFingerModel::evaluateVolume, py::arg("supplied_volume_m3"),
            py::arg("outputs") = py::none(), py::arg("out") = py::none(),
@@ -438,6 +391,7 @@ PYBIND11_MODULE(_core, m) {
       "words to warn with, empty in range)");
   py::class_<PyFingerModel> finger_model(m, "FingerModel");
   defineVolume(finger_model);
+  defineContact(finger_model);
   finger_model
       .def(py::init<const std::string&, const py::dict&, const std::string&, const py::object&>(), py::arg("config"),
            py::arg("overrides") = py::dict(), py::arg("solver") = "robust", py::arg("max_gauge_pa") = py::none())
@@ -459,13 +413,7 @@ PYBIND11_MODULE(_core, m) {
            py::arg("max_gauge_pa") = py::none(),
            "The gauge pressure (Pa) for a tip angle (rad) or a 1-D array of them; ValueError when none up to "
            "max_gauge_pa (None: the model's)")
-      .def("contact", &PyFingerModel::contact, py::arg("gauge_pa"), py::arg("disk"), py::arg("outputs") = py::none(),
-           py::arg("out") = py::none(),
-           "The finger closing on a disk (x_m, y_m, radius_m) of its plane, or one disk per pressure (P, 3): "
-           "joint_angle_rad (P, N), backbone_m (P, N+2, 2), held (P, N) bool, first_touch_gauge_pa (P,), status (P,) "
-           "uint8 codes (CONTACT_STATUS names them), contact_point_m (P, N, 2) and normal_force_n (P, N): each touch's "
-           "point and the normal force (N) the finger presses with there, in touch order, NaN after the last; outputs "
-           "and out as for evaluate")
+
       .def("sweep_designs", &PyFingerModel::sweepDesigns, py::arg("keys"), py::arg("values"), py::arg("gauge_pa"),
            py::arg("outputs") = py::none(),
            "Many designs at one pressure: this model with keys set to each row of values (designs, len(keys)): "
