@@ -12,10 +12,13 @@ chamber_gap_m, wall_locking_jm):
     least squares);
  2. "keys from volume": the keys fitted to the bends against volume (drive="volume"), with that gas, by the
     objective (minimax or least squares) whose leave-one-out within the fitted rows is smaller (the held-out half
-    plays no part in the choice).
+    plays no part in the choice);
+ 3. "bends and pressures together": from the keys from volume, shear_modulus_pa, chamber_gap_m and the gas refitted
+    to the bends and the pressures against volume at once (compare="tip_angle+gauge_pa", least squares: the tip
+    angle's error in rad beside the pressure's relative error).
 Each is then driven by the measured volume of every row (evaluate_volume) and reported for the fitted and the
 held-out half: the bend error (deg) and the pressure error (%), and the two bends the ribbed segment has at one
-pressure. It also prints what the chambers' growth holds at the last row. Takes about six minutes (the
+pressure. It also prints what the chambers' growth holds at the last row. Takes about seven minutes (the
 leave-one-out of two three-key fits per segment). Its output is
 docs/ACCURACY.md's "Volume as the input"; --plot draws bend and pressure against volume for both segments.
 """
@@ -31,6 +34,8 @@ import pneumatic_finger.core as pf
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DEG = 180 / math.pi
 KEYS = ["shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"]
+BOTH_KEYS = ["shear_modulus_pa", "chamber_gap_m", "dead_volume_m3"]
+WAYS = ("keys from pressure", "keys from volume", "bends and pressures together")
 SETS = [("Marchese 2015 ribbed segment", "ribbed"), ("Marchese 2015 cylindrical segment", "cylindrical")]
 COLUMNS = ["gauge_pa", "supplied_volume_m3", "bend_angle_rad"]
 
@@ -65,7 +70,10 @@ def fits(name, even):
                   for objective in ("minimax", "least_squares")}
     loo = {objective: largest_loo_deg(fit) for objective, fit in candidates.items()}
     chosen = min(loo, key=loo.get)
-    return config, {**by_pressure, **gas}, {**candidates[chosen]["fitted"], **gas}, loo, chosen
+    by_volume = {**candidates[chosen]["fitted"], **gas}
+    both = pf.calibrate(table(even), BOTH_KEYS, "least_squares", config, by_volume, compare="tip_angle+gauge_pa",
+                        drive="volume")["fitted"]
+    return config, {**by_pressure, **gas}, by_volume, {**by_volume, **both}, loo, chosen
 
 
 def errors(model, part):
@@ -108,11 +116,12 @@ def chamber_share(config, keys, last):
 def report(title, name, curves):
     rows = rows_of(name)
     even, odd = rows[0::2], rows[1::2]
-    config, by_pressure, by_volume, loo, chosen = fits(name, even)
-    print(f"- {title} ({len(even)} rows fitted, {len(odd)} held out; 3 keys fitted to bends, then 1 to pressures):")
+    config, by_pressure, by_volume, both, loo, chosen = fits(name, even)
+    print(f"- {title} ({len(even)} rows fitted, {len(odd)} held out; 3 keys fitted to bends, then 1 to pressures; "
+          f"together: 3 to both):")
     print("  keys from volume, objective by leave-one-out within the fitted rows: " +
           ", ".join(f"{k} {v:.2f} deg" for k, v in loo.items()) + f" -> {chosen}")
-    for label, keys in (("keys from pressure", by_pressure), ("keys from volume", by_volume)):
+    for label, keys in zip(WAYS, (by_pressure, by_volume, both)):
         print(f"  {label}: " + ", ".join(f"{k} = {keys[k]:.4g}" for k in KEYS + ["dead_volume_m3"]))
         model = pf.FingerModel(config, keys)
         for half, part in (("fitted half", even), ("held-out half", odd)):
@@ -137,7 +146,7 @@ def plot(path, curves):
             for part, marker, label in ((rows[0::2], "o", "measured, fitted"), (rows[1::2], "s", "measured, held out")):
                 ax.plot(column(part, "supplied_volume_m3") * 1e6, column(part, key) * scale, marker, mfc="none",
                         color="k", label=label)
-            for label, style in (("keys from pressure", "--"), ("keys from volume", "-")):
+            for label, style in zip(WAYS, ("--", "-", ":")):
                 v, out = curves[(name, label)]
                 model_key = "tip_angle_rad" if key == "bend_angle_rad" else "gauge_pa"
                 ax.plot(v * 1e6, out[model_key] * scale, style, label=f"model driven by volume, {label}")

@@ -304,6 +304,15 @@ TEST(SimulatorSprings, TheComposedCellHoldsItsArmAndItsFingersTakeTheTwinsShape)
   for (int w = 0; w < mjNWARNING; ++w) warnings += sim.d->warning[w].number;
   EXPECT_EQ(warnings, 0);
   EXPECT_EQ(sim.d->ncon, 0) << "the fingers' and the arm's own links do not collide";
+  // Each arm joint is damped critically for what it moves at the zero pose: MuJoCo's own mass matrix there.
+  mjData* zero = mj_makeData(sim.m);
+  mj_forward(sim.m, zero);
+  for (int a = 0; a < sim.m->nu; ++a) {
+    const int dof = sim.m->jnt_dofadr[sim.m->actuator_trnid[2 * a]];
+    const double kp = sim.m->actuator_gainprm[a * mjNGAIN], m_jj = zero->qM[sim.m->dof_Madr[dof]];
+    EXPECT_NEAR(sim.m->dof_damping[dof], 2.0 * std::sqrt(kp * m_jj), 1e-9 * sim.m->dof_damping[dof]) << a;
+  }
+  mj_deleteData(zero);
   sim.m->opt.gravity[0] = sim.m->opt.gravity[1] = sim.m->opt.gravity[2] = 0.0;
   for (int i = 0; i < 10000; ++i) mj_step(sim.m, sim.d);
   const pf::FingerModel twin(pf::loadGripperFile(kGripper).front().parameters);

@@ -34,7 +34,7 @@ CellPhysics::CellPhysics(const std::string& arm_urdf_xml, const std::vector<Grip
 }
 
 // Each arm joint's servo critically damped for the inertia it moves at the pick pose, c = 2 sqrt(kp M_jj): the file's
-// damping (kPositionTimeConstantS x kp) would cap a joint at 0.2 rad/s where its torque saturates.
+// is critical at the zero pose, where the arm's links reach elsewhere.
 void CellPhysics::dampArm() {
   mjModel* m = model_.get();
   mj_forward(m, data_.get());

@@ -2,6 +2,8 @@
 // hinge with its spring.
 #include "pneumatic_finger/sim/finger_mjcf.hpp"
 
+#include <Eigen/Geometry>
+
 #include <cmath>
 #include <map>
 #include <sstream>
@@ -46,6 +48,52 @@ double distalInertia(const urdf::ModelInterface& model, const std::string& prefi
     inertia += in.izz + in.mass * (x * x + y * y);
   }
   return inertia;
+}
+
+Eigen::Isometry3d isometryOf(const urdf::Pose& pose) {
+  double x = 0, y = 0, z = 0, w = 1;
+  pose.rotation.getQuaternion(x, y, z, w);
+  Eigen::Isometry3d t = Eigen::Isometry3d::Identity();
+  t.linear() = Eigen::Quaterniond(w, x, y, z).normalized().toRotationMatrix();
+  t.translation() = Eigen::Vector3d(pose.position.x, pose.position.y, pose.position.z);
+  return t;
+}
+
+// Every link's pose with all joints at 0 (the file's reference pose), from @p link down; @p pose is @p link's.
+void zeroPose(const urdf::LinkConstSharedPtr& link, const Eigen::Isometry3d& pose,
+              std::map<std::string, Eigen::Isometry3d>& poses) {
+  poses[link->name] = pose;
+  for (const auto& child : link->child_links) {
+    zeroPose(child, pose * isometryOf(child->parent_joint->parent_to_joint_origin_transform), poses);
+  }
+}
+
+// M_jj: the inertia about @p joint's axis (kg m^2; the mass, kg, for a prismatic joint) of every link beyond it, the
+// robot at its zero pose: what MuJoCo's mass matrix holds on the joint's diagonal there.
+double inertiaBeyond(const urdf::ModelInterface& model, const urdf::Joint& joint,
+                     const std::map<std::string, Eigen::Isometry3d>& poses) {
+  const Eigen::Isometry3d frame = poses.at(joint.parent_link_name) * isometryOf(joint.parent_to_joint_origin_transform);
+  const Eigen::Vector3d axis = frame.linear() * Eigen::Vector3d(joint.axis.x, joint.axis.y, joint.axis.z).normalized();
+  double sum = 0.0;
+  std::vector<urdf::LinkConstSharedPtr> beyond{model.getLink(joint.child_link_name)};
+  while (!beyond.empty()) {
+    const urdf::LinkConstSharedPtr link = beyond.back();
+    beyond.pop_back();
+    beyond.insert(beyond.end(), link->child_links.begin(), link->child_links.end());
+    if (!link->inertial) continue;
+    const urdf::Inertial& in = *link->inertial;
+    if (joint.type == urdf::Joint::PRISMATIC) {
+      sum += in.mass;
+      continue;
+    }
+    const Eigen::Isometry3d com = poses.at(link->name) * isometryOf(in.origin);
+    Eigen::Matrix3d tensor;
+    tensor << in.ixx, in.ixy, in.ixz, in.ixy, in.iyy, in.iyz, in.ixz, in.iyz, in.izz;
+    const Eigen::Vector3d arm = com.translation() - frame.translation();
+    const Eigen::Vector3d off_axis = arm - arm.dot(axis) * axis;
+    sum += axis.dot(com.linear() * tensor * com.linear().transpose() * axis) + in.mass * off_axis.squaredNorm();
+  }
+  return sum;
 }
 
 void writeBody(std::ostringstream& out, const urdf::ModelInterface& model, const urdf::LinkConstSharedPtr& link,
@@ -165,7 +213,8 @@ void addFingerDynamics(const urdf::ModelInterface& model, const FingerParameters
 }
 
 // The MJCF of @p model: the springs of @p dynamics' joints; a position actuator on every other moving joint (the
-// robot's), of stiffness kPositionGainSPerRad times its effort limit and damping kPositionTimeConstantS times that;
+// robot's), of stiffness kPositionGainPerRad times its effort limit, the joint damped critically for the inertia it
+// moves at the zero pose (2 sqrt(kp M_jj));
 // contacts between the fingers' neighbouring segments off (@p excluded: pairs of body names).
 std::string writeMjcf(const urdf::ModelInterface& model, const std::map<std::string, JointDynamics>& dynamics,
                       const std::vector<std::pair<std::string, std::string>>& excluded, const MjcfOptions& mjcf,
@@ -211,10 +260,12 @@ std::string writeMjcf(const urdf::ModelInterface& model, const std::map<std::str
   // The robot's joints: position-controlled, stiff against their own effort limit.
   std::ostringstream actuators;
   std::map<std::string, double> arm_damping;
+  std::map<std::string, Eigen::Isometry3d> poses;
+  zeroPose(model.getRoot(), Eigen::Isometry3d::Identity(), poses);
   for (const auto& [name, joint] : model.joints_) {
     if (joint->type == urdf::Joint::FIXED || dynamics.count(name) || !joint->limits) continue;
     const double effort = joint->limits->effort, kp = kPositionGainPerRad * effort;
-    arm_damping[name] = kPositionTimeConstantS * kp;
+    arm_damping[name] = 2.0 * std::sqrt(kp * inertiaBeyond(model, *joint, poses));
     actuators << "    <position name=\"" << name << "\" joint=\"" << name << "\" kp=\"" << num(kp)
               << "\" forcelimited=\"true\" forcerange=\"" << num(-effort) << " " << num(effort) << "\"/>\n";
   }

@@ -25,10 +25,9 @@ struct MjcfOptions {
 };
 
 /// The robot's joints in a composed MJCF: position actuators whose gain is this many times the joint's effort limit
-/// (N m/rad per N m: the rated torque at 10 mrad of error), and joint damping of this time constant times the gain
-/// (a 50 ms first-order approach; overdamped for the arm's links). Stated, not tuned against the arm.
+/// (N m/rad per N m: the rated torque at 10 mrad of error), each joint damped critically for the inertia it moves at
+/// the zero pose, 2 sqrt(kp M_jj). Stated, not tuned against the arm.
 constexpr double kPositionGainPerRad = 100.0;
-constexpr double kPositionTimeConstantS = 0.05;
 
 /// The MJCF of one finger mounted on @p options.parent_frame (a static body at the world's origin), its joints'
 /// springs at @p mjcf.gauge_pa, a site <prefix>tip at the tip. @throws ParameterError as fingerUrdfModel does, and
@@ -37,7 +36,7 @@ std::string fingerMjcf(const FingerParameters& parameters, const FingerUrdfOptio
 
 /// The MJCF of a robot with a gripper (finger_urdf --robot --gripper --mjcf): composeRobotUrdfFiles' description,
 /// every finger's joints with their springs at @p mjcf.gauge_pa, every other moving joint with a position actuator
-/// (kPositionGainPerRad, kPositionTimeConstantS) named after it. @throws ParameterError as composeRobotUrdfFiles, and
+/// (kPositionGainPerRad, critically damped at the zero pose) named after it. @throws ParameterError as composeRobotUrdfFiles, and
 /// where a finger's twin has no free shape at the pressure
 std::string composedMjcf(const std::string& robot_urdf_path, const std::string& gripper_path, const MjcfOptions& mjcf);
 
