@@ -270,6 +270,8 @@ void CellPhysicsNode::onPublish(const ros::TimerEvent&) {
 
 int main(int argc, char** argv) {
   std::setvbuf(stdout, nullptr, _IOLBF, 0);
+  // `cell_physics --parameters`: the node's own parameters as Markdown, for docs/ (no ROS master needed).
+  if (pf::printParametersIfAsked(argc, argv, physicsParameterSpecs())) return 0;
   ros::init(argc, argv, "cell_physics");
   ros::NodeHandle nh, pnh("~");
   try {
