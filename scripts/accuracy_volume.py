@@ -18,7 +18,7 @@ chamber_gap_m, wall_locking_jm):
     angle's error in rad beside the pressure's relative error).
 Each is then driven by the measured volume of every row (evaluate_volume) and reported for the fitted and the
 held-out half: the bend error (deg) and the pressure error (%), and the two bends the ribbed segment has at one
-pressure. It also prints what the chambers' growth holds at the last row. Takes about seven minutes (the
+pressure. It also prints what the chambers' growth holds at the last row. Takes about six and a half minutes (the
 leave-one-out of two three-key fits per segment). Its output is
 docs/ACCURACY.md's "Volume as the input"; --plot draws bend and pressure against volume for both segments.
 """
