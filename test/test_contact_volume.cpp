@@ -106,3 +106,24 @@ TEST(ContactVolume, TheVolumeAsTheInputGivesThePressureBack) {
     }
   }
 }
+
+// Hard cases: an obstacle the straight finger already overlaps (reported, not solved: the free finger's volume), the
+// volume at the first touch itself (the pressure of the touch comes back), and no volume at all (rest).
+TEST(ContactVolume, HardCasesTheOverlapTheTouchItselfAndRest) {
+  const pf::FingerModel model(paperFingerWithGas());
+  pf::ContactTracker overlapping(model, pf::Obstacle::disk(0.03, 0.0, 0.01));  // across the straight finger
+  const pf::ContactState c = overlapping.solve(1e5);
+  ASSERT_EQ(c.status, pf::ContactState::Status::kOverlapsAtRest);
+  const double free_v = model.suppliedVolumeAt(1e5);
+  EXPECT_NEAR(pf::suppliedVolumeInContact(model, c, 1e5), free_v, 1e-14 * free_v);
+  pf::ContactTracker tracker(model, pf::Obstacle::disk(0.075, 0.035, 0.01));
+  auto contact_at = [&](double p) { return tracker.solve(p); };
+  const double touch = tracker.solve(kTop).first_touch_gauge_pa;
+  const double at_touch = pf::suppliedVolumeInContact(model, tracker.solve(touch), touch);
+  double gauge = -1.0;
+  std::string why;
+  ASSERT_TRUE(pf::gaugeForVolumeInContact(model, contact_at, at_touch, kTop, gauge, why)) << why;
+  EXPECT_NEAR(gauge, touch, 1e-9 * touch);
+  ASSERT_TRUE(pf::gaugeForVolumeInContact(model, contact_at, 0.0, kTop, gauge, why)) << why;
+  EXPECT_EQ(gauge, 0.0);
+}
