@@ -1,5 +1,6 @@
 #!/usr/bin/python3
-"""Draws docs/grasp_joint_angles.png: the joint angles against pressure for one obstacle, beside the free finger's.
+"""Draws docs/grasp_joint_angles.png: the joint angles against pressure for one obstacle, beside the free finger's,
+and the volume the supply has pushed in (the walls the disk holds take no more).
 
 Both curves come from `finger_model` (the same CSV the README documents), so the plot shows what the tool prints:
     /usr/bin/python3 scripts/plot_grasp.py [--disk X,Y,R] [--output PATH]
@@ -19,7 +20,8 @@ def run_model(extra):
     out = subprocess.run([exe, "--sweep-pa", "0:294199.5:600"] + extra, check=True, capture_output=True, text=True)
     rows = list(csv.DictReader(io.StringIO(out.stdout)))
     joints = sorted((k for k in rows[0] if k.startswith("joint_")), key=lambda k: int(k.split("_")[1]))
-    return [float(r["gauge_pa"]) for r in rows], {j: [float(r[j]) for r in rows] for j in joints}
+    shape = {j: [float(r[j]) for r in rows] for j in joints}
+    return [float(r["gauge_pa"]) for r in rows], shape, [float(r["supplied_volume_m3"]) for r in rows]
 
 
 def main():
@@ -31,9 +33,9 @@ def main():
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    p, free = run_model([])
-    _, held = run_model(["--obstacle-disk", args.disk])
-    fig, ax = plt.subplots(figsize=(8, 4.8))
+    p, free, free_volume = run_model([])
+    _, held, held_volume = run_model(["--obstacle-disk", args.disk])
+    fig, (ax, ax_volume) = plt.subplots(1, 2, figsize=(12, 4.8), gridspec_kw={"width_ratios": [3, 2]})
     colors = plt.get_cmap("viridis")
     for i, joint in enumerate(free):
         c = colors(i / max(1, len(free) - 1))
@@ -48,9 +50,17 @@ def main():
     ax.set_xlabel("gauge pressure (kPa)")
     ax.set_ylabel("joint angle (rad)")
     x, y, r = (float(v) * 1e3 for v in args.disk.split(","))
-    ax.set_title(f"Joint angles with a {r:g} mm disk at ({x:g}, {y:g}) mm (solid) and free (dashed)")
+    ax.set_title(f"Joint angles with a {r:g} mm disk at ({x:g}, {y:g}) mm (solid) and free (dashed)", fontsize=10)
     ax.legend(ncol=2, fontsize=8)
     ax.grid(alpha=0.3)
+    ax_volume.plot([v * 1e6 for v in free_volume], [x / 1e3 for x in p], "--", color="k", label="free")
+    ax_volume.plot([v * 1e6 for v in held_volume], [x / 1e3 for x in p], "-", color="C3", linewidth=2,
+                   label="on the disk: held walls take no more")
+    ax_volume.set_xlabel("supplied volume (mL)")
+    ax_volume.set_ylabel("gauge pressure (kPa)")
+    ax_volume.set_title("Driven by volume: the pressure it makes", fontsize=10)
+    ax_volume.legend(fontsize=8)
+    ax_volume.grid(alpha=0.3)
     fig.tight_layout()
     fig.savefig(args.output, dpi=110)
     print(f"wrote {args.output}")
