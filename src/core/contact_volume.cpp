@@ -3,10 +3,10 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <sstream>
 
 #include "pneumatic_finger/core/chamber_volume.hpp"
 #include "pneumatic_finger/core/contact.hpp"
+#include "pneumatic_finger/core/parameters.hpp"
 #include "first_zero.hpp"
 
 namespace pneumatic_finger {
@@ -54,19 +54,17 @@ double suppliedVolumeInContact(const FingerModel& model, const ContactState& con
 bool gaugeForVolumeInContact(const FingerModel& model, const std::function<ContactState(double)>& contact_at,
                              double supplied_volume_m3, double max_gauge_pa, double& gauge_pa, std::string& why) {
   const double v = supplied_volume_m3;
-  std::ostringstream s;
   if (!(v >= 0.0) || !std::isfinite(v)) {
-    s << "supplied volume " << v << " m^3 is not a finite volume >= 0 (the contact rule has no vacuum)";
-    why = s.str();
+    why = "supplied volume " + formatMessage(v) + " m^3 is not a finite volume >= 0 (the contact rule has no vacuum)";
     return false;
   }
   const double top = std::fmin(max_gauge_pa, model.belowLimitGaugePa());
   const auto volume_at = [&](double p) { return suppliedVolumeInContact(model, contact_at(p), p); };
   const double most = volume_at(top);
   if (!(most >= v)) {
-    s << "supplied volume " << v << " m^3 is more than the finger takes on the object up to " << top
-      << " Pa gauge (" << (top < max_gauge_pa ? "the limit point" : "the top of its range") << "): " << most << " m^3";
-    why = s.str();
+    why = "supplied volume " + formatMessage(v) + " m^3 is more than the finger takes on the object up to " +
+          formatMessage(top) + " Pa gauge (" + (top < max_gauge_pa ? "the limit point" : "the top of its range") +
+          "): " + formatMessage(most) + " m^3";
     return false;
   }
   gauge_pa = increasingRoot(volume_at, v, 0.0, top);
