@@ -1,5 +1,6 @@
 // The supplied volume of a finger closing on an object, and the volume as the input there (docs/MODEL.md, "Volume":
 // "With an object").
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <limits>
@@ -24,11 +25,16 @@ bool wallHeld(const ContactState& contact, std::size_t joint, double& since_gaug
 
 }  // namespace
 
-double suppliedVolumeInContact(const FingerModel& model, const ContactState& contact, double gauge_pa) {
+double suppliedVolumeInContact(const FingerModel& model, const ContactState& contact, double gauge_pa,
+                               const double* free_bulge_given_m) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   std::array<double, kMaxChamberCount> free_bulge_m{}, held_bulge_m{};
-  if (!model.chamberBulgesAt(gauge_pa, free_bulge_m.data())) return nan;
   const auto n = static_cast<std::size_t>(model.chamberCount());
+  if (free_bulge_given_m) {
+    std::copy(free_bulge_given_m, free_bulge_given_m + n, free_bulge_m.begin());
+  } else if (!model.chamberBulgesAt(gauge_pa, free_bulge_m.data())) {
+    return nan;
+  }
   double held_at_pa = nan, growth_m3 = 0.0;
   for (std::size_t k = 0; k < n; ++k) {
     for (std::size_t joint : {k, k + 1}) {  // 0-based: the wall at joint k + 1, then at joint k + 2

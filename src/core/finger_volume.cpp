@@ -102,12 +102,15 @@ double FingerModel::suppliedVolumeOf(const FingerState& state) const {
 bool FingerModel::chamberBulgesAt(double gauge_pa, double* bulge_m) const {
   if (std::isnan(gauge_pa) || gauge_pa >= limit_gauge_pa_) return false;
   const double p_o = parameters_.atmospheric_pressure_pa;
+  std::array<double, kMaxChamberCount> group_bulge_m{};  // one wall solve per group, not per chamber
+  for (std::size_t g = 0; g < groups_.size() && gauge_pa > 0.0; ++g) {
+    const ChamberGroup& group = groups_[g];
+    group_bulge_m[g] = membrane_ ? membraneBulgeM(group.membrane, membraneStretchExcess(group.membrane, gauge_pa))
+                                 : bulge(stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa)),
+                                         group.chamber_height_m);
+  }
   for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
-    const ChamberGroup& group = groups_[static_cast<std::size_t>(group_of_chamber_[k])];
-    bulge_m[k] = !(gauge_pa > 0.0) ? 0.0
-                 : membrane_
-                     ? membraneBulgeM(group.membrane, membraneStretchExcess(group.membrane, gauge_pa))
-                     : bulge(stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa)), group.chamber_height_m);
+    bulge_m[k] = group_bulge_m[static_cast<std::size_t>(group_of_chamber_[k])];
   }
   return true;
 }

@@ -244,9 +244,13 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
   finger_state_.tip.orientation.w = std::cos(0.5 * tip_angle_rad);
   finger_state_.tip_angle_rad = tip_angle_rad;
   const bool held = contact && std::any_of(contact->held.begin(), contact->held.end(), [](bool h) { return h; });
-  finger_state_.supplied_volume_m3 = held                               ? suppliedVolumeInContact(*model_, *contact, state.gauge_pa)
-                                     : std::isnan(supplied_volume_m3) ? model_->suppliedVolumeOf(state)
-                                                                      : supplied_volume_m3;
+  // Held, the walls' bulges the state already holds (the free ones) are reused; only the held walls' are solved.
+  if (held) {
+    finger_state_.supplied_volume_m3 = suppliedVolumeInContact(*model_, *contact, state.gauge_pa, state.bulge_m.data());
+  } else {
+    finger_state_.supplied_volume_m3 =
+        std::isnan(supplied_volume_m3) ? model_->suppliedVolumeOf(state) : supplied_volume_m3;
+  }
   finger_state_.walls_in_contact = state.walls_in_contact;
   finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.input.validated_max_gauge_pa;
   finger_state_.status = state.status == EvaluationStatus::kVacuum           ? FingerModelState::STATUS_VACUUM
@@ -340,7 +344,6 @@ void FingerNode::onGraspObject(const GraspObject::ConstPtr& msg) {
   }
   republish();
 }
-
 
 bool FingerNode::acceptObject(const GraspObject::ConstPtr& msg) {
   // Validate before use: a bad object is refused by name and the finger stays free.

@@ -79,7 +79,10 @@ bool gaugeForContactForce(const FingerModel& model, const std::function<ContactS
 /// each chamber's two walls take half its growth each; a wall at a held joint keeps the bulge its chamber had when
 /// that joint was held (held_since_gauge_pa), every other wall has the free bulge at @p gauge_pa; plus the dead gas's
 /// compression. Without contact it is FingerModel::suppliedVolumeAt. NaN at or beyond the limit point.
-double suppliedVolumeInContact(const FingerModel& model, const ContactState& contact, double gauge_pa);
+/// @p free_bulge_m: the free walls' bulges at @p gauge_pa when the caller has them (a FingerState's bulge_m, N
+/// entries), else solved here.
+double suppliedVolumeInContact(const FingerModel& model, const ContactState& contact, double gauge_pa,
+                               const double* free_bulge_m = nullptr);
 
 /// The finger closing on an object driven by volume: the gauge pressure (Pa) at which it has taken
 /// @p supplied_volume_m3, where @p contact_at gives the contact state at a pressure (a ContactTracker's solve), up to
