@@ -247,6 +247,35 @@ void benchMembrane(benchmark::State& state, pf::WallLaw law) {
   state.SetLabel(std::string(pf::wallLawName(law)) + " wall law, Gent, up to 0.99 of the limit point");
 }
 
+// The membrane and thick wall laws through the batch (evaluateMany): membrane/validated's finger and range, 4096
+// pressures in order from rest to 0.99 of the limit point, every output, one at a time (scalar) or in packs: the time
+// per pressure (the time over the counter pressures) sets beside membrane/validated and thick/validated.
+void benchMembraneBatch(benchmark::State& state, pf::WallLaw law, pf::BatchPath path) {
+  if (!pf::batchPathAvailable(path)) {
+    state.SkipWithError("this CPU lacks the instruction set");
+    return;
+  }
+  pf::FingerParameters params = kParams;
+  params.wall_law = law;
+  params.shear_modulus_pa.assign(params.shear_modulus_pa.size(), 2e4);
+  params.wall_thickness_m.assign(params.wall_thickness_m.size(), 0.002);
+  params.wall_locking_jm = 50.0;
+  const pf::FingerModel model(params);
+  pf::FingerWorkspace ws(model);
+  constexpr std::size_t kCount = 4096;
+  std::vector<double> pressures;
+  for (std::size_t i = 1; i <= kCount; ++i) pressures.push_back(0.99 * model.limitGaugePa() * i / kCount);
+  pf::BatchBuffers rows(kCount, params.chamber_count);
+  for (auto _ : state) {
+    model.evaluateMany(pressures.data(), kCount, rows.outputs(), ws, path);
+    benchmark::DoNotOptimize(rows.backbone_m.data());
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(kCount));
+  state.counters["pressures"] = static_cast<double>(kCount);
+  state.SetLabel(std::string(pf::wallLawName(law)) + " wall law, Gent, evaluateMany, " + pf::batchPathName(path));
+}
+
 // Volume as the input (docs/MODEL.md, "Volume"), beside membrane/validated: the same finger with 10 mL of gas in the
 // drive, at the volumes it takes at that benchmark's 64 pressures, one at a time. Its largest relative error in the
 // pressure the volume gives back, as a counter.
@@ -550,6 +579,13 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("membrane/validated", benchMembrane, pf::WallLaw::kMembrane);
   benchmark::RegisterBenchmark("thick/validated", benchMembrane, pf::WallLaw::kThick);
   benchmark::RegisterBenchmark("membrane/volume", benchMembraneVolume);
+  for (pf::WallLaw law : {pf::WallLaw::kMembrane, pf::WallLaw::kThick}) {
+    for (pf::BatchPath path : {pf::BatchPath::kScalar, pf::BatchPath::kGeneric, pf::BatchPath::kAvx2,
+                               pf::BatchPath::kAvx512}) {
+      benchmark::RegisterBenchmark((std::string(pf::wallLawName(law)) + "_batch/" + pf::batchPathName(path)).c_str(),
+                                   benchMembraneBatch, law, path);
+    }
+  }
   for (int stage = 1; stage <= 5; ++stage) {
     benchmark::RegisterBenchmark(("robust_stage/" + std::to_string(stage)).c_str(),
                                  [stage](benchmark::State& s) { benchStages(s, stage); });

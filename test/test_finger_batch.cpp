@@ -12,6 +12,7 @@
 
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/stages.hpp"
+#include "test_support.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -85,9 +86,10 @@ int compareRow(const pf::FingerModel& single, pf::FingerWorkspace& single_ws, co
     }
   };
   const pf::EvaluationStatus want = !std::isfinite(gauge_pa) ? pf::EvaluationStatus::kNotFinite : s.status;
-  if (want == pf::EvaluationStatus::kNotFinite || want == pf::EvaluationStatus::kSolverFailure) {
-    // Refused, or no answer (the paper's solver at some pressures): NaN throughout, where evaluate() keeps its
-    // previous state.
+  if (want == pf::EvaluationStatus::kNotFinite || want == pf::EvaluationStatus::kSolverFailure ||
+      want == pf::EvaluationStatus::kBeyondLimitPoint) {
+    // Refused, or no answer (the paper's solver at some pressures, a membrane past its limit point without a far
+    // branch): NaN throughout, where evaluate() keeps its previous state.
     EXPECT_EQ(rows.status[i], static_cast<int>(want)) << what;
     for (std::size_t k = 0; k < un; ++k) EXPECT_TRUE(std::isnan(rows.half_angle_rad[i * un + k])) << what;
     for (std::size_t k = 0; k < 2 * (un + 2); ++k) EXPECT_TRUE(std::isnan(rows.backbone_m[i * 2 * (un + 2) + k]));
@@ -176,4 +178,97 @@ TEST(Batch, ZeroGapTakesTheSingleEvaluationsRareBranch) {
   pf::FingerParameters p = pf::FingerParameters::defaults();
   p.chamber_gap_m.assign(p.chamber_gap_m.size(), 0.0);
   expectEveryPathMatchesEvaluate(p, pf::SolverKind::kRobust);
+}
+
+namespace {
+
+// Pressures a thin membrane's batch meets, in sequence: the near branch from rest to the limit point, its hard cases
+// (near rest, the starting table's nodes and their neighbours, around the touch, just below the limit), then up
+// through the snap and down the far branch past its turning point, vacuum and refused values, each kind in every
+// lane of a pack; a count that leaves the last pack partly filled.
+std::vector<double> membranePressures(const pf::FingerModel& model, const pf::FingerParameters& params) {
+  const pf::MembraneWall wall =
+      pf::membraneWall(params.shear_modulus_pa[0], params.wall_thickness_m[0], params.chamber_height_m[0],
+                       params.wall_locking_jm, params.wall_law == pf::WallLaw::kThick);
+  // Without a limit point, the top of the starting table (the lock's neighbourhood), or 100 kPa without a table.
+  const double limit = std::isfinite(model.limitGaugePa()) ? model.limitGaugePa()
+                       : wall.has_guess                    ? wall.guess_gauge_pa[31]
+                                                           : 1e5;
+  std::vector<double> p;
+  for (int i = 0; i <= 300; ++i) p.push_back(0.999 * limit * i / 300);
+  for (double x = 1e-12; x < 10; x *= 7) p.push_back(x);
+  for (double g : wall.guess_gauge_pa) {
+    if (!(g < model.limitGaugePa())) continue;
+    for (double x : {g, std::nextafter(g, 0.0), std::nextafter(g, INFINITY)}) p.push_back(x);
+  }
+  const double pc = model.contactGaugePa();
+  for (int k = 1; k <= 16; ++k) {
+    p.push_back(pc * (1 - std::pow(10.0, -k)));
+    p.push_back(pc * (1 + std::pow(10.0, -k)));
+    p.push_back(limit * (1 - std::pow(10.0, -k)));
+  }
+  p.push_back(std::nextafter(limit, 0.0));
+  for (double x : {-1.0, -1e5, -0.0, 0.0, std::numeric_limits<double>::quiet_NaN(), double(INFINITY),
+                   -double(INFINITY), std::numeric_limits<double>::denorm_min()}) {
+    p.push_back(x);
+  }
+  // Through the snap (or past the limit, where the law has no far branch) and down again, twice.
+  for (int cycle = 0; cycle < 2; ++cycle) {
+    for (int i = 0; i <= 60; ++i) p.push_back(1.5 * limit * i / 60);
+    for (int i = 60; i >= 0; --i) p.push_back(1.5 * limit * i / 60);
+  }
+  if (std::isfinite(model.farTurningGaugePa())) {
+    const double turning = model.farTurningGaugePa();
+    for (double x : {limit, std::nextafter(turning, INFINITY), turning, 0.5 * turning, limit, 0.5 * turning}) {
+      p.push_back(x);
+    }
+  }
+  if (p.size() % 8 == 0) p.push_back(0.25 * limit);
+  return p;
+}
+
+// Every batch path against evaluate() on one workspace, row by row in the same order (the branches are the path's).
+void expectMembraneBatchMatchesEvaluate(const pf::FingerParameters& params) {
+  pf::FingerModel batch(params);
+  const std::vector<double> pressures = membranePressures(batch, params);
+  int paths_run = 0;
+  for (pf::BatchPath path : {pf::BatchPath::kBest, pf::BatchPath::kScalar, pf::BatchPath::kGeneric,
+                             pf::BatchPath::kAvx2, pf::BatchPath::kAvx512}) {
+    if (!pf::batchPathAvailable(path)) continue;
+    ++paths_run;
+    pf::FingerWorkspace batch_ws(batch);
+    Rows rows(pressures.size(), params.chamber_count);
+    batch.evaluateMany(pressures.data(), pressures.size(), rows.outputs(), batch_ws, path);
+    pf::FingerModel single(params);
+    pf::FingerWorkspace single_ws(single);
+    int differ = 0;
+    for (std::size_t i = 0; i < pressures.size(); ++i) {
+      differ += compareRow(single, single_ws, rows, i, pressures[i], pf::batchPathName(path));
+    }
+    EXPECT_EQ(differ, 0) << pf::batchPathName(path) << ": values that differ from evaluate()";
+    EXPECT_EQ(batch_ws.snappedThrough(), single_ws.snappedThrough()) << "the branch the sequence ends on";
+  }
+  EXPECT_GE(paths_run, 3);
+}
+
+}  // namespace
+
+TEST(Batch, TheMembranesPacksAnswerTheBitsOfEvaluateAlongThePath) {
+  // Gent with a far branch (J_m = 50), Neo-Hookean (no far branch: past the limit nothing), Gent without a limit
+  // point (J_m = 6: P rises to the lock), a finger whose walls touch early (a narrow gap); the thick wall, Gent and
+  // Neo-Hookean.
+  struct Finger {
+    double jm;
+    const char* extra;
+    pf::WallLaw law;
+  };
+  for (const Finger& f : {Finger{50, "", pf::WallLaw::kMembrane}, Finger{0, "", pf::WallLaw::kMembrane},
+                          Finger{6, "", pf::WallLaw::kMembrane},
+                          Finger{50, "chamber_gap_m: 0.0002\n", pf::WallLaw::kMembrane},
+                          Finger{50, "", pf::WallLaw::kThick}, Finger{0, "", pf::WallLaw::kThick}}) {
+    SCOPED_TRACE(std::string(pf::wallLawName(f.law)) + " J_m " + std::to_string(f.jm) + " " + f.extra);
+    pf::FingerParameters params = pf_test::membraneFinger(f.jm, f.extra);
+    params.wall_law = f.law;
+    expectMembraneBatchMatchesEvaluate(params);
+  }
 }

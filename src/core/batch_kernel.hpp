@@ -111,10 +111,43 @@ __attribute__((always_inline)) inline void writeRows(const UniformRobustSpec& s,
   }
 }
 
+/// Stage 4 for a pack of bulges @p h with m = 2 sqrt(h c)/b (halfAngleOfWall in stages.cpp): walls in contact where
+/// h > c, the rest shape elsewhere. Marks in @p rare the lanes its usual form does not take (H >= 1e200, m = 0,
+/// D > 1e6), which the caller answers by the single evaluation.
+template <class T, class M>
+__attribute__((always_inline)) inline void stageFour(T h, T m, double c, double two_over_b, M& rare, T& rad,
+                                                     T& cos_half, T& sin_half, T& tan_half) {
+  const T zero = splat<T>(0.0), one = splat<T>(1.0);
+  const auto contact = h > c;
+  const T big_h = h * two_over_b;
+  const T num = big_h * ((h - c) * two_over_b), den = big_h + m;
+  const T d = num / den;
+  rare = rare | (contact & (~(big_h < 1e200) | ~(m > 0.0) | (d > 1e6)));
+  rad = zero, cos_half = one, sin_half = zero, tan_half = zero;
+  const auto active = contact & ~rare;
+  if (anyOf(active)) {
+    T rad_c, cos_c, sin_c, tan_c;
+    wallHalfAngle(d, m, quarterPowerStart(num, den, d, m), active, rad_c, cos_c, sin_c, tan_c);
+    rad = contact ? rad_c : zero;
+    cos_half = contact ? cos_c : one;
+    sin_half = contact ? sin_c : zero;
+    tan_half = contact ? tan_c : zero;
+  }
+}
+
 /// Stages 1-4 of one pack, as a wall's chain in the single evaluation.
 template <class T>
 struct WallPack {
   T stretch, bulge_m, rad, cos_half, sin_half, tan_half;
+  /// Lane @p i from the single evaluation's wall.
+  void setLane(int i, const WallSolution& wall) {
+    stretch[i] = 1.0 + wall.stretch_excess;
+    bulge_m[i] = wall.bulge_m;
+    rad[i] = wall.half.rad;
+    cos_half[i] = wall.half.cos;
+    sin_half[i] = wall.half.sin;
+    tan_half[i] = wall.half.tan;
+  }
 };
 
 /// Stages 1-4 for a pack of pressures @p p (the lanes refused are 0: the rest shape): the common branch for every
@@ -122,7 +155,7 @@ struct WallPack {
 template <class T>
 __attribute__((always_inline)) inline WallPack<T> wallPack(const UniformRobustSpec& s, T p) {
   constexpr int kLanes = lanesOf<T>();
-  const T zero = splat<T>(0.0), one = splat<T>(1.0);
+  const T zero = splat<T>(0.0);
   // Stage 1, energyGroup.
   const auto loaded = p > zero;
   T g = energyGroupProduct(p, s.atmospheric_pa, s.shear_modulus_pa);
@@ -151,46 +184,26 @@ __attribute__((always_inline)) inline WallPack<T> wallPack(const UniformRobustSp
     m_series = (std::sqrt(s.chamber_height_m * c) * two_over_b) * (sqrtOf(s_root) * bulgeRootSeries(s_root));
   }
 
-  // Stage 4 (halfAngleOfWall in stages.cpp): walls in contact where h > c; m from the series where solveWall takes it.
-  const auto contact = h > c;
-  const T big_h = h * two_over_b;
-  const T m = series ? m_series : sqrtOf(h * c) * two_over_b;
-  const T num = big_h * ((h - c) * two_over_b), den = big_h + m;
-  const T d = num / den;
-  rare = rare | (contact & (~(big_h < 1e200) | ~(m > 0.0) | (d > 1e6)));
-  T rad = zero, cos_half = one, sin_half = zero, tan_half = zero;
-  const auto active = contact & ~rare;
-  if (anyOf(active)) {
-    T rad_c, cos_c, sin_c, tan_c;
-    wallHalfAngle(d, m, quarterPowerStart(num, den, d, m), active, rad_c, cos_c, sin_c, tan_c);
-    rad = contact ? rad_c : zero;
-    cos_half = contact ? cos_c : one;
-    sin_half = contact ? sin_c : zero;
-    tan_half = contact ? tan_c : zero;
-  }
-  T stretch = 1.0 + delta;
-  T bulge_m = h;
-
+  // Stage 4, with m from the series where solveWall takes it.
+  const T m = series ? m_series : sqrtOf(h * s.gap_m) * two_over_b;
+  T rad, cos_half, sin_half, tan_half;
+  stageFour(h, m, s.gap_m, two_over_b, rare, rad, cos_half, sin_half, tan_half);
+  WallPack<T> w{1.0 + delta, h, rad, cos_half, sin_half, tan_half};
   // The rare lanes: the single evaluation's own chain.
   for (int i = 0; i < kLanes; ++i) {
-    if (!rare[i]) continue;
-    const WallSolution wall = solveWall(p[i], s.atmospheric_pa, s.shear_modulus_pa, s.chamber_height_m, s.gap_m,
-                                        s.wall_critical_height_m);
-    stretch[i] = 1.0 + wall.stretch_excess;
-    bulge_m[i] = wall.bulge_m;
-    rad[i] = wall.half.rad;
-    cos_half[i] = wall.half.cos;
-    sin_half[i] = wall.half.sin;
-    tan_half[i] = wall.half.tan;
+    if (rare[i]) {
+      w.setLane(i, solveWall(p[i], s.atmospheric_pa, s.shear_modulus_pa, s.chamber_height_m, s.gap_m,
+                             s.wall_critical_height_m));
+    }
   }
-
-  return {stretch, bulge_m, rad, cos_half, sin_half, tan_half};
+  return w;
 }
 
-/// One pack of pressures: lanes [0, valid) are gauge_pa[0..valid), written to rows row0.. of @p out.
-template <class T>
-inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa, int valid, std::size_t row0,
-                              const BatchOutputs& out) {
+/// One pack of pressures: lanes [0, valid) are gauge_pa[0..valid), written to rows row0.. of @p out; @p walls(p)
+/// gives stages 1-4 of the pack's pressures (wallPack: the paper law; membraneWallPack: the membrane).
+template <class T, class Walls>
+__attribute__((always_inline)) inline void uniformPack(const UniformRobustSpec& s, const double* gauge_pa, int valid,
+                                                       std::size_t row0, const BatchOutputs& out, Walls&& walls) {
   constexpr int kLanes = lanesOf<T>();
   const int n = s.chamber_count;
   std::uint8_t status[kLanes];
@@ -202,7 +215,7 @@ inline void uniformRobustPack(const UniformRobustSpec& s, const double* gauge_pa
                                        : static_cast<std::uint8_t>(EvaluationStatus::kOk);
     p[i] = status[i] == static_cast<std::uint8_t>(EvaluationStatus::kOk) ? x : 0.0;  // vacuum: the rest shape (P = 0)
   }
-  const WallPack<T> w = wallPack(s, p);
+  const WallPack<T> w = walls(p);
   const T stretch = w.stretch, bulge_m = w.bulge_m, rad = w.rad, cos_half = w.cos_half, sin_half = w.sin_half,
           tan_half = w.tan_half;
   // Stages 5-6 (jointsAndBackboneUniform): q_1 = theta_0 + theta, q_n = 2 theta; the points from uniformPoints.
@@ -226,7 +239,8 @@ inline void uniformRobustBatch(const UniformRobustSpec& spec, const double* gaug
   constexpr std::size_t kLanes = static_cast<std::size_t>(lanesOf<T>());
   for (std::size_t row = 0; row < count; row += kLanes) {
     const std::size_t left = count - row;
-    uniformRobustPack<T>(spec, gauge_pa + row, static_cast<int>(left < kLanes ? left : kLanes), row, out);
+    uniformPack<T>(spec, gauge_pa + row, static_cast<int>(left < kLanes ? left : kLanes), row, out,
+                   [&spec](T p) { return wallPack(spec, p); });
   }
 }
 

@@ -1,5 +1,6 @@
-// FingerModel::evaluateMany: many pressures in one call, SIMD across pressures where the kernels answer (the robust
-// solver with identical chambers), else one at a time through the single evaluation.
+// FingerModel::evaluateMany: many pressures in one call, SIMD across pressures where the kernels answer (identical
+// chambers: the robust solver's chain, or the membrane and thick wall laws on their near branch), else one at a time
+// through the single evaluation.
 #include <algorithm>
 #include <limits>
 #include <stdexcept>
@@ -7,6 +8,7 @@
 
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "batch_kernel.hpp"
+#include "membrane_kernel.hpp"
 #include "simd_kernels.hpp"
 
 namespace pneumatic_finger {
@@ -76,6 +78,35 @@ bool batchPathAvailable(BatchPath path) {
   return path == BatchPath::kScalar || instructionSetAvailable(instructionSetOf(path));
 }
 
+namespace {
+
+// The batch kernels' view of a finger of identical chambers (group @p g, a FingerModel::ChamberGroup).
+template <class ChamberGroup>
+UniformRobustSpec uniformSpec(const FingerParameters& params, const ChamberGroup& g, const FirstJointSeries& first) {
+  return UniformRobustSpec{params.chamber_count, params.atmospheric_pressure_pa, g.shear_modulus_pa,
+                           g.chamber_height_m, g.chamber_gap_m, g.wall_critical_height_m,
+                           params.base_segment_length_m, params.segment_length_m.data(), params.base_wall_share,
+                           first};
+}
+
+// @p out moved on by @p rows rows of a finger of @p n chambers.
+BatchOutputs offsetOutputs(const BatchOutputs& out, std::size_t rows, std::size_t n) {
+  BatchOutputs o = out;
+  auto move = [rows](double*& field, std::size_t per_row) {
+    if (field) field += rows * per_row;
+  };
+  move(o.stretch, n);
+  move(o.bulge_m, n);
+  move(o.half_angle_rad, n);
+  move(o.joint_angle_rad, n);
+  move(o.backbone_m, 2 * (n + 2));
+  move(o.tip_angle_rad, 1);
+  if (o.status) o.status += rows;
+  return o;
+}
+
+}  // namespace
+
 void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out,
                                FingerWorkspace& workspace, BatchPath path) const {
   if (path != BatchPath::kScalar && !batchPathAvailable(path)) {
@@ -83,53 +114,66 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
                                 "' is not available on this CPU or build");
   }
   const auto n = static_cast<std::size_t>(parameters_.chamber_count);
-  // The packs hold the paper law's chain; the membrane law goes one pressure at a time.
-  if (path != BatchPath::kScalar && options_.solver == SolverKind::kRobust && groups_.size() == 1 && !membrane_) {
-    const ChamberGroup& g = groups_[0];
-    const UniformRobustSpec spec{parameters_.chamber_count, parameters_.atmospheric_pressure_pa, g.shear_modulus_pa,
-                                 g.chamber_height_m, g.chamber_gap_m, g.wall_critical_height_m,
-                                 parameters_.base_segment_length_m, parameters_.segment_length_m.data(),
-                                 parameters_.base_wall_share, first_joint_series_};
-    simdKernels(instructionSetOf(path))->batch_uniform_robust(spec, gauge_pa, count, out);
+  const SimdKernels* packs = path == BatchPath::kScalar ? nullptr : simdKernels(instructionSetOf(path));
+  // The paper law's packs: every pressure is independent of the others.
+  if (packs && options_.solver == SolverKind::kRobust && groups_.size() == 1 && !membrane_) {
+    packs->batch_uniform_robust(uniformSpec(parameters_, groups_[0], first_joint_series_), gauge_pa, count, out);
     return;
   }
   if (workspace.shape_ != shape_) refuseWorkspace(workspace);
+  if (workspace.batch_state_.stretch.size() == 0) workspace.batch_state_ = initialState();
+  // The membrane's packs take the runs of pressures on the near branch; the branches are followed here, in order, and
+  // the rows off the near branch go one at a time (as does a thick wall without a starting table).
+  if (!(groups_.size() == 1 && membrane_ && groups_[0].membrane.has_guess)) packs = nullptr;
+  const UniformMembraneSpec spec{uniformSpec(parameters_, groups_[0], first_joint_series_), &groups_[0].membrane};
+  std::size_t run = 0;  // the first row of the run the packs have not yet taken
+  auto takeRun = [&](std::size_t end) {
+    if (packs && end > run) packs->batch_uniform_membrane(spec, gauge_pa + run, end - run, offsetOutputs(out, run, n));
+  };
+  for (std::size_t i = 0; i < count; ++i) {
+    const double p = gauge_pa[i];
+    const EvaluationStatus branch = std::isfinite(p) ? followBranches(p, workspace) : EvaluationStatus::kOk;
+    if (packs && branch == EvaluationStatus::kOk) continue;  // on the near branch: the packs take it with its run
+    takeRun(i);
+    writeBatchRow(i, p, branch, workspace, out);
+    run = i + 1;
+  }
+  takeRun(count);
+}
+
+void FingerModel::writeBatchRow(std::size_t i, double p, EvaluationStatus branch, FingerWorkspace& workspace,
+                                const BatchOutputs& out) const {
+  const auto n = static_cast<std::size_t>(parameters_.chamber_count);
   FingerState& state = workspace.batch_state_;
-  if (state.stretch.size() == 0) state = initialState();
   const double nan = std::numeric_limits<double>::quiet_NaN();
   auto row = [n, nan](const Eigen::VectorXd& from, double* to, std::size_t i, bool answered) {
     if (!to) return;
     if (answered) std::copy(from.data(), from.data() + n, to + i * n);
     else std::fill(to + i * n, to + (i + 1) * n, nan);
   };
-  for (std::size_t i = 0; i < count; ++i) {
-    const double p = gauge_pa[i];
-    // The membrane law's walls follow their branches through the sequence, in order, from the workspace's.
-    const EvaluationStatus branch = std::isfinite(p) ? followBranches(p, workspace) : EvaluationStatus::kOk;
-    EvaluationStatus status = !std::isfinite(p)                              ? EvaluationStatus::kNotFinite
-                              : branch != EvaluationStatus::kOk              ? branch
-                              : p < 0.0                                      ? EvaluationStatus::kVacuum
-                                                                             : EvaluationStatus::kOk;
-    const bool solve = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum;
-    if (solve && !writeStateAt(p < 0.0 ? 0.0 : p, workspace, state)) status = EvaluationStatus::kSolverFailure;
-    if (status == EvaluationStatus::kSnappedThrough && !writeBranchState(p, workspace, state)) {
-      status = EvaluationStatus::kSolverFailure;
-    }
-    const bool answered = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum ||
-                          status == EvaluationStatus::kSnappedThrough;
-    const FingerState& s = state;
-    row(s.stretch, out.stretch, i, answered);
-    row(s.bulge_m, out.bulge_m, i, answered);
-    row(s.half_angle_rad, out.half_angle_rad, i, answered);
-    row(s.joint_angle_rad, out.joint_angle_rad, i, answered);
-    if (out.backbone_m) {
-      double* o = out.backbone_m + i * 2 * (n + 2);
-      if (answered) std::copy(s.backbone_m.data(), s.backbone_m.data() + 2 * (n + 2), o);
-      else std::fill(o, o + 2 * (n + 2), nan);
-    }
-    if (out.tip_angle_rad) out.tip_angle_rad[i] = answered ? s.tip_angle_rad : nan;
-    if (out.status) out.status[i] = static_cast<std::uint8_t>(status);
+  EvaluationStatus status = !std::isfinite(p)                              ? EvaluationStatus::kNotFinite
+                            : branch != EvaluationStatus::kOk              ? branch
+                            : p < 0.0                                      ? EvaluationStatus::kVacuum
+                                                                           : EvaluationStatus::kOk;
+  const bool solve = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum;
+  if (solve && !writeStateAt(p < 0.0 ? 0.0 : p, workspace, state)) status = EvaluationStatus::kSolverFailure;
+  if (status == EvaluationStatus::kSnappedThrough && !writeBranchState(p, workspace, state)) {
+    status = EvaluationStatus::kSolverFailure;
   }
+  const bool answered = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum ||
+                        status == EvaluationStatus::kSnappedThrough;
+  const FingerState& s = state;
+  row(s.stretch, out.stretch, i, answered);
+  row(s.bulge_m, out.bulge_m, i, answered);
+  row(s.half_angle_rad, out.half_angle_rad, i, answered);
+  row(s.joint_angle_rad, out.joint_angle_rad, i, answered);
+  if (out.backbone_m) {
+    double* o = out.backbone_m + i * 2 * (n + 2);
+    if (answered) std::copy(s.backbone_m.data(), s.backbone_m.data() + 2 * (n + 2), o);
+    else std::fill(o, o + 2 * (n + 2), nan);
+  }
+  if (out.tip_angle_rad) out.tip_angle_rad[i] = answered ? s.tip_angle_rad : nan;
+  if (out.status) out.status[i] = static_cast<std::uint8_t>(status);
 }
 
 }  // namespace pneumatic_finger

@@ -6,6 +6,7 @@
 
 #include "pneumatic_finger/core/units.hpp"
 #include "first_zero.hpp"
+#include "membrane_law.hpp"
 #include "thick_wall.hpp"
 
 namespace pneumatic_finger {
@@ -13,15 +14,6 @@ namespace pneumatic_finger {
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-
-// lambda^6 - 1 as a polynomial in delta (no cancellation near rest).
-double sixthPowerMinusOne(double d) { return d * (6.0 + d * (15.0 + d * (20.0 + d * (15.0 + d * (6.0 + d))))); }
-
-// I1 - 3 = (lambda^2 - 1)^2 (2 lambda^2 + 1) / lambda^4 for the equibiaxial membrane, from delta.
-double firstInvariantExcess(double d) {
-  const double lam = 1.0 + d, lam_sq = lam * lam, sq_m1 = d * (2.0 + d);
-  return sq_m1 * sq_m1 * (2.0 * lam_sq + 1.0) / (lam_sq * lam_sq);
-}
 
 // The sign of d P / d lambda, times positive factors: (J_m - e)(7 - lambda^6) lambda^4 + 4 (lambda^6 - 1)^2 for a
 // Gent wall (the log slope times lambda (lambda^6 - 1) lambda^4 (J_m - e)); 7 - lambda^6 for a Neo-Hookean one.
@@ -45,23 +37,9 @@ double gentLimitStretchExcess(const MembraneWall& w) {
   return firstFallBelowZero([&w](double x) { return slopeSign(w, x); }, start, w.locking_stretch_excess);
 }
 
-// The thin membrane's P and dP/ddelta at @p d, together (they share lambda^6 - 1 and the Gent factor):
-// d/dlambda (1/lambda - 1/lambda^7) = (7 - lambda^6)/lambda^8, and d ln(J_m/(J_m - e)) = e'/(J_m - e), with
-// e' = 4 (lambda^6 - 1)/lambda^5. P = +inf (and the slope) at or beyond the lock.
+// The thin membrane's P and dP/ddelta (membrane_law.hpp, shared with the batch's packs).
 void thinGaugeAndSlope(const MembraneWall& w, double d, double& gauge_pa, double& slope_pa) {
-  const double lam = 1.0 + d, u = sixthPowerMinusOne(d), lam2 = lam * lam, lam4 = lam2 * lam2;
-  const double lam7 = lam4 * lam2 * lam;
-  gauge_pa = w.pressure_scale_pa * (u / lam7);
-  slope_pa = w.pressure_scale_pa * ((6.0 - u) / (lam7 * lam));
-  if (w.locking_jm == 0.0) return;
-  const double room = w.locking_jm - firstInvariantExcess(d);
-  if (!(room > 0.0)) {
-    gauge_pa = slope_pa = kInf;
-    return;
-  }
-  const double gent = w.locking_jm / room;
-  slope_pa = (slope_pa + gauge_pa * (4.0 * u / (lam4 * lam)) / room) * gent;
-  gauge_pa *= gent;
+  thinGaugeAndSlopeOf(w.pressure_scale_pa, w.locking_jm, d, gauge_pa, slope_pa);
 }
 
 // The starting table (MembraneWall::guess_*): Chebyshev-Lobatto nodes delta_i = top (1 - cos(pi i/n))/2 on [0, top],

@@ -10,11 +10,16 @@
 
 namespace pneumatic_finger {
 
-struct UniformRobustSpec;  // batch_kernel.hpp
+struct UniformRobustSpec;    // batch_kernel.hpp
+struct UniformMembraneSpec;  // membrane_kernel.hpp
 
 /// The robust solver over @p count pressures of a finger of identical chambers, SIMD across pressures.
 using BatchKernel = void (*)(const UniformRobustSpec& spec, const double* gauge_pa, std::size_t count,
                              const BatchOutputs& out);
+
+/// The membrane or thick wall law over @p count pressures on the near branch, SIMD across pressures.
+using MembraneBatchKernel = void (*)(const UniformMembraneSpec& spec, const double* gauge_pa, std::size_t count,
+                                     const BatchOutputs& out);
 
 /// One table row's polynomials at one x, SIMD across functions: out[f] for f < live, where coefficient i of
 /// function f is row[i * functions + f] (functions a multiple of kTablePackFunctions, table_kernel.hpp).
@@ -30,6 +35,7 @@ enum class InstructionSet {
 /// One instruction set's kernels.
 struct SimdKernels {
   BatchKernel batch_uniform_robust;
+  MembraneBatchKernel batch_uniform_membrane;
   TablePolynomials table_polynomials;
 };
 

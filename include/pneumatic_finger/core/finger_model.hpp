@@ -158,8 +158,9 @@ class FingerModel {
   /// Evaluates @p count pressures into @p out: for each finite pressure the numbers evaluate() gives, bit for bit;
   /// for a NaN or infinite one, NaN in every output and status kNotFinite (a batch has no "previous state"). The
   /// workspace's state and unchanged-pressure cache are neither read nor written; its walls' branches (membrane law)
-  /// are the sequence's start, followed through it in order and left where it ends, as evaluate() leaves them. With the robust solver and
-  /// identical chambers the pressures go through in packs of 4 or 8 (SIMD across pressures, src/core/batch_kernel.hpp);
+  /// are the sequence's start, followed through it in order and left where it ends, as evaluate() leaves them. With identical chambers the
+  /// pressures go through in packs of 4 or 8 (SIMD across pressures): the robust solver's (src/core/batch_kernel.hpp),
+  /// and the membrane and thick wall laws' runs of pressures on the near branch (src/core/membrane_kernel.hpp);
   /// otherwise one at a time. Used by the Python API and the design sweeps, so that a whole array costs one call.
   /// The one-at-a-time path uses @p workspace's scratch.
   void evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out, FingerWorkspace& workspace,
@@ -341,6 +342,9 @@ class FingerModel {
   bool writeState(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const;
   /// writeState out of line, for evaluateMany's one-at-a-time path and the volume input (other translation units).
   bool writeStateAt(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const;
+  /// evaluateMany's row @p i one at a time, at @p p with its branch @p branch already followed (finger_batch.cpp).
+  void writeBatchRow(std::size_t i, double p, EvaluationStatus branch, FingerWorkspace& workspace,
+                     const BatchOutputs& out) const;
   /// writeState's table path (identical chambers, table_shape_writer_ set): false where the table does not answer
   /// (outside its range, or theta a rounding error below 0 next to contact; the points may then be written).
   bool writeTableShape(double gauge_pa, FingerState& out) const;
