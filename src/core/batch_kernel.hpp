@@ -140,7 +140,7 @@ template <class T>
 struct WallPack {
   T stretch, bulge_m, rad, cos_half, sin_half, tan_half;
   /// Lane @p i from the single evaluation's wall.
-  void setLane(int i, const WallSolution& wall) {
+  __attribute__((always_inline)) void setLane(int i, const WallSolution& wall) {
     stretch[i] = 1.0 + wall.stretch_excess;
     bulge_m[i] = wall.bulge_m;
     rad[i] = wall.half.rad;
@@ -240,7 +240,7 @@ inline void uniformRobustBatch(const UniformRobustSpec& spec, const double* gaug
   for (std::size_t row = 0; row < count; row += kLanes) {
     const std::size_t left = count - row;
     uniformPack<T>(spec, gauge_pa + row, static_cast<int>(left < kLanes ? left : kLanes), row, out,
-                   [&spec](T p) { return wallPack(spec, p); });
+                   [&spec](T p) __attribute__((always_inline)) { return wallPack(spec, p); });
   }
 }
 

@@ -124,16 +124,18 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
   if (workspace.batch_state_.stretch.size() == 0) workspace.batch_state_ = initialState();
   // The membrane's packs take the runs of pressures on the near branch; the branches are followed here, in order, and
   // the rows off the near branch go one at a time (as does a thick wall without a starting table).
-  if (!(groups_.size() == 1 && membrane_ && groups_[0].membrane.has_guess)) packs = nullptr;
+  const MembraneBatchKernel membrane_packs =
+      packs && groups_.size() == 1 && membrane_ && groups_[0].membrane.has_guess ? membraneKernel(instructionSetOf(path))
+                                                                                 : nullptr;
   const UniformMembraneSpec spec{uniformSpec(parameters_, groups_[0], first_joint_series_), &groups_[0].membrane};
   std::size_t run = 0;  // the first row of the run the packs have not yet taken
   auto takeRun = [&](std::size_t end) {
-    if (packs && end > run) packs->batch_uniform_membrane(spec, gauge_pa + run, end - run, offsetOutputs(out, run, n));
+    if (membrane_packs && end > run) membrane_packs(spec, gauge_pa + run, end - run, offsetOutputs(out, run, n));
   };
   for (std::size_t i = 0; i < count; ++i) {
     const double p = gauge_pa[i];
     const EvaluationStatus branch = std::isfinite(p) ? followBranches(p, workspace) : EvaluationStatus::kOk;
-    if (packs && branch == EvaluationStatus::kOk) continue;  // on the near branch: the packs take it with its run
+    if (membrane_packs && branch == EvaluationStatus::kOk) continue;  // the near branch: the packs take it with its run
     takeRun(i);
     writeBatchRow(i, p, branch, workspace, out);
     run = i + 1;

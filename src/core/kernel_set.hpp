@@ -4,7 +4,6 @@
 #pragma once
 
 #include "batch_kernel.hpp"
-#include "membrane_kernel.hpp"
 #include "simd_kernels.hpp"
 #include "table_kernel.hpp"
 
@@ -13,7 +12,7 @@ namespace {  // NOLINT(build/namespaces): internal linkage per instruction set (
 
 template <class BatchPack, class TablePack>
 constexpr SimdKernels kernelSet() {
-  return {&uniformRobustBatch<BatchPack>, &uniformMembraneBatch<BatchPack>, &tablePolynomials<TablePack>};
+  return {&uniformRobustBatch<BatchPack>, &tablePolynomials<TablePack>};
 }
 
 }  // namespace

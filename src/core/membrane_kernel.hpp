@@ -136,7 +136,7 @@ inline void uniformMembraneBatch(const UniformMembraneSpec& spec, const double* 
   for (std::size_t row = 0; row < count; row += kLanes) {
     const std::size_t left = count - row;
     uniformPack<T>(spec.finger, gauge_pa + row, static_cast<int>(left < kLanes ? left : kLanes), row, out,
-                   [&spec](T p) { return membraneWallPack(spec, p); });
+                   [&spec](T p) __attribute__((always_inline)) { return membraneWallPack(spec, p); });
   }
 }
 

@@ -4,9 +4,12 @@ namespace pneumatic_finger {
 
 // Defined by the translation unit compiled for each instruction set.
 extern const SimdKernels kGenericKernels;
+extern const MembraneBatchKernel kGenericMembraneKernel;
 #if defined(__x86_64__)
 extern const SimdKernels kAvx2Kernels;
 extern const SimdKernels kAvx512Kernels;
+extern const MembraneBatchKernel kAvx2MembraneKernel;
+extern const MembraneBatchKernel kAvx512MembraneKernel;
 #endif
 
 bool instructionSetAvailable(InstructionSet set) {
@@ -37,6 +40,15 @@ const SimdKernels* simdKernels(InstructionSet set) {
   if (set == InstructionSet::kAvx2) return &kAvx2Kernels;
 #endif
   return &kGenericKernels;
+}
+
+MembraneBatchKernel membraneKernel(InstructionSet set) {
+  if (!instructionSetAvailable(set)) return nullptr;
+#if defined(__x86_64__)
+  if (set == InstructionSet::kAvx512) return kAvx512MembraneKernel;
+  if (set == InstructionSet::kAvx2) return kAvx2MembraneKernel;
+#endif
+  return kGenericMembraneKernel;
 }
 
 }  // namespace pneumatic_finger

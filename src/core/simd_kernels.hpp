@@ -35,7 +35,6 @@ enum class InstructionSet {
 /// One instruction set's kernels.
 struct SimdKernels {
   BatchKernel batch_uniform_robust;
-  MembraneBatchKernel batch_uniform_membrane;
   TablePolynomials table_polynomials;
 };
 
@@ -47,5 +46,10 @@ InstructionSet widestInstructionSet();
 
 /// @p set's kernels, or nullptr where this build or this CPU lacks @p set.
 const SimdKernels* simdKernels(InstructionSet set);
+
+/// @p set's membrane kernel, or nullptr where this build or this CPU lacks @p set. Compiled in translation units of
+/// its own (batch_*_membrane.cpp): beside the paper law's kernel, the chain they share would have two callers, and GCC
+/// then inlines less of it (batch/avx512 took 7 % longer).
+MembraneBatchKernel membraneKernel(InstructionSet set);
 
 }  // namespace pneumatic_finger
