@@ -70,9 +70,13 @@ double increasingNewtonRoot(FDF&& fdf, double target, double lo, double hi, doub
     if (!newton) next = 0.5 * (lo + hi);
     if (!(next > lo && next < hi)) return x;  // lo and hi are neighbours
     const double step = std::fabs(next - x);
-    const double curvature =
-        std::isnan(prev_x) || prev_x == x ? std::numeric_limits<double>::infinity() : std::fabs((df - prev_df) / (x - prev_x)) / (2.0 * df);
-    if (newton && curvature * step * step <= 1e-17 * std::fabs(next)) return next;
+    // (f''/2f') step^2 <= 1e-17 |next|, f'' ~ (df - prev_df)/(x - prev_x), multiplied out: no division on the path
+    // every step waits on.
+    const bool known = !std::isnan(prev_x) && prev_x != x;
+    if (newton && known &&
+        std::fabs(df - prev_df) * (step * step) <= 1e-17 * std::fabs(next) * (std::fabs(x - prev_x) * (2.0 * df))) {
+      return next;
+    }
     prev_x = x;
     prev_df = df;
     x = next;

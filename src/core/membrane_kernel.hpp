@@ -43,7 +43,6 @@ inline void gaugeAndSlopePack(const MembraneWall& w, T x, T& f, T& df) {
 /// bracket, steps and stopping tests. Returns the lanes' roots (the others' x unchanged).
 template <class T, class M>
 inline T risingNewtonPack(const MembraneWall& w, T target, T lo, T hi, T x, T prev_x, T prev_df, M active) {
-  const T inf = splat<T>(__builtin_inf());
   const auto inside = (x > lo) & (x < hi);
   x = inside ? x : 0.5 * (lo + hi);
   T root = x;
@@ -64,9 +63,9 @@ inline T risingNewtonPack(const MembraneWall& w, T target, T lo, T hi, T x, T pr
     active = active & ~stop;
     root = stop ? x : root;
     const T step = absOf(next - x);
-    const auto unknown = (prev_x != prev_x) | (prev_x == x);
-    const T curvature = unknown ? inf : absOf((df - prev_df) / (x - prev_x)) / (2.0 * df);
-    const auto converged = active & newton & (curvature * step * step <= 1e-17 * absOf(next));
+    const auto known = (prev_x == prev_x) & (prev_x != x);
+    const auto converged = active & newton & known &
+                           (absOf(df - prev_df) * (step * step) <= 1e-17 * absOf(next) * (absOf(x - prev_x) * (2.0 * df)));
     root = converged ? next : root;
     active = active & ~converged;
     prev_x = active ? x : prev_x;

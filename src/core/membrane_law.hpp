@@ -28,14 +28,17 @@ inline T firstInvariantExcess(T d) {
 /// the lock.
 template <class T>
 inline void thinGaugeAndSlopeOf(double pressure_scale_pa, double locking_jm, T d, T& gauge_pa, T& slope_pa) {
+  // One reciprocal, 1/lambda^8, serves the three powers the law divides by (lambda^7, lambda^8, lambda^5): a Newton
+  // step waits on this function, and a division's latency is several products'.
   const T lam = 1.0 + d, u = sixthPowerMinusOne(d), lam2 = lam * lam, lam4 = lam2 * lam2;
-  const T lam7 = lam4 * lam2 * lam;
-  gauge_pa = pressure_scale_pa * (u / lam7);
-  slope_pa = pressure_scale_pa * ((6.0 - u) / (lam7 * lam));
+  const T inv_lam8 = 1.0 / (lam4 * lam4);
+  gauge_pa = pressure_scale_pa * (u * lam * inv_lam8);
+  slope_pa = pressure_scale_pa * ((6.0 - u) * inv_lam8);
   if (locking_jm == 0.0) return;
   const T room = locking_jm - firstInvariantExcess(d);
-  const T gent = locking_jm / room;
-  const T slope = (slope_pa + gauge_pa * (4.0 * u / (lam4 * lam)) / room) * gent;
+  const T inv_room = 1.0 / room;
+  const T gent = locking_jm * inv_room;
+  const T slope = (slope_pa + gauge_pa * ((4.0 * u) * (lam2 * lam * inv_lam8)) * inv_room) * gent;
   const T gauge = gauge_pa * gent;
   const auto open = room > splat<T>(0.0);  // else at or beyond the lock
   const T inf = splat<T>(__builtin_inf());
