@@ -102,11 +102,16 @@ def same_pressure_rows(model, rows):
                      f"{float(r['bend_angle_rad']) * DEG:.2f} deg, error {e:+.2f}" for r, e in zip(twins, bend))
 
 
+def gas_uptake_m3(dead_m3, gauge_pa, atmospheric_pa):
+    """The volume the drive's gas takes at @p gauge_pa: its isothermal compression (docs/MODEL.md, "Volume")."""
+    return dead_m3 * gauge_pa / (atmospheric_pa + gauge_pa)
+
+
 def chamber_share(config, keys, last):
     """What the chambers must take at the last row, against what the model's chambers grow."""
     model = pf.FingerModel(config, keys)
     p, v = float(last["gauge_pa"]), float(last["supplied_volume_m3"])
-    gas = keys["dead_volume_m3"] * p / (model.parameters["atmospheric_pressure_pa"] + p)
+    gas = gas_uptake_m3(keys["dead_volume_m3"], p, model.parameters["atmospheric_pressure_pa"])
     growth = pf.FingerModel(config, {**keys, "dead_volume_m3": 0.0}).supplied_volume(p)
     return (f"  - at the last row ({p / 1e3:.1f} kPa, {v * 1e6:.1f} mL supplied), keys from pressure: the gas takes "
             f"{gas * 1e6:.1f} mL, which leaves {max(v - gas, 0) * 1e6:.1f} mL for the chambers; the model's chambers "
