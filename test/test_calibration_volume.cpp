@@ -119,7 +119,9 @@ TEST(CalibrationByVolume, FitsTheBendsAndThePressureTogether) {
     const std::vector<double> terms = r.terms(pf::CalibrationQuantity::kTipAngleAndGauge);
     ASSERT_EQ(terms.size(), r.measured_gauge_pa == 0.0 ? 1U : 2U) << r.supplied_volume_m3;
     EXPECT_EQ(terms[0], r.tip_angle_error_rad());
-    if (terms.size() == 2) EXPECT_EQ(terms[1], (r.model_gauge_pa - r.measured_gauge_pa) / r.measured_gauge_pa);
+    if (terms.size() == 2) {
+      EXPECT_EQ(terms[1], (r.model_gauge_pa - r.measured_gauge_pa) / r.measured_gauge_pa);
+    }
     EXPECT_NEAR(r.tip_angle_error_rad(), 0.0, 1e-9);
     EXPECT_NEAR(r.gauge_error_pa(), 0.0, 1e-6 * truth.shear_modulus_pa[0]);
   }

@@ -433,8 +433,11 @@ TEST(SimulatorGrasp, TheCellsTenGramPartIsCarriedAndATwoHundredGramPartSlips) {
     const bool rule = pf::judgeHold(3, weakest, mass, friction, margin, lift.peak_acceleration_mps2).holds;
     EXPECT_EQ(out.carried, mass < 0.1);
     EXPECT_EQ(rule, out.carried);
-    if (out.carried) EXPECT_LT(out.slip_m, 0.005);
-    if (!out.carried) EXPECT_GT(out.slip_m, lift.height_m) << "it fell out, not crept";
+    if (out.carried) {
+      EXPECT_LT(out.slip_m, 0.005);
+    } else {
+      EXPECT_GT(out.slip_m, lift.height_m) << "it fell out, not crept";
+    }
   }
 }
 
@@ -469,8 +472,11 @@ TEST(SimulatorCell, TheArmLiftsTheTenGramPartOffItsTableAndLeavesTwoHundredGrams
     const double rise = physics.toolPose().translation().z() - tool_z0;
     const double part_rise = physics.partPose().translation().z() - part_z0;
     EXPECT_NEAR(rise, 0.1076, 2e-3) << "the arm follows the schedule's lift";
-    if (carried) EXPECT_NEAR(part_rise, rise, 0.005);
-    if (!carried) EXPECT_LT(std::fabs(part_rise), 0.005) << "it is back on the table";
+    if (carried) {
+      EXPECT_NEAR(part_rise, rise, 0.005);
+    } else {
+      EXPECT_LT(std::fabs(part_rise), 0.005) << "it is back on the table";
+    }
     EXPECT_EQ(physics.warnings(), 0);
   }
 }
