@@ -213,16 +213,22 @@ void benchVariant(benchmark::State& state, const std::string& name, bool hard) {
   state.SetLabel(hard ? "hard cases" : "validated range");
 }
 
-// The membrane wall law (docs/MODEL.md): the paper's finger with a silicone wall (mu = 20 kPa, t = 2 mm, Gent
-// J_m = 50, so a limit point), 64 pressures from rest to 0.99 of the limit point, one at a time as the node runs
-// them; under the membrane law its error against the quad reference (the law by bisection, Wang's half angle by
-// bisection) as a counter. @p law: the membrane or the thick wall (the same finger, its wall's real thickness).
-void benchMembrane(benchmark::State& state, pf::WallLaw law) {
+// The paper's finger with a silicone wall under @p law: mu = 20 kPa, t = 2 mm, Gent J_m = 50 (so a limit point).
+pf::FingerParameters siliconeFinger(pf::WallLaw law) {
   pf::FingerParameters params = kParams;
   params.wall_law = law;
   params.shear_modulus_pa.assign(params.shear_modulus_pa.size(), 2e4);
   params.wall_thickness_m.assign(params.wall_thickness_m.size(), 0.002);
   params.wall_locking_jm = 50.0;
+  return params;
+}
+
+// The membrane wall law (docs/MODEL.md): the paper's finger with a silicone wall (mu = 20 kPa, t = 2 mm, Gent
+// J_m = 50, so a limit point), 64 pressures from rest to 0.99 of the limit point, one at a time as the node runs
+// them; under the membrane law its error against the quad reference (the law by bisection, Wang's half angle by
+// bisection) as a counter. @p law: the membrane or the thick wall (the same finger, its wall's real thickness).
+void benchMembrane(benchmark::State& state, pf::WallLaw law) {
+  const pf::FingerParameters params = siliconeFinger(law);
   const pf::FingerModel model(params);
   pf::FingerWorkspace ws(model);
   std::vector<double> pressures;
@@ -255,11 +261,7 @@ void benchMembraneBatch(benchmark::State& state, pf::WallLaw law, pf::BatchPath 
     state.SkipWithError("this CPU lacks the instruction set");
     return;
   }
-  pf::FingerParameters params = kParams;
-  params.wall_law = law;
-  params.shear_modulus_pa.assign(params.shear_modulus_pa.size(), 2e4);
-  params.wall_thickness_m.assign(params.wall_thickness_m.size(), 0.002);
-  params.wall_locking_jm = 50.0;
+  const pf::FingerParameters params = siliconeFinger(law);
   const pf::FingerModel model(params);
   pf::FingerWorkspace ws(model);
   constexpr std::size_t kCount = 4096;
@@ -280,11 +282,7 @@ void benchMembraneBatch(benchmark::State& state, pf::WallLaw law, pf::BatchPath 
 // drive, at the volumes it takes at that benchmark's 64 pressures, one at a time. Its largest relative error in the
 // pressure the volume gives back, as a counter.
 void benchMembraneVolume(benchmark::State& state) {
-  pf::FingerParameters params = kParams;
-  params.wall_law = pf::WallLaw::kMembrane;
-  params.shear_modulus_pa.assign(params.shear_modulus_pa.size(), 2e4);
-  params.wall_thickness_m.assign(params.wall_thickness_m.size(), 0.002);
-  params.wall_locking_jm = 50.0;
+  pf::FingerParameters params = siliconeFinger(pf::WallLaw::kMembrane);
   params.dead_volume_m3 = 1e-5;
   const pf::FingerModel model(params);
   pf::FingerWorkspace ws(model);
