@@ -290,3 +290,56 @@ TEST(FingerVolume, AVolumeForATipAngleIsRefusedWithItsReason) {
   EXPECT_FALSE(water.volumeForTipAngle(100.0, 1.0, v, why));
   EXPECT_NE(why.find("beyond the model's limit"), std::string::npos) << why;
 }
+
+// The batch by volume: each row the bits of evaluateVolume() along the same sequence (one workspace each), NaN in
+// every output where evaluateVolume() keeps a previous state, and every status: a sweep from drawn out to past the
+// volume's limit, with NaN and inf among it, for a gas that snaps the finger, a Gent wall, unequal chambers and the
+// paper law.
+TEST(FingerVolume, TheBatchByVolumeWritesEachRowAsEvaluateVolumeDoesAndNaNWhereItKeepsAPreviousState) {
+  const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
+  const std::vector<pf::FingerParameters> fingers = {
+      membraneFinger(0.0, 2e-3), membraneFinger(50.0, 1e-5),
+      finger("wall_law: membrane\nshear_modulus_pa: [2e4, 2e4, 2e4, 2e4, 2e4, 2e4, 3e4]\nwall_thickness_m: 0.002\n"),
+      finger("dead_volume_m3: 1e-5\n")};
+  for (const pf::FingerParameters& params : fingers) {
+    const pf::FingerModel model(params);
+    const double top = std::isfinite(model.volumeLimitM3()) ? model.volumeLimitM3() : model.suppliedVolumeAt(3e5);
+    std::vector<double> volumes = {-1e-6, 0.0, nan};
+    for (int i = 1; i <= 60; ++i) volumes.push_back(top * 1.2 * i / 60.0);
+    volumes.insert(volumes.begin() + 30, {inf, -inf, top * 0.5});
+    const std::size_t n = static_cast<std::size_t>(model.chamberCount()), count = volumes.size();
+    pf::BatchBuffers rows(count, model.chamberCount());
+    std::vector<double> gauge(count);
+    pf::FingerWorkspace batch_ws(model), single_ws(model);
+    model.evaluateVolumeMany(volumes.data(), count, rows.outputs(), gauge.data(), batch_ws);
+    int beyond = 0, answered_rows = 0;
+    for (std::size_t i = 0; i < count; ++i) {
+      SCOPED_TRACE("row " + std::to_string(i) + ", volume " + pf::formatExact(volumes[i]));
+      const pf::FingerState& s = model.evaluateVolume(volumes[i], single_ws);
+      ASSERT_EQ(rows.status[i], static_cast<std::uint8_t>(s.status));
+      const bool answered = s.status == pf::EvaluationStatus::kOk || s.status == pf::EvaluationStatus::kVacuum;
+      beyond += s.status == pf::EvaluationStatus::kBeyondLimitPoint;
+      answered_rows += answered;
+      auto same = [answered](double batch, double single) {
+        return answered ? (batch == single || (std::isnan(batch) && std::isnan(single))) : std::isnan(batch);
+      };
+      EXPECT_TRUE(same(gauge[i], s.gauge_pa)) << gauge[i] << " against " << s.gauge_pa;
+      EXPECT_TRUE(same(rows.tip_angle_rad[i], s.tip_angle_rad));
+      for (std::size_t k = 0; k < n; ++k) {
+        const auto e = static_cast<Eigen::Index>(k);
+        EXPECT_TRUE(same(rows.stretch[i * n + k], s.stretch[e]) && same(rows.bulge_m[i * n + k], s.bulge_m[e]) &&
+                    same(rows.half_angle_rad[i * n + k], s.half_angle_rad[e]) &&
+                    same(rows.joint_angle_rad[i * n + k], s.joint_angle_rad[e]))
+            << "chamber " << k;
+      }
+      for (std::size_t k = 0; k < 2 * (n + 2); ++k) {
+        EXPECT_TRUE(same(rows.backbone_m[i * 2 * (n + 2) + k], s.backbone_m.data()[k])) << "backbone " << k;
+      }
+    }
+    EXPECT_GT(answered_rows, 40);
+    if (std::isfinite(model.volumeLimitM3())) {
+      EXPECT_GT(beyond, 3) << "the sweep passes the volume's limit";
+    }
+    EXPECT_EQ(batch_ws.state().tip_angle_rad, single_ws.state().tip_angle_rad) << "the workspace holds the last state";
+  }
+}

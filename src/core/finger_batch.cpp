@@ -105,6 +105,29 @@ BatchOutputs offsetOutputs(const BatchOutputs& out, std::size_t rows, std::size_
   return o;
 }
 
+// Row @p i of @p out from @p s, or NaN in every output where the row has no shape (@p answered false); the status
+// either way.
+void writeStateRow(std::size_t i, const FingerState& s, EvaluationStatus status, bool answered, const BatchOutputs& out,
+                   std::size_t n) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  auto row = [n, nan, i, answered](const Eigen::VectorXd& from, double* to) {
+    if (!to) return;
+    if (answered) std::copy(from.data(), from.data() + n, to + i * n);
+    else std::fill(to + i * n, to + (i + 1) * n, nan);
+  };
+  row(s.stretch, out.stretch);
+  row(s.bulge_m, out.bulge_m);
+  row(s.half_angle_rad, out.half_angle_rad);
+  row(s.joint_angle_rad, out.joint_angle_rad);
+  if (out.backbone_m) {
+    double* o = out.backbone_m + i * 2 * (n + 2);
+    if (answered) std::copy(s.backbone_m.data(), s.backbone_m.data() + 2 * (n + 2), o);
+    else std::fill(o, o + 2 * (n + 2), nan);
+  }
+  if (out.tip_angle_rad) out.tip_angle_rad[i] = answered ? s.tip_angle_rad : nan;
+  if (out.status) out.status[i] = static_cast<std::uint8_t>(status);
+}
+
 }  // namespace
 
 void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const BatchOutputs& out,
@@ -145,14 +168,7 @@ void FingerModel::evaluateMany(const double* gauge_pa, std::size_t count, const 
 
 void FingerModel::writeBatchRow(std::size_t i, double p, EvaluationStatus branch, FingerWorkspace& workspace,
                                 const BatchOutputs& out) const {
-  const auto n = static_cast<std::size_t>(parameters_.chamber_count);
   FingerState& state = workspace.batch_state_;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  auto row = [n, nan](const Eigen::VectorXd& from, double* to, std::size_t i, bool answered) {
-    if (!to) return;
-    if (answered) std::copy(from.data(), from.data() + n, to + i * n);
-    else std::fill(to + i * n, to + (i + 1) * n, nan);
-  };
   EvaluationStatus status = !std::isfinite(p)                              ? EvaluationStatus::kNotFinite
                             : branch != EvaluationStatus::kOk              ? branch
                             : p < 0.0                                      ? EvaluationStatus::kVacuum
@@ -164,18 +180,19 @@ void FingerModel::writeBatchRow(std::size_t i, double p, EvaluationStatus branch
   }
   const bool answered = status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum ||
                         status == EvaluationStatus::kSnappedThrough;
-  const FingerState& s = state;
-  row(s.stretch, out.stretch, i, answered);
-  row(s.bulge_m, out.bulge_m, i, answered);
-  row(s.half_angle_rad, out.half_angle_rad, i, answered);
-  row(s.joint_angle_rad, out.joint_angle_rad, i, answered);
-  if (out.backbone_m) {
-    double* o = out.backbone_m + i * 2 * (n + 2);
-    if (answered) std::copy(s.backbone_m.data(), s.backbone_m.data() + 2 * (n + 2), o);
-    else std::fill(o, o + 2 * (n + 2), nan);
+  writeStateRow(i, state, status, answered, out, static_cast<std::size_t>(parameters_.chamber_count));
+}
+
+void FingerModel::evaluateVolumeMany(const double* supplied_volume_m3, std::size_t count, const BatchOutputs& out,
+                                     double* gauge_pa, FingerWorkspace& workspace) const {
+  const auto n = static_cast<std::size_t>(parameters_.chamber_count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const FingerState& s = evaluateVolume(supplied_volume_m3[i], workspace);
+    // evaluateVolume keeps the previous numbers where it has no answer; a row of the batch has no previous state.
+    const bool answered = s.status == EvaluationStatus::kOk || s.status == EvaluationStatus::kVacuum;
+    writeStateRow(i, s, s.status, answered, out, n);
+    if (gauge_pa) gauge_pa[i] = answered ? s.gauge_pa : std::numeric_limits<double>::quiet_NaN();
   }
-  if (out.tip_angle_rad) out.tip_angle_rad[i] = answered ? s.tip_angle_rad : nan;
-  if (out.status) out.status[i] = static_cast<std::uint8_t>(status);
 }
 
 }  // namespace pneumatic_finger

@@ -88,14 +88,7 @@ class PyFingerModel {
     const auto count = static_cast<std::size_t>(p.size());
     OutputArrays arrays(kStateFields, outputs, out, p.size(), model_->chamberCount());
     arrays.refuseOverlap(p.data(), count * sizeof(double));
-    pf::BatchOutputs rows;  // (bulge_m may get a scratch array below, for the supplied volume)
-    rows.stretch = arrays.data<double>("stretch");
-    rows.bulge_m = arrays.data<double>("bulge_m");
-    rows.half_angle_rad = arrays.data<double>("half_angle_rad");
-    rows.joint_angle_rad = arrays.data<double>("joint_angle_rad");
-    rows.backbone_m = arrays.data<double>("backbone_m");
-    rows.tip_angle_rad = arrays.data<double>("tip_angle_rad");
-    rows.status = arrays.data<std::uint8_t>("status");
+    pf::BatchOutputs rows = stateRows(arrays);  // (bulge_m may get a scratch array below, for the supplied volume)
     std::size_t clamped = 0;
     {
       // The loop runs in C++ without the GIL. The model is const; each call has its own workspace, so calls from
@@ -142,40 +135,23 @@ class PyFingerModel {
     {
       py::gil_scoped_release release;
       pf::FingerWorkspace workspace(*model_);
-      for (std::size_t i = 0; i < count; ++i) {
-        writeVolumeRow(model_->evaluateVolume(v.data()[i], workspace), v.data()[i], i, arrays);
-      }
+      model_->evaluateVolumeMany(v.data(), count, stateRows(arrays), arrays.data<double>("gauge_pa"), workspace);
+      if (double* d = arrays.data<double>("supplied_volume_m3")) std::copy(v.data(), v.data() + count, d);
     }
     return arrays.result(scalar);
   }
 
-  // Row @p i of evaluate_volume's arrays from @p s: NaN where the model kept a previous state (not finite, beyond
-  // the volume's limit), as the batch writes.
-  void writeVolumeRow(const pf::FingerState& s, double volume_m3, std::size_t i, OutputArrays& arrays) const {
-    const bool shaped = s.status == pf::EvaluationStatus::kOk || s.status == pf::EvaluationStatus::kVacuum;
-    const double nan = std::numeric_limits<double>::quiet_NaN();
-    const auto n = static_cast<std::size_t>(model_->chamberCount());
-    auto per_chamber = [&](const char* name, const Eigen::VectorXd& x) {
-      if (double* d = arrays.data<double>(name)) {
-        for (std::size_t k = 0; k < n; ++k) d[i * n + k] = shaped ? x[static_cast<Eigen::Index>(k)] : nan;
-      }
-    };
-    per_chamber("stretch", s.stretch);
-    per_chamber("bulge_m", s.bulge_m);
-    per_chamber("half_angle_rad", s.half_angle_rad);
-    per_chamber("joint_angle_rad", s.joint_angle_rad);
-    if (double* d = arrays.data<double>("backbone_m")) {
-      const std::size_t points = n + 2;
-      for (std::size_t k = 0; k < 2 * points; ++k) {
-        d[i * 2 * points + k] = shaped ? s.backbone_m(static_cast<Eigen::Index>(k % 2),
-                                                      static_cast<Eigen::Index>(k / 2))
-                                       : nan;
-      }
-    }
-    if (double* d = arrays.data<double>("tip_angle_rad")) d[i] = shaped ? s.tip_angle_rad : nan;
-    if (double* d = arrays.data<double>("gauge_pa")) d[i] = shaped ? s.gauge_pa : nan;
-    if (double* d = arrays.data<double>("supplied_volume_m3")) d[i] = volume_m3;
-    if (std::uint8_t* d = arrays.data<std::uint8_t>("status")) d[i] = static_cast<std::uint8_t>(s.status);
+  // Where the core's batch writes: the arrays of the outputs asked for (nullptr for the others).
+  static pf::BatchOutputs stateRows(OutputArrays& arrays) {
+    pf::BatchOutputs rows;
+    rows.stretch = arrays.data<double>("stretch");
+    rows.bulge_m = arrays.data<double>("bulge_m");
+    rows.half_angle_rad = arrays.data<double>("half_angle_rad");
+    rows.joint_angle_rad = arrays.data<double>("joint_angle_rad");
+    rows.backbone_m = arrays.data<double>("backbone_m");
+    rows.tip_angle_rad = arrays.data<double>("tip_angle_rad");
+    rows.status = arrays.data<std::uint8_t>("status");
+    return rows;
   }
 
   // The interfaces' words for a clamp, once per call, as a RuntimeWarning.

@@ -177,6 +177,15 @@ class FingerModel {
   /// @throws std::invalid_argument when @p workspace was sized for a model of another shape
   const FingerState& evaluateVolume(double supplied_volume_m3, FingerWorkspace& workspace) const;
 
+  /// Volume as the input for @p count supplied volumes (m^3) in order: row i of @p out holds what evaluateVolume() gives
+  /// for supplied_volume_m3[i], bit for bit, and @p gauge_pa[i] (nullptr: not written) the pressure it makes; a volume
+  /// evaluateVolume() answers by keeping a previous state (kNotFinite, kBeyondLimitPoint, kSolverFailure) gives NaN in
+  /// every output and its status, as evaluateMany() writes a row it cannot evaluate. One volume at a time: the volume's
+  /// solve has no pack form. @p workspace's state is that of the last volume afterwards.
+  /// @throws std::invalid_argument when @p workspace was sized for a model of another shape
+  void evaluateVolumeMany(const double* supplied_volume_m3, std::size_t count, const BatchOutputs& out, double* gauge_pa,
+                          FingerWorkspace& workspace) const;
+
   /// The supplied volume (m^3) at @p gauge_pa: every chamber's growth from its rest volume (by the wall law) plus the
   /// compression of dead_volume_m3 of gas. For a vacuum the chambers stay at rest and the dead gas expands (negative).
   /// NaN at or beyond the limit point (the pressure does not set the volume there) and for NaN. Thread-safe.
