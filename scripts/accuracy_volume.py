@@ -1,12 +1,14 @@
-"""The volume input on the two Marchese 2015 segments: pressure-driven keys against keys fitted to the volume.
+"""The volume input on the two Marchese 2015 segments, with every wall law: keys fitted to the bends against
+pressure, against volume, and to bends and pressures together.
 
 usage: python3 scripts/accuracy_volume.py [--plot docs/accuracy_volume.png]   (needs the built package:
 source devel/setup.bash)
 
 Each segment (data/marchese2015_*_bending.csv: pressure, supplied volume and bend, filled in volume steps) is split by
 volume: the rows of even index are fitted, the odd ones held out. Every fit is the package's calibration
-(pneumatic_finger.calibrate, as finger_calibrate), with the membrane law's three keys (shear_modulus_pa,
-chamber_gap_m, wall_locking_jm):
+(pneumatic_finger.calibrate, as finger_calibrate), with each law's keys (LAWS below: the membrane's Gent wall with
+three, shear_modulus_pa, chamber_gap_m and wall_locking_jm; the thick wall, Neo-Hookean, and the paper law with the
+first two):
  1. "keys from pressure": the keys fitted to the bends against pressure (drive="pressure", minimax); then the drive's
     gas, dead_volume_m3, fitted to the pressures against volume with those keys (drive="volume", compare="gauge_pa",
     least squares);
@@ -18,8 +20,9 @@ chamber_gap_m, wall_locking_jm):
     angle's error in rad beside the pressure's relative error).
 Each is then driven by the measured volume of every row (evaluate_volume) and reported for the fitted and the
 held-out half: the bend error (deg) and the pressure error (%), and the two bends the ribbed segment has at one
-pressure. It also prints what the chambers' growth holds at the last row. Takes about six and a half minutes (the
-leave-one-out of two three-key fits per segment). Its output is
+pressure; for the membrane law, also what the chambers' growth holds at the last row. A closing table sets the
+held-out half side by side: driven by pressure (the keys from pressure), driven by volume (the keys from volume),
+and the keys fitted to both. Takes about seven minutes (the leave-one-out of the fits by volume). Its output is
 docs/ACCURACY.md's "Volume as the input"; --plot draws bend and pressure against volume for both segments.
 """
 import argparse
@@ -33,8 +36,15 @@ import pneumatic_finger.core as pf
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DEG = 180 / math.pi
-KEYS = ["shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"]
-BOTH_KEYS = ["shear_modulus_pa", "chamber_gap_m", "dead_volume_m3"]
+MU, GAP, JM = "shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"
+BOTH_KEYS = [MU, GAP, "dead_volume_m3"]
+# Each law's start (overrides of the segment's file) and the keys fitted to the bends, as scripts/accuracy_laws.py
+# fits them by pressure: the membrane's Gent wall with three keys; the thick wall Neo-Hookean with two (its Gent
+# fits take too long for this page); the paper law from its uniform wall, b = L/2 of each segment.
+LAWS = {"membrane": {"start": {}, "keys": [MU, GAP, JM]},
+        "thick, Neo-Hookean": {"start": {"wall_law": "thick", JM: 0.0}, "keys": [MU, GAP]},
+        "paper": {"start": {"ribbed": {"wall_law": "paper", "wall_critical_height_m": 0.00155},
+                            "cylindrical": {"wall_law": "paper", "wall_critical_height_m": 0.0014}}, "keys": [MU, GAP]}}
 WAYS = ("keys from pressure", "keys from volume", "bends and pressures together")
 SETS = [("Marchese 2015 ribbed segment", "ribbed"), ("Marchese 2015 cylindrical segment", "cylindrical")]
 COLUMNS = ["gauge_pa", "supplied_volume_m3", "bend_angle_rad"]
@@ -58,19 +68,26 @@ def largest_loo_deg(fit):
     return float(np.nanmax(np.abs(loo["model_tip_angle_rad"] - loo["measured_tip_angle_rad"]))) * DEG
 
 
-def fits(name, even):
-    """The two sets of keys (pressure, volume) and the gas, each fitted to the even rows; for the keys from volume,
-    the objective whose leave-one-out within the even rows is smaller, and both objectives' leave-one-out."""
-    config = str(ROOT / f"config/marchese2015_{name}.yaml")
-    by_pressure = pf.calibrate(table(even), KEYS, "minimax", config, compare="tip_angle", drive="pressure")["fitted"]
+def start_of(name, law):
+    start = LAWS[law]["start"]
+    return dict(start[name]) if name in start else dict(start)
+
+
+def fits(name, even, law):
+    """The three sets of keys of @p law (from pressure, from volume, together), each fitted to the even rows with the
+    gas fitted to the pressures against volume; for the keys from volume, the objective whose leave-one-out within
+    the even rows is smaller, and both objectives' leave-one-out."""
+    config, keys, start = str(ROOT / f"config/marchese2015_{name}.yaml"), LAWS[law]["keys"], start_of(name, law)
+    by_pressure = {**start, **pf.calibrate(table(even), keys, "minimax", config, start, compare="tip_angle",
+                                           drive="pressure")["fitted"]}
     gas = pf.calibrate(table(even), ["dead_volume_m3"], "least_squares", config, by_pressure, compare="gauge_pa",
                        drive="volume")["fitted"]
-    candidates = {objective: pf.calibrate(table(even), KEYS, objective, config, {**by_pressure, **gas},
+    candidates = {objective: pf.calibrate(table(even), keys, objective, config, {**by_pressure, **gas},
                                           compare="tip_angle", drive="volume", leave_one_out=True)
                   for objective in ("minimax", "least_squares")}
     loo = {objective: largest_loo_deg(fit) for objective, fit in candidates.items()}
     chosen = min(loo, key=loo.get)
-    by_volume = {**candidates[chosen]["fitted"], **gas}
+    by_volume = {**by_pressure, **candidates[chosen]["fitted"], **gas}
     both = pf.calibrate(table(even), BOTH_KEYS, "least_squares", config, by_volume, compare="tip_angle+gauge_pa",
                         drive="volume")["fitted"]
     return config, {**by_pressure, **gas}, by_volume, {**by_volume, **both}, loo, chosen
@@ -118,25 +135,48 @@ def chamber_share(config, keys, last):
             f"grow by {growth * 1e6:.2f} mL there")
 
 
-def report(title, name, curves):
+def pressure_driven(model, part):
+    """The bend error (deg) of @p model driven by each row's measured pressure."""
+    out = model.evaluate(column(part, "gauge_pa"), outputs=["tip_angle_rad"])
+    return (out["tip_angle_rad"] - column(part, "bend_angle_rad")) * DEG
+
+
+def largest_rms(x):
+    """Largest / rms of the rows with a shape, and how many have none (past a limit the law does not follow)."""
+    shapeless = int(np.sum(np.isnan(x)))
+    return (f"{np.nanmax(np.abs(x)):.2f} / {math.sqrt(np.nanmean(x ** 2)):.2f}" +
+            (f" ({shapeless} without a shape)" if shapeless else ""))
+
+
+def report(title, name, law, curves, summary_rows):
     rows = rows_of(name)
     even, odd = rows[0::2], rows[1::2]
-    config, by_pressure, by_volume, both, loo, chosen = fits(name, even)
-    print(f"- {title} ({len(even)} rows fitted, {len(odd)} held out; 3 keys fitted to bends, then 1 to pressures; "
-          f"together: 3 to both):")
+    config, by_pressure, by_volume, both, loo, chosen = fits(name, even, law)
+    keys = LAWS[law]["keys"]
+    print(f"- {title}, {law} ({len(even)} rows fitted, {len(odd)} held out; {len(keys)} keys fitted to bends, then 1 "
+          f"to pressures; together: 3 to both):")
     print("  keys from volume, objective by leave-one-out within the fitted rows: " +
           ", ".join(f"{k} {v:.2f} deg" for k, v in loo.items()) + f" -> {chosen}")
-    for label, keys in zip(WAYS, (by_pressure, by_volume, both)):
-        print(f"  {label}: " + ", ".join(f"{k} = {keys[k]:.4g}" for k in KEYS + ["dead_volume_m3"]))
-        model = pf.FingerModel(config, keys)
+    held = {}
+    for label, fitted in zip(WAYS, (by_pressure, by_volume, both)):
+        print(f"  {label}: " + ", ".join(f"{k} = {fitted[k]:.4g}" for k in dict.fromkeys(keys + BOTH_KEYS)))
+        model = pf.FingerModel(config, fitted)
         for half, part in (("fitted half", even), ("held-out half", odd)):
             print(summary(f"{label}, {half}, driven by volume", *errors(model, part)))
+        held[label] = errors(model, odd)
         twins = same_pressure_rows(model, rows)
         if twins:
             print(f"  - {label}, the two bends at one pressure: {twins}")
         v = np.linspace(0, column(rows, "supplied_volume_m3").max(), 200)
-        curves[(name, label)] = (v, model.evaluate_volume(v, outputs=["tip_angle_rad", "gauge_pa"]))
-    print(chamber_share(config, by_pressure, rows[-1]))
+        curves[(name, law, label)] = (v, model.evaluate_volume(v, outputs=["tip_angle_rad", "gauge_pa"]))
+    if law == "membrane":
+        print(chamber_share(config, by_pressure, rows[-1]))
+    by_pressure_bends = pressure_driven(pf.FingerModel(config, by_pressure), odd)
+    summary_rows.append(f"| {title.replace('Marchese 2015 ', '')} | {law} | {len(keys)} | "
+                        f"{largest_rms(by_pressure_bends)} | {len(keys)} + 1 | {largest_rms(held['keys from volume'][0])} | "
+                        f"{np.nanmax(np.abs(held['keys from volume'][1])):.1f} | "
+                        f"{largest_rms(held['bends and pressures together'][0])} | "
+                        f"{np.nanmax(np.abs(held['bends and pressures together'][1])):.1f} |")
 
 
 def plot(path, curves):
@@ -151,10 +191,17 @@ def plot(path, curves):
             for part, marker, label in ((rows[0::2], "o", "measured, fitted"), (rows[1::2], "s", "measured, held out")):
                 ax.plot(column(part, "supplied_volume_m3") * 1e6, column(part, key) * scale, marker, mfc="none",
                         color="k", label=label)
-            for label, style in zip(WAYS, ("--", "-", ":")):
-                v, out = curves[(name, label)]
-                model_key = "tip_angle_rad" if key == "bend_angle_rad" else "gauge_pa"
-                ax.plot(v * 1e6, out[model_key] * scale, style, label=f"model driven by volume, {label}")
+            model_key = "tip_angle_rad" if key == "bend_angle_rad" else "gauge_pa"
+            for label, style in zip(WAYS, ("--", "-", ":")):  # the membrane law, every way
+                v, out = curves[(name, "membrane", label)]
+                ax.plot(v * 1e6, out[model_key] * scale, style, color="C0",
+                        label=f"membrane law driven by volume, {label}")
+            for law, color in zip([law for law in LAWS if law != "membrane"], ("C1", "C2")):
+                v, out = curves[(name, law, "keys from volume")]
+                ax.plot(v * 1e6, out[model_key] * scale, "-", color=color, lw=1,
+                        label=f"{law} law driven by volume, keys from volume")
+            top = np.max(column(rows, key)) * scale
+            ax.set_ylim(-0.05 * top, 1.6 * top)  # a law may bend, or press, far past the data
             ax.set_ylabel(unit)
             ax.grid(alpha=0.3)
             if row == 0:
@@ -170,9 +217,16 @@ def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--plot", help="write the figure here (PNG)")
     args = parser.parse_args()
-    curves = {}
+    curves, summary_rows = {}, []
     for title, name in SETS:
-        report(title, name, curves)
+        for law in LAWS:
+            report(title, name, law, curves, summary_rows)
+    print()
+    print("| segment | law | keys, pressure in | held out, pressure in: bend largest / rms (deg) | keys, volume in | "
+          "held out, volume in: bend largest / rms (deg) | pressure largest (%) | together (3 keys): bend (deg) | "
+          "together: pressure (%) |")
+    print("|---|---|---|---|---|---|---|---|---|")
+    print("\n".join(summary_rows))
     if args.plot:
         plot(args.plot, curves)
 
