@@ -198,7 +198,7 @@ def test_the_calibration_walkthrough_runs_as_written():
     import socket
     root = pathlib.Path(__file__).resolve().parent.parent
     blocks = re.findall(r"```bash\n(.*?)```", (root / "docs" / "CALIBRATE.md").read_text(), re.S)
-    assert len(blocks) == 5
+    assert len(blocks) == 6
     with socket.socket() as s:
         s.bind(("localhost", 0))
         port = s.getsockname()[1]
@@ -218,6 +218,9 @@ def test_the_calibration_walkthrough_runs_as_written():
     assert "# fitted: dead_volume_m3 = 0.000135" in out, out
     # Both together: the bends within 2.5 deg, the pressure 38 % off at worst.
     assert "largest |error|: tip angle 0.044032 rad (2.523 deg), pressure 12452 Pa (largest relative 38.4 %)" in out, out
+    # The cylindrical segment by volume with the paper law: 3.7 deg fitted, 6.0 deg left out.
+    assert "largest |error|: tip angle 0.065035 rad (3.726 deg), pressure 13173 Pa" in out, out
+    assert "largest leave-one-out |error|: tip angle 0.104558 rad (5.991 deg)" in out, out
     # The node published the file's bar at 147 kPa (147108 Pa gauge): about the third row's, 0.00242741 m.
     lines = out.splitlines()
     bar = float(lines[lines.index("---") - 1])
