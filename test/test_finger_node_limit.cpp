@@ -55,14 +55,14 @@ bool waitFor(F done, double seconds) {
   return done();
 }
 
-void onJoints(const sensor_msgs::JointState::ConstPtr& m) {
-  std::lock_guard<std::mutex> lock(mutex);
-  joints.push_back(*m);
-}
-
-void onState(const pf::FingerModelState::ConstPtr& m) {
-  std::lock_guard<std::mutex> lock(mutex);
-  states.push_back(*m);
+// Subscribes to @p topic, appending each message to @p into under the one mutex.
+template <class M>
+ros::Subscriber collect(ros::NodeHandle& nh, const std::string& topic, std::vector<M>& into) {
+  const boost::function<void(const boost::shared_ptr<const M>&)> append = [&into](const boost::shared_ptr<const M>& m) {
+    std::lock_guard<std::mutex> lock(mutex);
+    into.push_back(*m);
+  };
+  return nh.subscribe<M>(topic, 100, append);
 }
 
 void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
@@ -85,22 +85,12 @@ pf::FingerModel ribbedModel(double locking_jm = 0.0) {
 std::vector<sensor_msgs::JointState> gent_joints;
 std::vector<pf::FingerModelState> gent_states;
 
-void onGentJoints(const sensor_msgs::JointState::ConstPtr& m) {
-  std::lock_guard<std::mutex> lock(mutex);
-  gent_joints.push_back(*m);
-}
-
-void onGentState(const pf::FingerModelState::ConstPtr& m) {
-  std::lock_guard<std::mutex> lock(mutex);
-  gent_states.push_back(*m);
-}
-
 }  // namespace
 
 TEST(FingerNodeLimitPoint, NothingIsPublishedPastTheLimitPointAndTheShapeReturnsBelowIt) {
   ros::NodeHandle nh;
-  const ros::Subscriber sub_j = nh.subscribe("joint_states", 100, onJoints);
-  const ros::Subscriber sub_s = nh.subscribe("finger_state", 100, onState);
+  const ros::Subscriber sub_j = collect(nh, "joint_states", joints);
+  const ros::Subscriber sub_s = collect(nh, "finger_state", states);
   const ros::Subscriber sub_d = nh.subscribe("/diagnostics", 100, onDiagnostics);
   ros::Publisher pub = nh.advertise<sensor_msgs::FluidPressure>("pressure", 10);
   ASSERT_TRUE(waitFor([&] { return pub.getNumSubscribers() > 0 && sub_j.getNumPublishers() > 0; }, 30));
@@ -158,8 +148,8 @@ TEST(FingerNodeLimitPoint, NothingIsPublishedPastTheLimitPointAndTheShapeReturns
 // same path (a workspace that saw the same pressures), with the jump up and the jump back both published.
 TEST(FingerNodeLimitPoint, AGentWallSnapsThroughAndBackAndBothJumpsArePublished) {
   ros::NodeHandle nh;
-  const ros::Subscriber sub_j = nh.subscribe("gent/joint_states", 100, onGentJoints);
-  const ros::Subscriber sub_s = nh.subscribe("gent/finger_state", 100, onGentState);
+  const ros::Subscriber sub_j = collect(nh, "gent/joint_states", gent_joints);
+  const ros::Subscriber sub_s = collect(nh, "gent/finger_state", gent_states);
   ros::Publisher pub = nh.advertise<sensor_msgs::FluidPressure>("gent/pressure", 10);
   ASSERT_TRUE(waitFor([&] { return pub.getNumSubscribers() > 0 && sub_j.getNumPublishers() > 0; }, 30));
   const pf::FingerModel model = ribbedModel(50.0);
@@ -205,22 +195,12 @@ TEST(FingerNodeLimitPoint, AGentWallSnapsThroughAndBackAndBothJumpsArePublished)
 std::vector<sensor_msgs::JointState> volume_joints;
 std::vector<pf::FingerModelState> volume_states;
 
-void onVolumeJoints(const sensor_msgs::JointState::ConstPtr& m) {
-  std::lock_guard<std::mutex> lock(mutex);
-  volume_joints.push_back(*m);
-}
-
-void onVolumeState(const pf::FingerModelState::ConstPtr& m) {
-  std::lock_guard<std::mutex> lock(mutex);
-  volume_states.push_back(*m);
-}
-
 // Volume in: each accepted volume's finger is the core's evaluateVolume, its pressure the answer, past the pressure's
 // limit point too (where a pressure gets STATUS_BEYOND_LIMIT_POINT); a NaN volume is refused and nothing published.
 TEST(FingerNodeLimitPoint, DrivenByVolumeTheNeoHookeanWallIsFollowedPastItsLimitPoint) {
   ros::NodeHandle nh;
-  const ros::Subscriber sub_j = nh.subscribe("volume/joint_states", 100, onVolumeJoints);
-  const ros::Subscriber sub_s = nh.subscribe("volume/finger_state", 100, onVolumeState);
+  const ros::Subscriber sub_j = collect(nh, "volume/joint_states", volume_joints);
+  const ros::Subscriber sub_s = collect(nh, "volume/finger_state", volume_states);
   ros::Publisher pub = nh.advertise<std_msgs::Float64>("volume/supplied_volume", 10);
   ASSERT_TRUE(waitFor([&] { return pub.getNumSubscribers() > 0 && sub_j.getNumPublishers() > 0; }, 30));
   pf::RawParameterMap raw;
@@ -264,17 +244,12 @@ TEST(FingerNodeLimitPoint, DrivenByVolumeTheNeoHookeanWallIsFollowedPastItsLimit
 
 std::vector<pf::FingerModelState> object_states;
 
-void onObjectState(const pf::FingerModelState::ConstPtr& m) {
-  std::lock_guard<std::mutex> lock(mutex);
-  object_states.push_back(*m);
-}
-
 // Volume in, an object in reach (a sphere in the finger's own frame, cut by the bending plane into the disk the core
 // test uses): each volume's pressure is gaugeForVolumeInContact's, its joints the contact rule's there, and
 // finger_state's supplied_volume_m3 gives the volume back; joints the object holds are flagged.
 TEST(FingerNodeLimitPoint, DrivenByVolumeAFingerOnAnObjectTakesTheContactRulesVolume) {
   ros::NodeHandle nh;
-  const ros::Subscriber sub_s = nh.subscribe("volume_object/finger_state", 100, onObjectState);
+  const ros::Subscriber sub_s = collect(nh, "volume_object/finger_state", object_states);
   ros::Publisher pub = nh.advertise<std_msgs::Float64>("volume_object/supplied_volume", 10);
   ros::Publisher object_pub = nh.advertise<pf::GraspObject>("volume_object/grasp_object", 1, true);
   ASSERT_TRUE(waitFor([&] { return pub.getNumSubscribers() > 0 && sub_s.getNumPublishers() > 0; }, 30));
