@@ -95,6 +95,31 @@ TEST(CalibrationByVolume, RecoversTheDeadGasFromThePressureAgainstTheVolume) {
   }
 }
 
+// The skin's share of the growth (chamber_growth_ratio) beside the gas: both turn the chambers' growth into more
+// volume, the skin in proportion to the growth and the gas to P/(P_o + P), so the pressures against the volume
+// tell them apart, and both come back.
+TEST(CalibrationByVolume, RecoversTheSkinsShareAndTheGasFromThePressureAgainstTheVolume) {
+  const pf::FingerParameters truth =
+      pf_test::membraneFinger(20.0, "dead_volume_m3: 3e-5\nchamber_growth_ratio: 6\n");
+  std::vector<pf::Measurement> rows;
+  pf::FingerModel model(truth);
+  for (int k = 1; k <= 6; ++k) {  // below the limit point, where the pressure sets the volume
+    pf::Measurement m;
+    m.line = k;
+    m.gauge_pa = model.limitGaugePa() * 0.15 * k;
+    m.supplied_volume_m3 = model.suppliedVolumeAt(m.gauge_pa);
+    rows.push_back(m);
+  }
+  pf::driveByVolume(rows);
+  pf::FingerParameters start = truth;
+  start.dead_volume_m3 = 0.0;
+  start.chamber_growth_ratio = 1.0;
+  const pf::CalibrationResult fit = pf::calibrate(start, {"chamber_growth_ratio", "dead_volume_m3"}, rows,
+                                                  pf::CalibrationObjective::kLeastSquares, pf::CalibrationQuantity::kGauge);
+  EXPECT_NEAR(fit.values[0], 6.0, 6.0 * 1e-6);
+  EXPECT_NEAR(fit.values[1], 3e-5, 3e-5 * 1e-6);
+}
+
 // Bends and pressures against volume together (tip_angle+gauge_pa): with an incompressible fill the bends alone say
 // nothing of the modulus (refused below), the pressures alone little of the gap; the two together give both back.
 TEST(CalibrationByVolume, FitsTheBendsAndThePressureTogether) {
@@ -163,6 +188,11 @@ TEST(CalibrationByVolume, RefusesWhatTheDriveCannotGive) {
               pf::calibrate(base, {"dead_volume_m3"}, pressure_only, pf::CalibrationObjective::kMinimax,
                             pf::CalibrationQuantity::kTipAngle);
             }).find("dead_volume_m3 takes no part in a finger set by its pressure"),
+            std::string::npos);
+  EXPECT_NE(refusal([&] {
+              pf::calibrate(base, {"chamber_growth_ratio"}, pressure_only, pf::CalibrationObjective::kMinimax,
+                            pf::CalibrationQuantity::kTipAngle);
+            }).find("chamber_growth_ratio takes no part in a finger set by its pressure"),
             std::string::npos);
   EXPECT_NE(refusal([&] {
               pf::calibrate(base, {"shear_modulus_pa"}, pressure_only, pf::CalibrationObjective::kMinimax,

@@ -29,21 +29,23 @@ constexpr double kAtmosphere = 101325.0;
 
 pf::FingerParameters finger(const std::string& yaml) { return pf_test::fingerFromYaml(yaml); }
 
-pf::FingerParameters membraneFinger(double jm, double dead_volume_m3) {
-  return pf_test::membraneFinger(jm, "dead_volume_m3: " + pf::formatExact(dead_volume_m3) + "\n");
+pf::FingerParameters membraneFinger(double jm, double dead_volume_m3, double growth_ratio = 1.0) {
+  return pf_test::membraneFinger(jm, "dead_volume_m3: " + pf::formatExact(dead_volume_m3) +
+                                         "\nchamber_growth_ratio: " + pf::formatExact(growth_ratio) + "\n");
 }
 
-// The supplied volume of the membrane finger at stretch excess delta, literally: N L d e ((1 + delta)^3 - 1) plus
+// The supplied volume of the membrane finger at stretch excess delta, literally: r_V N L d e ((1 + delta)^3 - 1) plus
 // V_g P/(P_o + P), P the quad reference's law at delta.
-double referenceMembraneVolume(double delta, double jm, double dead_volume_m3) {
+double referenceMembraneVolume(double delta, double jm, double dead_volume_m3, double growth_ratio = 1.0) {
   const quad lam = 1 + quad(delta);
-  const quad growth = quad(kChambers) * quad(kHeight) * quad(kDepth) * quad(kWidth) * (lam * lam * lam - 1);
+  const quad growth =
+      quad(growth_ratio) * quad(kChambers) * quad(kHeight) * quad(kDepth) * quad(kWidth) * (lam * lam * lam - 1);
   const quad p = reference::membraneGaugePa({kMu, kThickness, kHeight, jm}, delta);
   return static_cast<double>(growth + quad(dead_volume_m3) * p / (quad(kAtmosphere) + p));
 }
 
 // The paper finger's supplied volume at gauge_pa: each chamber's two walls, half ellipses of semi-axes L/2 and
-// L/2 + h across e, minus their rest half circles, from the reference chain's bulge; plus the dead gas.
+// L/2 + h across e, minus their rest half circles, from the reference chain's bulge, times r_V; plus the dead gas.
 double referencePaperVolume(const pf::FingerParameters& p, double gauge_pa) {
   quad total = 0;
   for (int i = 0; i < p.chamber_count; ++i) {
@@ -55,7 +57,8 @@ double referencePaperVolume(const pf::FingerParameters& p, double gauge_pa) {
     total += 2 * quad(p.chamber_width_m[k]) * (half_pi * a * (a + quad(c.bulge_m)) - half_pi * a * a);
   }
   const quad gp = quad(gauge_pa);
-  return static_cast<double>(total + quad(p.dead_volume_m3) * gp / (quad(p.atmospheric_pressure_pa) + gp));
+  return static_cast<double>(quad(p.chamber_growth_ratio) * total +
+                             quad(p.dead_volume_m3) * gp / (quad(p.atmospheric_pressure_pa) + gp));
 }
 
 double relativeError(double x, double reference) { return std::fabs(x - reference) / std::fabs(reference); }
@@ -80,22 +83,53 @@ TEST(FingerVolume, TheDeadVolumeIsAKeyInCubicMetresAndZeroByDefault) {
 // Under pressure control, below the limit point: the supplied volume at a pressure is the reference's at the
 // reference's stretch for that pressure, for the paper law's ellipse and the membrane's sphere, with and without gas.
 TEST(FingerVolume, SuppliedVolumeAtAPressureMatchesTheReference) {
-  for (double v_g : {0.0, 8e-5}) {
-    SCOPED_TRACE("dead volume " + std::to_string(v_g));
-    const pf::FingerModel paper(finger("dead_volume_m3: " + pf::formatExact(v_g) + "\n"));
-    for (double p = 1e-3; p <= 3e5; p *= 1.7) {
-      EXPECT_LT(relativeError(paper.suppliedVolumeAt(p), referencePaperVolume(paper.parameters(), p)), 1e-12) << p;
-    }
-    for (double jm : {0.0, 50.0}) {
-      const pf::FingerModel membrane(membraneFinger(jm, v_g));
-      const reference::Membrane wall{kMu, kThickness, kHeight, jm};
-      for (double p = 1e-3; p < membrane.limitGaugePa(); p *= 1.3) {
-        const double delta = reference::membraneStretchExcess(wall, p);
-        // The reference's delta is rounded once; the volume's relative sensitivity to it is below 3.
-        EXPECT_LT(relativeError(membrane.suppliedVolumeAt(p), referenceMembraneVolume(delta, jm, v_g)), 1e-12) << p;
+  for (double r_v : {1.0, 8.0}) {
+    for (double v_g : {0.0, 8e-5}) {
+      SCOPED_TRACE("dead volume " + std::to_string(v_g) + ", growth ratio " + std::to_string(r_v));
+      const pf::FingerModel paper(finger("dead_volume_m3: " + pf::formatExact(v_g) +
+                                         "\nchamber_growth_ratio: " + pf::formatExact(r_v) + "\n"));
+      for (double p = 1e-3; p <= 3e5; p *= 1.7) {
+        EXPECT_LT(relativeError(paper.suppliedVolumeAt(p), referencePaperVolume(paper.parameters(), p)), 1e-12) << p;
+      }
+      for (double jm : {0.0, 50.0}) {
+        const pf::FingerModel membrane(membraneFinger(jm, v_g, r_v));
+        const reference::Membrane wall{kMu, kThickness, kHeight, jm};
+        for (double p = 1e-3; p < membrane.limitGaugePa(); p *= 1.3) {
+          const double delta = reference::membraneStretchExcess(wall, p);
+          // The reference's delta is rounded once; the volume's relative sensitivity to it is below 3.
+          EXPECT_LT(relativeError(membrane.suppliedVolumeAt(p), referenceMembraneVolume(delta, jm, v_g, r_v)), 1e-12)
+              << p;
+        }
       }
     }
   }
+}
+
+// The skin's share (chamber_growth_ratio): driven by the reference's volume of a finger whose chambers grow eight
+// times what their walls give, the model answers the reference's pressure, bulge and half angle at the walls'
+// stretch, past the limit point too; the same volume without the skin stretches the walls further.
+TEST(FingerVolume, AChamberWhoseSkinBalloonsTakesItsVolumeWithoutBendingMore) {
+  const double r_v = 8.0, v_g = 1e-4;
+  const pf::FingerModel skin(membraneFinger(0.0, v_g, r_v)), walls_only(membraneFinger(0.0, v_g));
+  pf::FingerWorkspace ws(skin), ws_walls(walls_only);
+  const reference::Membrane wall{kMu, kThickness, kHeight, 0.0};
+  const double limit_delta = reference::membraneLimitStretchExcess(wall);
+  int past_limit = 0;
+  for (double delta = 1e-6; delta < 3.0 * limit_delta; delta *= 1.3) {
+    const double v = referenceMembraneVolume(delta, 0.0, v_g, r_v);
+    if (!(v < skin.volumeLimitM3())) break;  // the gas snaps the finger there
+    const pf::FingerState& s = skin.evaluateVolume(v, ws);
+    ASSERT_EQ(s.status, pf::EvaluationStatus::kOk) << delta;
+    EXPECT_LT(relativeError(s.gauge_pa, reference::membraneGaugePa(wall, delta)), 1e-12) << delta;
+    EXPECT_LT(relativeError(s.bulge_m[0], 0.5 * kHeight * delta), 1e-12) << delta;
+    // The wall's own stretch at that pressure: the shape the pressure gives, whatever the skin takes.
+    const double theta = reference::halfAngleForBulge(0.5 * kHeight * delta, skin.parameters().chamber_gap_m[0],
+                                                      skin.parameters().wall_critical_height_m[0]);
+    EXPECT_NEAR(s.half_angle_rad[3], theta, 1e-12 * std::max(1.0, theta)) << delta;
+    EXPECT_GT(walls_only.evaluateVolume(v, ws_walls).bulge_m[0], s.bulge_m[0]) << "without the skin, more stretch";
+    past_limit += delta > limit_delta;
+  }
+  EXPECT_GT(past_limit, 2);
 }
 
 TEST(FingerVolume, SuppliedVolumeHasNoPressureBeyondTheLimitAndAVacuumOnlyForAGas) {

@@ -217,9 +217,11 @@ void checkTheDrive(const FingerParameters& base, const std::vector<std::string>&
                          "supplied volume with the measured one: drive the rows by volume (--drive volume, "
                          "drive=\"volume\")");
   }
-  if (!by_volume && std::count(keys.begin(), keys.end(), "dead_volume_m3") > 0) {
-    throw ParameterError("dead_volume_m3 takes no part in a finger set by its pressure: drive the rows by volume "
-                         "(--drive volume, drive=\"volume\") to fit it");
+  for (const char* volume_only : {"dead_volume_m3", "chamber_growth_ratio"}) {
+    if (!by_volume && std::count(keys.begin(), keys.end(), volume_only) > 0) {
+      throw ParameterError(std::string(volume_only) + " takes no part in a finger set by its pressure: drive the rows "
+                           "by volume (--drive volume, drive=\"volume\") to fit it");
+    }
   }
   // An incompressible fill: the volume sets every chamber's stretch, and so the shape, whatever the wall's
   // stiffness, which sets only the pressure (docs/MODEL.md, "Volume").

@@ -31,7 +31,9 @@ void FingerModel::buildVolumeModel() {
   chamber_volume_coefficient_.assign(group_of_chamber_.size(), 0.0);
   for (std::size_t k = 0; k < group_of_chamber_.size(); ++k) {
     const double l = parameters_.chamber_height_m[k], e = parameters_.chamber_width_m[k];
-    chamber_volume_coefficient_[k] = membrane_ ? l * parameters_.chamber_thickness_m[k] * e : paperVolumePerBulgeM2(l, e);
+    // r_V scales the whole growth: the skin balloons with the walls, by the same stretch (docs/MODEL.md, "Volume").
+    chamber_volume_coefficient_[k] = parameters_.chamber_growth_ratio *
+                                     (membrane_ ? l * parameters_.chamber_thickness_m[k] * e : paperVolumePerBulgeM2(l, e));
     volume_coefficient_[static_cast<std::size_t>(group_of_chamber_[k])] += chamber_volume_coefficient_[k];
   }
   volume_by_stretch_ = membrane_ && groups_.size() == 1;

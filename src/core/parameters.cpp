@@ -64,6 +64,12 @@ const std::vector<ParameterSpec> kSpecs = {
     {"dead_volume_m3", "V_g", "m^3", 0, 0, true, 1.0, ParameterShape::kScalar,
      "gas at rest in the drive (cylinder, tubes and chambers, at P_o) that the supply compresses isothermally "
      "besides growing the chambers; 0: an incompressible fluid. Only the supplied volume depends on it"},
+    // docs/MODEL.md "Volume": a chamber whose skin balloons with its walls takes more volume than its walls' bulge
+    // gives, without bending the finger more. Up to 100: a skin far larger than the walls that bend the finger.
+    {"chamber_growth_ratio", "r_V", "-", 1, 0, false, 100, ParameterShape::kScalar,
+     "each chamber's volume growth over what its walls' bulge gives: 1, the walls alone; above 1, the skin around "
+     "the chamber balloons with them, taking volume without bending the finger. Only the supplied volume depends on "
+     "it"},
 };
 
 // The names of a choice key, in index order.
@@ -225,6 +231,7 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& raw) {
   p.wall_thickness_m = perChamber(spec("wall_thickness_m"), raw, n);
   p.wall_locking_jm = scalar(spec("wall_locking_jm"), raw);
   p.dead_volume_m3 = scalar(spec("dead_volume_m3"), raw);
+  p.chamber_growth_ratio = scalar(spec("chamber_growth_ratio"), raw);
   // docs/MODEL.md stage 3-4: under the paper law b is a height on the wall, so it cannot exceed the wall (chamber)
   // height L. Under the membrane law b is where the walls push, measured from the bending axis: the chamber need not
   // sit on the base layer, so b may exceed L ("The membrane law").
@@ -263,6 +270,7 @@ RawParameterMap FingerParameters::toRaw() const {
   put_list("wall_thickness_m", wall_thickness_m);
   raw["wall_locking_jm"] = {{wall_locking_jm}, false};
   raw["dead_volume_m3"] = {{dead_volume_m3}, false};
+  raw["chamber_growth_ratio"] = {{chamber_growth_ratio}, false};
   return raw;
 }
 

@@ -90,6 +90,7 @@ struct FingerParameters {
   std::vector<double> wall_thickness_m;          ///< t_n: the membrane law's wall thickness at rest
   double wall_locking_jm = 0.0;                  ///< J_m: the membrane's Gent locking invariant (0: Neo-Hookean)
   double dead_volume_m3 = 0.0;                   ///< V_g: gas at rest in the drive (0: incompressible fluid)
+  double chamber_growth_ratio = 1.0;             ///< r_V: a chamber's volume growth over its walls' (1: theirs alone)
 
   /// The defaults of parameterSpecs() (the calibrated paper actuator).
   static FingerParameters defaults();
