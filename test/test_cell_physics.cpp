@@ -43,7 +43,9 @@ TEST(CellPhysics, ThreeCyclesOfThePartMovedByPhysicsWithTheRulesVerdictBeside) {
   // Every lift is reported; the light part starts it in every finger's grip (the heavy one, sitting on the table
   // under the fingers' light squeeze, may have a finger that has just let go).
   EXPECT_EQ(count(events, "physics: the lift starts with "), 3) << all;
-  if (light) EXPECT_EQ(count(events, "physics: the lift starts with 3 of 3 fingers"), 3) << all;
+  if (light) {
+    EXPECT_EQ(count(events, "physics: the lift starts with 3 of 3 fingers"), 3) << all;
+  }
   EXPECT_EQ(count(events, "grasped 'cylinder'"), 0) << "the sequencer attached the part: " << all;
 }
 
