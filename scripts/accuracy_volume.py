@@ -17,12 +17,16 @@ first two):
     plays no part in the choice);
  3. "bends and pressures together": from the keys from volume, shear_modulus_pa, chamber_gap_m and the gas refitted
     to the bends and the pressures against volume at once (compare="tip_angle+gauge_pa", least squares: the tip
-    angle's error in rad beside the pressure's relative error).
+    angle's error in rad beside the pressure's relative error);
+ 4. "with the skin": the same three keys refitted at each skin share chamber_growth_ratio of SKIN_RATIOS (a chamber
+    growing r_V times what its walls give, docs/MODEL.md "Volume"), keeping the share whose fit leaves the smaller
+    objective on the fitted rows.
 Each is then driven by the measured volume of every row (evaluate_volume) and reported for the fitted and the
 held-out half: the bend error (deg) and the pressure error (%), and the two bends the ribbed segment has at one
 pressure; for the membrane law, also what the chambers' growth holds at the last row. A closing table sets the
 held-out half side by side: driven by pressure (the keys from pressure), driven by volume (the keys from volume),
-and the keys fitted to both. Takes about seven minutes (the leave-one-out of the fits by volume). Its output is
+the keys fitted to both, and with the skin. Takes about fifteen minutes (the leave-one-out of the fits by volume,
+and a fit per skin share). Its output is
 docs/ACCURACY.md's "Volume as the input"; --plot draws bend and pressure against volume for both segments.
 """
 import argparse
@@ -45,7 +49,9 @@ LAWS = {"membrane": {"start": {}, "keys": [MU, GAP, JM]},
         "thick, Neo-Hookean": {"start": {"wall_law": "thick", JM: 0.0}, "keys": [MU, GAP]},
         "paper": {"start": {"ribbed": {"wall_law": "paper", "wall_critical_height_m": 0.00155},
                             "cylindrical": {"wall_law": "paper", "wall_critical_height_m": 0.0014}}, "keys": [MU, GAP]}}
-WAYS = ("keys from pressure", "keys from volume", "bends and pressures together")
+WAYS = ("keys from pressure", "keys from volume", "bends and pressures together", "with the skin")
+# The skin's shares tried by the fourth way (chamber_growth_ratio): from the walls' growth alone to 32 times it.
+SKIN_RATIOS = (1, 2, 4, 6, 8, 12, 16, 32)
 SETS = [("Marchese 2015 ribbed segment", "ribbed"), ("Marchese 2015 cylindrical segment", "cylindrical")]
 COLUMNS = ["gauge_pa", "supplied_volume_m3", "bend_angle_rad"]
 
@@ -90,7 +96,21 @@ def fits(name, even, law):
     by_volume = {**by_pressure, **candidates[chosen]["fitted"], **gas}
     both = pf.calibrate(table(even), BOTH_KEYS, "least_squares", config, by_volume, compare="tip_angle+gauge_pa",
                         drive="volume")["fitted"]
-    return config, {**by_pressure, **gas}, by_volume, {**by_volume, **both}, loo, chosen
+    ways = ({**by_pressure, **gas}, by_volume, {**by_volume, **both}, with_skin(config, even, by_volume))
+    return config, ways, loo, chosen
+
+
+def with_skin(config, even, by_volume):
+    """The keys of "together" refitted at each skin share r_V of SKIN_RATIOS; the share whose fit leaves the smaller
+    objective on the fitted rows (the held-out half plays no part)."""
+    best = None
+    for ratio in SKIN_RATIOS:
+        start = {**by_volume, "chamber_growth_ratio": float(ratio)}
+        fit = pf.calibrate(table(even), BOTH_KEYS, "least_squares", config, start, compare="tip_angle+gauge_pa",
+                           drive="volume")
+        if best is None or fit["objective_value"] < best[0]:
+            best = (fit["objective_value"], {**start, **fit["fitted"]})
+    return best[1]
 
 
 def errors(model, part):
@@ -151,15 +171,16 @@ def largest_rms(x):
 def report(title, name, law, curves, summary_rows):
     rows = rows_of(name)
     even, odd = rows[0::2], rows[1::2]
-    config, by_pressure, by_volume, both, loo, chosen = fits(name, even, law)
+    config, ways, loo, chosen = fits(name, even, law)
     keys = LAWS[law]["keys"]
     print(f"- {title}, {law} ({len(even)} rows fitted, {len(odd)} held out; {len(keys)} keys fitted to bends, then 1 "
-          f"to pressures; together: 3 to both):")
+          f"to pressures; together: 3 to both; with the skin: 3 to both at each of {len(SKIN_RATIOS)} skin shares):")
     print("  keys from volume, objective by leave-one-out within the fitted rows: " +
           ", ".join(f"{k} {v:.2f} deg" for k, v in loo.items()) + f" -> {chosen}")
     held = {}
-    for label, fitted in zip(WAYS, (by_pressure, by_volume, both)):
-        print(f"  {label}: " + ", ".join(f"{k} = {fitted[k]:.4g}" for k in dict.fromkeys(keys + BOTH_KEYS)))
+    for label, fitted in zip(WAYS, ways):
+        shown = [k for k in dict.fromkeys(keys + BOTH_KEYS + ["chamber_growth_ratio"]) if k in fitted]
+        print(f"  {label}: " + ", ".join(f"{k} = {fitted[k]:.4g}" for k in shown))
         model = pf.FingerModel(config, fitted)
         for half, part in (("fitted half", even), ("held-out half", odd)):
             print(summary(f"{label}, {half}, driven by volume", *errors(model, part)))
@@ -170,13 +191,15 @@ def report(title, name, law, curves, summary_rows):
         v = np.linspace(0, column(rows, "supplied_volume_m3").max(), 200)
         curves[(name, law, label)] = (v, model.evaluate_volume(v, outputs=["tip_angle_rad", "gauge_pa"]))
     if law == "membrane":
-        print(chamber_share(config, by_pressure, rows[-1]))
-    by_pressure_bends = pressure_driven(pf.FingerModel(config, by_pressure), odd)
+        print(chamber_share(config, ways[0], rows[-1]))
+    by_pressure_bends = pressure_driven(pf.FingerModel(config, ways[0]), odd)
     summary_rows.append(f"| {title.replace('Marchese 2015 ', '')} | {law} | {len(keys)} | "
                         f"{largest_rms(by_pressure_bends)} | {len(keys)} + 1 | {largest_rms(held['keys from volume'][0])} | "
                         f"{np.nanmax(np.abs(held['keys from volume'][1])):.1f} | "
                         f"{largest_rms(held['bends and pressures together'][0])} | "
-                        f"{np.nanmax(np.abs(held['bends and pressures together'][1])):.1f} |")
+                        f"{np.nanmax(np.abs(held['bends and pressures together'][1])):.1f} | "
+                        f"{ways[3]['chamber_growth_ratio']:g} | {largest_rms(held['with the skin'][0])} | "
+                        f"{np.nanmax(np.abs(held['with the skin'][1])):.1f} |")
 
 
 def plot(path, curves):
@@ -200,6 +223,10 @@ def plot(path, curves):
                 v, out = curves[(name, law, "keys from volume")]
                 ax.plot(v * 1e6, out[model_key] * scale, "-", color=color, lw=1,
                         label=f"{law} law driven by volume, keys from volume")
+            for law, color in zip(LAWS, ("C0", "C1", "C2")):
+                v, out = curves[(name, law, "with the skin")]
+                ax.plot(v * 1e6, out[model_key] * scale, "-.", color=color, lw=1.5,
+                        label=f"{law} law driven by volume, with the skin")
             top = np.max(column(rows, key)) * scale
             ax.set_ylim(-0.05 * top, 1.6 * top)  # a law may bend, or press, far past the data
             ax.set_ylabel(unit)
@@ -224,8 +251,9 @@ def main():
     print()
     print("| segment | law | keys, pressure in | held out, pressure in: bend largest / rms (deg) | keys, volume in | "
           "held out, volume in: bend largest / rms (deg) | pressure largest (%) | together (3 keys): bend (deg) | "
-          "together: pressure (%) |")
-    print("|---|---|---|---|---|---|---|---|---|")
+          "together: pressure (%) | with the skin: r_V | with the skin (3 keys + r_V): bend (deg) | "
+          "with the skin: pressure (%) |")
+    print("|---|---|---|---|---|---|---|---|---|---|---|---|")
     print("\n".join(summary_rows))
     if args.plot:
         plot(args.plot, curves)
