@@ -38,6 +38,22 @@ std::vector<pf::Measurement> filledByVolume(const pf::FingerParameters& truth, d
   return rows;
 }
 
+// Rows measured on @p truth below its limit point, where the pressure sets the volume: six pressures and the volume
+// each takes, driven by volume.
+std::vector<pf::Measurement> pressuresAgainstVolume(const pf::FingerParameters& truth) {
+  const pf::FingerModel model(truth);
+  std::vector<pf::Measurement> rows;
+  for (int k = 1; k <= 6; ++k) {
+    pf::Measurement m;
+    m.line = k;
+    m.gauge_pa = model.limitGaugePa() * 0.15 * k;
+    m.supplied_volume_m3 = model.suppliedVolumeAt(m.gauge_pa);
+    rows.push_back(m);
+  }
+  pf::driveByVolume(rows);
+  return rows;
+}
+
 std::string refusal(const std::function<void()>& f) {
   try {
     f();
@@ -75,16 +91,7 @@ TEST(CalibrationByVolume, RecoversTheGapFromBendsFilledPastTheLimitPoint) {
 // supplied; fitted to the measured pressures at each supplied volume, it comes back.
 TEST(CalibrationByVolume, RecoversTheDeadGasFromThePressureAgainstTheVolume) {
   const pf::FingerParameters truth = pf_test::membraneFinger(20.0, "dead_volume_m3: 3e-5\n");
-  std::vector<pf::Measurement> rows;
-  pf::FingerModel model(truth);
-  for (int k = 1; k <= 6; ++k) {  // below the limit point, where the pressure sets the volume
-    pf::Measurement m;
-    m.line = k;
-    m.gauge_pa = model.limitGaugePa() * 0.15 * k;
-    m.supplied_volume_m3 = model.suppliedVolumeAt(m.gauge_pa);
-    rows.push_back(m);
-  }
-  pf::driveByVolume(rows);
+  std::vector<pf::Measurement> rows = pressuresAgainstVolume(truth);
   pf::FingerParameters start = truth;
   start.dead_volume_m3 = 0.0;
   for (auto objective : {pf::CalibrationObjective::kMinimax, pf::CalibrationObjective::kLeastSquares}) {
@@ -101,16 +108,7 @@ TEST(CalibrationByVolume, RecoversTheDeadGasFromThePressureAgainstTheVolume) {
 TEST(CalibrationByVolume, RecoversTheSkinsShareAndTheGasFromThePressureAgainstTheVolume) {
   const pf::FingerParameters truth =
       pf_test::membraneFinger(20.0, "dead_volume_m3: 3e-5\nchamber_growth_ratio: 6\n");
-  std::vector<pf::Measurement> rows;
-  pf::FingerModel model(truth);
-  for (int k = 1; k <= 6; ++k) {  // below the limit point, where the pressure sets the volume
-    pf::Measurement m;
-    m.line = k;
-    m.gauge_pa = model.limitGaugePa() * 0.15 * k;
-    m.supplied_volume_m3 = model.suppliedVolumeAt(m.gauge_pa);
-    rows.push_back(m);
-  }
-  pf::driveByVolume(rows);
+  std::vector<pf::Measurement> rows = pressuresAgainstVolume(truth);
   pf::FingerParameters start = truth;
   start.dead_volume_m3 = 0.0;
   start.chamber_growth_ratio = 1.0;
