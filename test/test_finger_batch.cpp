@@ -256,7 +256,7 @@ void expectMembraneBatchMatchesEvaluate(const pf::FingerParameters& params) {
 TEST(Batch, TheMembranesPacksAnswerTheBitsOfEvaluateAlongThePath) {
   // Gent with a far branch (J_m = 50), Neo-Hookean (no far branch: past the limit nothing), Gent without a limit
   // point (J_m = 6: P rises to the lock), a finger whose walls touch early (a narrow gap); the thick wall, Gent and
-  // Neo-Hookean.
+  // Neo-Hookean, and bent by its inner face (the packs' own bulge, not the outer face's lane by lane).
   struct Finger {
     double jm;
     const char* extra;
@@ -265,7 +265,8 @@ TEST(Batch, TheMembranesPacksAnswerTheBitsOfEvaluateAlongThePath) {
   for (const Finger& f : {Finger{50, "", pf::WallLaw::kMembrane}, Finger{0, "", pf::WallLaw::kMembrane},
                           Finger{6, "", pf::WallLaw::kMembrane},
                           Finger{50, "chamber_gap_m: 0.0002\n", pf::WallLaw::kMembrane},
-                          Finger{50, "", pf::WallLaw::kThick}, Finger{0, "", pf::WallLaw::kThick}}) {
+                          Finger{50, "", pf::WallLaw::kThick}, Finger{0, "", pf::WallLaw::kThick},
+                          Finger{50, "wall_flexion_face: inner\n", pf::WallLaw::kThick}}) {
     SCOPED_TRACE(std::string(pf::wallLawName(f.law)) + " J_m " + std::to_string(f.jm) + " " + f.extra);
     pf::FingerParameters params = pf_test::membraneFinger(f.jm, f.extra);
     params.wall_law = f.law;

@@ -16,6 +16,7 @@
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/membrane_wall.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
+#include "reference_quad.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -52,10 +53,11 @@ double referenceGauge(double delta, double thickness, double jm) {
   return static_cast<double>(fine + (fine - coarse) / 15);
 }
 
-pf::FingerParameters thickFinger(double thickness, double jm) {
+pf::FingerParameters thickFinger(double thickness, double jm, const std::string& extra = "") {
   pf::RawParameterMap raw;
   pf::loadRawParametersFromYamlText("wall_law: thick\nshear_modulus_pa: 2e4\nwall_thickness_m: " +
-                                        pf::formatExact(thickness) + "\nwall_locking_jm: " + std::to_string(jm) + "\n",
+                                        pf::formatExact(thickness) + "\nwall_locking_jm: " + std::to_string(jm) + "\n" +
+                                        extra,
                                     "test", raw);
   return pf::FingerParameters::fromRaw(raw);
 }
@@ -156,4 +158,39 @@ TEST(ThickWall, TheFingerSolvesItAndFollowsItsVolumeAndItsSnap) {
   EXPECT_EQ(model.evaluate(1.01 * model.limitGaugePa(), ws).status, pf::EvaluationStatus::kSnappedThrough);
   EXPECT_EQ(model.evaluate(0.99 * model.farTurningGaugePa(), ws).status, pf::EvaluationStatus::kOk);
   EXPECT_STREQ(pf::wallLawName(pf::WallLaw::kThick), "thick");
+}
+
+// wall_flexion_face: inner. The wall's law is the same (the same stretch, to the bit, at every pressure), but the bulge
+// that bends the finger is the chamber's own, (L/2) delta, and Wang's half angle follows from it (the quad
+// reference's). A wall three times the chamber's radius (B/A = 7): its outer face moves so little that the inner one
+// bends the finger far more; the contact pressure is where the inner face crosses the gap; the volume input returns
+// its pressure.
+TEST(ThickWall, TheInnerFaceBendsTheFingerByTheChambersOwnGrowth) {
+  const pf::FingerParameters outer_params = thickFinger(3 * kHeight / 2, 0.0);
+  const pf::FingerParameters inner_params = thickFinger(3 * kHeight / 2, 0.0, "wall_flexion_face: inner\n");
+  EXPECT_EQ(inner_params.wall_flexion_face, pf::FlexionFace::kInner);
+  EXPECT_STREQ(pf::flexionFaceName(inner_params.wall_flexion_face), "inner");
+  const pf::FingerModel outer(outer_params), inner(inner_params);
+  pf::FingerWorkspace outer_ws(outer), inner_ws(inner);
+  EXPECT_EQ(inner.limitGaugePa(), outer.limitGaugePa());
+  for (double share : {0.3, 0.6, 0.9}) {
+    const double p = share * inner.limitGaugePa();
+    const pf::FingerState& s = inner.evaluate(p, inner_ws);
+    ASSERT_EQ(s.status, pf::EvaluationStatus::kOk) << share;
+    const double delta = s.stretch[0] - 1.0;
+    EXPECT_EQ(delta, outer.evaluate(p, outer_ws).stretch[0] - 1.0) << share;
+    EXPECT_LT(std::fabs(referenceGauge(delta, 3 * kHeight / 2, 0.0) - p) / p, 1e-12) << share;
+    const double h = static_cast<double>(quad(kHeight) / 2 * quad(delta));
+    EXPECT_NEAR(s.bulge_m[0], h, 1e-18) << share;
+    const double theta =
+        reference::halfAngleForBulge(h, inner_params.chamber_gap_m[0], inner_params.wall_critical_height_m[0]);
+    EXPECT_NEAR(s.half_angle_rad[0], theta, 1e-12) << share;
+    EXPECT_GT(s.half_angle_rad[0], 2.0 * outer.evaluate(p, outer_ws).half_angle_rad[0]) << share;
+  }
+  // The walls touch where the inner face has crossed the gap: P at delta = 2c/L.
+  const double touch_delta = 2.0 * inner_params.chamber_gap_m[0] / kHeight;
+  EXPECT_LT(std::fabs(referenceGauge(touch_delta, 3 * kHeight / 2, 0.0) / inner.contactGaugePa() - 1.0), 1e-12);
+  const double p = 0.7 * inner.limitGaugePa();
+  pf::FingerWorkspace by_volume(inner);
+  EXPECT_LT(std::fabs(inner.evaluateVolume(inner.suppliedVolumeAt(p), by_volume).gauge_pa - p) / p, 1e-12);
 }

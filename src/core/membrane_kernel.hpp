@@ -114,7 +114,7 @@ __attribute__((always_inline)) inline WallPack<T> membraneWallPack(const Uniform
   auto rare = ~(p < wall.limit_gauge_pa);
   const T delta = membraneStretchPack(wall, rare ? splat<T>(0.0) : p);
   T h = (0.5 * wall.chamber_height_m) * delta;  // membraneBulgeM
-  if (wall.thick) {
+  if (wall.outer_face_bends) {
     for (int i = 0; i < lanesOf<T>(); ++i) h[i] = membraneBulgeM(wall, delta[i]);
   }
   const double two_over_b = 2.0 / s.wall_critical_height_m;

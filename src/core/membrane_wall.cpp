@@ -60,10 +60,11 @@ void buildGuess(MembraneWall& w) {
 }  // namespace
 
 MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, double chamber_height_m,
-                          double locking_jm, bool thick) {
+                          double locking_jm, bool thick, bool outer_face_bends) {
   MembraneWall w;
   w.chamber_height_m = chamber_height_m;
   w.thick = thick;
+  w.outer_face_bends = thick && outer_face_bends;
   w.pressure_scale_pa = thick ? shear_modulus_pa : 4.0 * shear_modulus_pa * wall_thickness_m / chamber_height_m;
   if (thick) {
     w.outer_inner_ratio = 1.0 + 2.0 * wall_thickness_m / chamber_height_m;  // B/A, A = L/2
@@ -204,12 +205,12 @@ double membraneGaugeForBulge(const MembraneWall& w, double bulge_m) {
 }
 
 double membraneBulgeM(const MembraneWall& w, double delta) {
-  if (!w.thick) return 0.5 * w.chamber_height_m * delta;
+  if (!w.outer_face_bends) return 0.5 * w.chamber_height_m * delta;
   return 0.5 * w.chamber_height_m * w.outer_inner_ratio * thickOuterStretchExcess(w, delta);
 }
 
 double membraneStretchForBulge(const MembraneWall& w, double bulge_m) {
-  if (!w.thick) return 2.0 * bulge_m / w.chamber_height_m;
+  if (!w.outer_face_bends) return 2.0 * bulge_m / w.chamber_height_m;
   // The outer face's stretch excess, then lambda_a^3 - 1 = (lambda_b^3 - 1) (B/A)^3.
   const double db = 2.0 * bulge_m / (w.chamber_height_m * w.outer_inner_ratio);
   const double ub = db * (3.0 + db * (3.0 + db));

@@ -59,6 +59,12 @@ const std::vector<ParameterSpec> kSpecs = {
     {"wall_locking_jm", "J_m", "-", 0, 0, true, 1e4, ParameterShape::kScalar,
      "membrane and thick laws: Gent's locking invariant, the I1 - 3 at which the elastomer locks; 0: no locking "
      "(Neo-Hookean)"},
+    // docs/MODEL.md "The thick wall": which face's growth bends the finger. A thin membrane's faces are one.
+    {"wall_flexion_face", "-", "-", 0, 0, true, 1, ParameterShape::kChoice,
+     "thick law: the face whose bulge bends the finger: 'outer' (the wall's outer face, which meets the neighbouring "
+     "wall: chambers in a row) or 'inner' (the chamber's own face, as the thin membrane's: a channel whose own growth "
+     "lengthens the finger). The other laws do not use it",
+     "outer|inner"},
     // docs/MODEL.md "Volume": the gas the supply compresses besides growing the chambers. Up to a cubic metre: a
     // lab's cylinder, tubes and reservoir, with a unit mistake (mL for m^3) refused.
     {"dead_volume_m3", "V_g", "m^3", 0, 0, true, 1.0, ParameterShape::kScalar,
@@ -230,6 +236,7 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& raw) {
   p.wall_law = static_cast<WallLaw>(static_cast<int>(scalar(spec("wall_law"), raw)));
   p.wall_thickness_m = perChamber(spec("wall_thickness_m"), raw, n);
   p.wall_locking_jm = scalar(spec("wall_locking_jm"), raw);
+  p.wall_flexion_face = static_cast<FlexionFace>(static_cast<int>(scalar(spec("wall_flexion_face"), raw)));
   p.dead_volume_m3 = scalar(spec("dead_volume_m3"), raw);
   p.chamber_growth_ratio = scalar(spec("chamber_growth_ratio"), raw);
   // docs/MODEL.md stage 3-4: under the paper law b is a height on the wall, so it cannot exceed the wall (chamber)
@@ -269,6 +276,7 @@ RawParameterMap FingerParameters::toRaw() const {
   raw["wall_law"] = {{static_cast<double>(wall_law)}, false};
   put_list("wall_thickness_m", wall_thickness_m);
   raw["wall_locking_jm"] = {{wall_locking_jm}, false};
+  raw["wall_flexion_face"] = {{static_cast<double>(wall_flexion_face)}, false};
   raw["dead_volume_m3"] = {{dead_volume_m3}, false};
   raw["chamber_growth_ratio"] = {{chamber_growth_ratio}, false};
   return raw;
@@ -339,6 +347,8 @@ std::string formatParameterValue(const ParameterSpec& spec, double value) {
 const char* wallLawName(WallLaw law) {
   return law == WallLaw::kMembrane ? "membrane" : law == WallLaw::kThick ? "thick" : "paper";
 }
+
+const char* flexionFaceName(FlexionFace face) { return face == FlexionFace::kInner ? "inner" : "outer"; }
 
 double FingerParameters::lengthM() const {
   double length_m = base_segment_length_m;

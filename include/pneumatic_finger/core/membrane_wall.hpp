@@ -27,6 +27,9 @@ struct MembraneWall {
   bool thick = false;
   double inner_outer_volume_ratio = 1.0;  ///< (A/B)^3: lambda_b^3 - 1 = (A/B)^3 (lambda_a^3 - 1)
   double outer_inner_ratio = 1.0;         ///< B/A: the outer face's bulge is B (lambda_b - 1)
+  /// The bulge that bends the finger is the outer face's (a thick wall with wall_flexion_face: outer); false: the
+  /// inner face's, (L/2) delta (the thin membrane's one face, or a thick wall's chamber itself).
+  bool outer_face_bends = false;
   /// Past the limit point |dP/ddelta| <= decay_scale_pa / lambda^2 (the supplied volume's snap search ends by it):
   /// 4 mu t/L for the membrane, 4 mu B/A for the thick wall.
   double decay_scale_pa = 0.0;
@@ -54,11 +57,12 @@ struct MembraneWall {
 
 /// The membrane of a wall of height @p chamber_height_m (L), thickness @p wall_thickness_m (t), shear modulus
 /// @p shear_modulus_pa (mu) and Gent locking invariant @p locking_jm (J_m, 0 for none), with its limit point.
+/// @p thick: the thick wall; @p outer_face_bends: its outer face's bulge bends the finger, else its inner face's.
 MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, double chamber_height_m,
-                          double locking_jm, bool thick = false);
+                          double locking_jm, bool thick = false, bool outer_face_bends = true);
 
-/// The bulge h (m) of the wall's outer face at stretch excess @p delta: (L/2) delta for the membrane, B (lambda_b - 1)
-/// for the thick wall.
+/// The bulge h (m) that bends the finger at stretch excess @p delta: (L/2) delta for the membrane (and a thick wall's
+/// inner face), B (lambda_b - 1) for a thick wall's outer face.
 double membraneBulgeM(const MembraneWall& wall, double delta);
 
 /// The stretch excess at which the wall's outer face has bulged by @p bulge_m (>= 0): membraneBulgeM inverted.

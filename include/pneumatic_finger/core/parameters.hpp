@@ -42,6 +42,16 @@ enum class WallLaw : int {
 /// "paper", "membrane" or "thick".
 const char* wallLawName(WallLaw law);
 
+/// The thick wall's face whose bulge bends the finger (docs/MODEL.md, "The thick wall"): the two faces of a thin
+/// membrane are one, so only the thick wall reads it.
+enum class FlexionFace : int {
+  kOuter = 0,  ///< the wall's outer face, B (lambda_b - 1): the face that meets the neighbouring wall
+  kInner = 1,  ///< the chamber's own face, A (lambda_a - 1): a channel whose own growth lengthens the finger
+};
+
+/// "outer" or "inner".
+const char* flexionFaceName(FlexionFace face);
+
 /// The definition of one key: everything the library, the tools, the node and the docs know about it.
 struct ParameterSpec {
   const char* key;          ///< YAML / rosparam key
@@ -89,6 +99,7 @@ struct FingerParameters {
   WallLaw wall_law = WallLaw::kPaper;            ///< stages 1-3: the paper's chain or the membrane
   std::vector<double> wall_thickness_m;          ///< t_n: the membrane law's wall thickness at rest
   double wall_locking_jm = 0.0;                  ///< J_m: the membrane's Gent locking invariant (0: Neo-Hookean)
+  FlexionFace wall_flexion_face = FlexionFace::kOuter;  ///< the thick wall's face whose bulge bends the finger
   double dead_volume_m3 = 0.0;                   ///< V_g: gas at rest in the drive (0: incompressible fluid)
   double chamber_growth_ratio = 1.0;             ///< r_V: a chamber's volume growth over its walls' (1: theirs alone)
 
