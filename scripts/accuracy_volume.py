@@ -7,8 +7,9 @@ source devel/setup.bash)
 Each segment (data/marchese2015_*_bending.csv: pressure, supplied volume and bend, filled in volume steps) is split by
 volume: the rows of even index are fitted, the odd ones held out. Every fit is the package's calibration
 (pneumatic_finger.calibrate, as finger_calibrate), with each law's keys (LAWS below: the membrane's Gent wall with
-three, shear_modulus_pa, chamber_gap_m and wall_locking_jm; the thick wall, Neo-Hookean, and the paper law with the
-first two):
+three, shear_modulus_pa, chamber_gap_m and wall_locking_jm; the thick wall, Neo-Hookean, bent by the face its
+segment's parameter file maps (wall_flexion_face: outer for the ribbed segment's row of channels, inner for the
+cylindrical's one channel), and the paper law with the first two):
  1. "keys from pressure": the keys fitted to the bends against pressure (drive="pressure", minimax); then the drive's
     gas, dead_volume_m3, fitted to the pressures against volume with those keys (drive="volume", compare="gauge_pa",
     least squares);

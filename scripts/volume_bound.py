@@ -12,8 +12,9 @@ chain's bends at those growths (the bend rises with the growth). A measured bend
 least its distance to the band, for every wall law that shares the chain's geometry and every value of its keys.
 
 This script searches the gas V_d (0 to 1 L, the calibration's range) and the gap c (0 to the chamber's extent) for
-the smallest largest miss, on a grid refined twice around its best point, for the thin and the thick membrane walls
-(the same sphere, its volume from the inner or the outer face) and the paper law (its half ellipses, with the
+the smallest largest miss, on a grid refined twice around its best point, for the thin membrane wall, the thick wall
+bent by its outer face and by its inner face (wall_flexion_face: the inner face's chain is the thin membrane's) and
+the paper law (its half ellipses, with the
 critical height docs/ACCURACY.md's law comparison uses). It reports the bound on every row and on the held-out half
 (the odd rows by volume, as scripts/accuracy_volume.py splits them), for a pressure within 10 % and for the measured
 pressure itself, and then with the skin's share of the growth free as well (chamber_growth_ratio, r_V: the walls'
@@ -33,7 +34,9 @@ DEG = 180 / math.pi
 TOLERANCE = 0.10  # the pressure's relative error allowed: the accuracy target of the volume input
 FLOOR_PA = 1e4  # the calibration's smallest shear_modulus_pa for the membrane laws (calibration_axes.hpp)
 # Each law's geometry: the overrides that make its chain (the paper law's critical height as in accuracy_laws.py).
-LAWS = {"membrane": {"wall_law": "membrane"}, "thick": {"wall_law": "thick"},
+LAWS = {"membrane": {"wall_law": "membrane"},
+        "thick, outer face": {"wall_law": "thick", "wall_flexion_face": "outer"},
+        "thick, inner face": {"wall_law": "thick", "wall_flexion_face": "inner"},
         "paper": {"ribbed": {"wall_law": "paper", "wall_critical_height_m": 0.00155},
                   "cylindrical": {"wall_law": "paper", "wall_critical_height_m": 0.0014}}}
 
@@ -133,17 +136,20 @@ def plot(path, bands):
         rows = rows_of(name)
         v = column(rows, "supplied_volume_m3") * 1e6
         ax.plot(v, column(rows, "bend_angle_rad") * DEG, "ko", mfc="none", label="measured")
-        for law, color in zip(LAWS, ("C0", "C1", "C2")):
+        for law, color in zip(LAWS, ("C0", "C1", "C1", "C2")):
+            if law == "thick, inner face":
+                continue  # the thin membrane's chain: its band is the membrane's
             c, v_d = bands[(name, law)]
             lo, hi = band(geometry(name, law, c), rows, v_d, TOLERANCE)
+            shown = "membrane or thick, inner face" if law == "membrane" else law
             ax.fill_between(v, lo * DEG, hi * DEG, color=color, alpha=0.3,
-                            label=f"{law}: bends with pressure within 10 % (c = {c * 1e3:.2f} mm, V_d = {v_d * 1e6:.0f} mL)")
+                            label=f"{shown} (c = {c * 1e3:.2f} mm, V_d = {v_d * 1e6:.0f} mL)")
         ax.set_title(title)
         ax.set_xlabel("supplied volume (mL)")
         ax.set_ylabel("bend (deg)")
         ax.set_ylim(-5, 1.6 * np.max(column(rows, "bend_angle_rad")) * DEG)  # the paper law's band runs far above
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7, loc="upper left")
+        ax.legend(fontsize=7, loc="upper left", title="bends with pressure within 10 %", title_fontsize=7)
     fig.tight_layout()
     fig.savefig(path, dpi=110)
 
