@@ -101,17 +101,24 @@ def fits(name, even, law):
     return config, ways, loo, chosen
 
 
-def with_skin(config, even, by_volume):
-    """The keys of "together" refitted at each skin share r_V of SKIN_RATIOS; the share whose fit leaves the smaller
-    objective on the fitted rows (the held-out half plays no part)."""
+def best_skin_share(config, even, start, keys, compare, report=None):
+    """@p keys fitted by volume (least squares, @p compare) at each skin share r_V of SKIN_RATIOS, from @p start; the
+    keys of the share whose fit leaves the smaller objective on the fitted rows (the held-out half plays no part).
+    @p report(ratio, objective), if given, hears each share's."""
     best = None
     for ratio in SKIN_RATIOS:
-        start = {**by_volume, "chamber_growth_ratio": float(ratio)}
-        fit = pf.calibrate(table(even), BOTH_KEYS, "least_squares", config, start, compare="tip_angle+gauge_pa",
-                           drive="volume")
+        at = {**start, "chamber_growth_ratio": float(ratio)}
+        fit = pf.calibrate(table(even), keys, "least_squares", config, at, compare=compare, drive="volume")
+        if report:
+            report(ratio, fit["objective_value"])
         if best is None or fit["objective_value"] < best[0]:
-            best = (fit["objective_value"], {**start, **fit["fitted"]})
+            best = (fit["objective_value"], {**at, **fit["fitted"]})
     return best[1]
+
+
+def with_skin(config, even, by_volume):
+    """The keys of "together" refitted at each skin share (best_skin_share)."""
+    return best_skin_share(config, even, by_volume, BOTH_KEYS, "tip_angle+gauge_pa")
 
 
 def errors(model, part):

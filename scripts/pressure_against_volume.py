@@ -17,7 +17,7 @@ alone". About three minutes.
 import numpy as np
 
 import pneumatic_finger.core as pf
-from accuracy_volume import JM, MU, GAP, ROOT, SKIN_RATIOS, errors, rows_of, summary, table
+from accuracy_volume import JM, MU, GAP, ROOT, best_skin_share, errors, rows_of, summary, table
 
 PRESSURE_KEYS = [MU, JM, "dead_volume_m3"]
 
@@ -27,15 +27,8 @@ def main():
     even, odd = rows[0::2], rows[1::2]
     config = str(ROOT / "config/marchese2015_cylindrical.yaml")
     base = {"wall_law": "thick", MU: 2e4, JM: 30.0, "dead_volume_m3": 8e-5}
-    best = None
-    for ratio in SKIN_RATIOS:
-        start = {**base, "chamber_growth_ratio": float(ratio)}
-        fit = pf.calibrate(table(even), PRESSURE_KEYS, "least_squares", config, start, compare="gauge_pa",
-                           drive="volume")
-        print(f"- r_V = {ratio:g}: objective on the fitted half {fit['objective_value']:.4g}")
-        if best is None or fit["objective_value"] < best[0]:
-            best = (fit["objective_value"], {**start, **fit["fitted"]})
-    keys = best[1]
+    keys = best_skin_share(config, even, base, PRESSURE_KEYS, "gauge_pa",
+                           lambda ratio, value: print(f"- r_V = {ratio:g}: objective on the fitted half {value:.4g}"))
     keys.update(pf.calibrate(table(even), [GAP], "minimax", config, keys, compare="tip_angle",
                              drive="volume")["fitted"])
     model = pf.FingerModel(config, keys)

@@ -348,8 +348,6 @@ const char* wallLawName(WallLaw law) {
   return law == WallLaw::kMembrane ? "membrane" : law == WallLaw::kThick ? "thick" : "paper";
 }
 
-const char* flexionFaceName(FlexionFace face) { return face == FlexionFace::kInner ? "inner" : "outer"; }
-
 double FingerParameters::lengthM() const {
   double length_m = base_segment_length_m;
   for (double z : segment_length_m) length_m += z;

@@ -65,7 +65,7 @@ MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, doub
 /// inner face), B (lambda_b - 1) for a thick wall's outer face.
 double membraneBulgeM(const MembraneWall& wall, double delta);
 
-/// The stretch excess at which the wall's outer face has bulged by @p bulge_m (>= 0): membraneBulgeM inverted.
+/// The stretch excess at which the bulge that bends the finger is @p bulge_m (>= 0): membraneBulgeM inverted.
 double membraneStretchForBulge(const MembraneWall& wall, double bulge_m);
 
 /// The law itself: the gauge pressure (Pa) at stretch excess @p delta >= 0, without cancellation near rest

@@ -49,9 +49,6 @@ enum class FlexionFace : int {
   kInner = 1,  ///< the chamber's own face, A (lambda_a - 1): a channel whose own growth lengthens the finger
 };
 
-/// "outer" or "inner".
-const char* flexionFaceName(FlexionFace face);
-
 /// The definition of one key: everything the library, the tools, the node and the docs know about it.
 struct ParameterSpec {
   const char* key;          ///< YAML / rosparam key
