@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <iterator>
 #include <limits>
 #include <string>
 #include <vector>
@@ -61,23 +62,27 @@ TEST(MembraneWall, LimitPointMatchesTheQuadReference) {
   EXPECT_NEAR(wall(0).limit_stretch_excess, std::pow(7.0, 1.0 / 6.0) - 1.0, 1e-15);
 }
 
+// delta and Wang's half angle at 401 pressures from 1e-12 of the sweep's top to the top, against the reference.
+void expectDenseSweepWithin1e12(const pf::MembraneWall& w, double locking_jm) {
+  const double top = sweepTop(w);
+  double worst_delta = 0, worst_theta = 0;
+  for (int i = 0; i <= 400; ++i) {
+    const double p = top * std::pow(10.0, -12.0 * (1.0 - i / 400.0));
+    const double d = pf::membraneStretchExcess(w, p);
+    const double d_ref = reference::membraneStretchExcess(referenceWall(locking_jm), p);
+    worst_delta = std::max(worst_delta, std::fabs(d - d_ref) / d_ref);
+    const pf::WallSolution s = pf::solveMembraneWall(w, p, 4e-5, 0.00575);
+    const double theta_ref = reference::halfAngleForBulge(0.5 * kHeight * d_ref, 4e-5, 0.00575);
+    worst_theta = std::max(worst_theta, std::fabs(s.half.rad - theta_ref));
+  }
+  EXPECT_LE(worst_delta, 1e-12);
+  EXPECT_LE(worst_theta, 1e-12);
+}
+
 TEST(MembraneWall, DenseSweepWithin1e12OfTheQuadReference) {
   for (const Case& c : kCases) {
     SCOPED_TRACE(c.name);
-    const pf::MembraneWall w = wall(c.locking_jm);
-    const double top = sweepTop(w);
-    double worst_delta = 0, worst_theta = 0;
-    for (int i = 0; i <= 400; ++i) {
-      const double p = top * std::pow(10.0, -12.0 * (1.0 - i / 400.0));
-      const double d = pf::membraneStretchExcess(w, p);
-      const double d_ref = reference::membraneStretchExcess(referenceWall(c.locking_jm), p);
-      worst_delta = std::max(worst_delta, std::fabs(d - d_ref) / d_ref);
-      const pf::WallSolution s = pf::solveMembraneWall(w, p, 4e-5, 0.00575);
-      const double theta_ref = reference::halfAngleForBulge(0.5 * kHeight * d_ref, 4e-5, 0.00575);
-      worst_theta = std::max(worst_theta, std::fabs(s.half.rad - theta_ref));
-    }
-    EXPECT_LE(worst_delta, 1e-12);
-    EXPECT_LE(worst_theta, 1e-12);
+    expectDenseSweepWithin1e12(wall(c.locking_jm), c.locking_jm);
   }
 }
 
@@ -110,6 +115,38 @@ TEST(MembraneWall, NearTheLimitPointTheBackwardErrorIsAnUlp) {
       EXPECT_LE(d, w.limit_stretch_excess);
       EXPECT_NEAR(reference::membraneGaugePa(referenceWall(c.locking_jm), d), p, kEightUlp * p) << "gap " << gap;
     }
+  }
+}
+
+// The wall's inverse (docs/MODEL.md, "The wall's inverse"), built as a model builds it, answers what the Newton steps
+// answer above: the dense sweep, the digits near rest, the backward error next to the limit point. A Gent wall whose
+// limit point and far turning point nearly meet (J_m = 19, just above the threshold where the limit point appears)
+// joins the three: its inverse needs the most pieces.
+TEST(MembraneWall, TheInverseAnswersAsTheNewtonStepsDo) {
+  std::vector<Case> cases(std::begin(kCases), std::end(kCases));
+  cases.push_back({"gent_jm_19", 19.0, true});
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    pf::MembraneWall w = wall(c.locking_jm);
+    ASSERT_EQ(std::isfinite(w.limit_gauge_pa), c.has_limit);
+    pf::buildRisingInverse(w);
+    ASSERT_GT(w.inverse_pieces, 0);
+    EXPECT_EQ(w.inverse_top_gauge_pa, c.has_limit ? w.limit_gauge_pa
+                                                   : pf::membraneGaugeForStretchExcess(w, 0.8 * w.locking_stretch_excess));
+    expectDenseSweepWithin1e12(w, c.locking_jm);
+    for (double p : {1e-300, 1e-30, 1e-10, 1e-3}) {
+      const double d_ref = reference::membraneStretchExcess(referenceWall(c.locking_jm), p);
+      EXPECT_NEAR(pf::membraneStretchExcess(w, p), d_ref, kEightUlp * d_ref) << "P = " << p;
+    }
+    EXPECT_EQ(pf::membraneStretchExcess(w, 0.0), 0.0);
+    if (!c.has_limit) continue;
+    for (double gap : {1e-6, 1e-9, 1e-12, 1e-15}) {
+      const double p = w.limit_gauge_pa * (1 - gap);
+      const double d = pf::membraneStretchExcess(w, p);
+      EXPECT_LE(d, w.limit_stretch_excess) << "gap " << gap;
+      EXPECT_NEAR(reference::membraneGaugePa(referenceWall(c.locking_jm), d), p, kEightUlp * p) << "gap " << gap;
+    }
+    EXPECT_TRUE(std::isnan(pf::membraneStretchExcess(w, w.limit_gauge_pa)));
   }
 }
 

@@ -151,7 +151,9 @@ void measuredInto(const FingerParameters& parameters, const Measurement& m, Resi
 }  // namespace
 
 std::vector<Residual> residuals(const FingerParameters& parameters, const std::vector<Measurement>& data) {
-  FingerModel model(parameters);
+  ModelOptions options;
+  options.wall_inverse = false;  // one model per candidate, a few dozen rows each: the inverse's build would dominate
+  FingerModel model(parameters, options);
   FingerWorkspace ws(model);
   std::vector<Residual> out;
   const int n = parameters.chamber_count;

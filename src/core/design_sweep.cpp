@@ -26,6 +26,8 @@ std::vector<DesignRefusal> sweepDesigns(const FingerParameters& base, const Mode
     if (findParameterSpec(key) == nullptr) throw ParameterError("unknown parameter '" + key + "'");
   }
   RawParameterMap raw = base.toRaw();
+  ModelOptions design_options = options;
+  design_options.wall_inverse = false;  // one pressure per design: the wall's inverse would cost more than it saves
   std::vector<DesignRefusal> refused;
   const bool wants_shape = out.tip_angle_rad || out.tip_x_m || out.tip_y_m || out.status;
   const bool wants_points = out.tip_x_m || out.tip_y_m;
@@ -36,7 +38,7 @@ std::vector<DesignRefusal> sweepDesigns(const FingerParameters& base, const Mode
     for (std::size_t j = 0; j < keys.size(); ++j) raw[keys[j]] = {{values[d * keys.size() + j]}, false};
     std::optional<FingerModel> model;
     try {
-      model.emplace(FingerParameters::fromRaw(raw), options);
+      model.emplace(FingerParameters::fromRaw(raw), design_options);
     } catch (const ParameterError& e) {
       refused.push_back({d, e.what()});
       writeNan(out, d);

@@ -14,6 +14,7 @@
 #include "batch_kernel.hpp"
 #include "membrane_law.hpp"
 #include "thick_wall.hpp"
+#include "wall_inverse.hpp"
 
 namespace pneumatic_finger {
 
@@ -75,10 +76,11 @@ inline T risingNewtonPack(const MembraneWall& w, T target, T lo, T hi, T x, T pr
   return active ? x : root;  // lanes still going after 2200 steps: their last x, as the single one's
 }
 
-/// membraneStretchExcess for a pack of pressures in [0, limit): the table's node interval per lane, the inverse's
-/// cubic Hermite start (tabulatedStretchExcess in membrane_wall.cpp), then the Newton steps. 0 where P = 0.
-template <class T>
-inline T membraneStretchPack(const MembraneWall& w, T p) {
+/// membraneNewtonStretchExcess for the lanes in @p active of a pack of pressures in [0, limit): the table's node
+/// interval per lane, the inverse's cubic Hermite start (tabulatedStretchExcess in membrane_wall.cpp), then the Newton
+/// steps. 0 where P = 0.
+template <class T, class M>
+inline T newtonStretchPack(const MembraneWall& w, T p, M active) {
   constexpr int kLanes = lanesOf<T>();
   T p0, p1, s0, s1, lo, hi;
   for (int i = 0; i < kLanes; ++i) {
@@ -99,9 +101,22 @@ inline T membraneStretchPack(const MembraneWall& w, T p) {
       (2.0 * t3 - 3.0 * t2 + 1.0) * lo + (t3 - 2.0 * t2 + t) * dp / s0 + (3.0 * t2 - 2.0 * t3) * hi + (t3 - t2) * dp / s1;
   const auto smooth = (s0 > zero) & (s1 > zero) & (dp - dp == zero) & (s1 - s1 == zero);  // x - x == 0: finite
   const T start = smooth ? hermite : lo + t * (hi - lo);
-  const auto loaded = p > zero;
+  const auto loaded = active & (p > zero);
   const T delta = risingNewtonPack(w, p, lo, hi, start, lo, s0, loaded);
   return loaded ? delta : zero;
+}
+
+/// membraneStretchExcess for a pack of pressures in [0, limit): the wall's inverse (wall_inverse.hpp) for the lanes
+/// at or below its top, the Newton steps for the rest (a wall that rises to its lock, above the inverse's top).
+template <class T>
+inline T membraneStretchPack(const MembraneWall& w, T p) {
+  const auto all = p == p;
+  if (w.inverse_pieces == 0) return newtonStretchPack(w, p, all);
+  const T zero = splat<T>(0.0);
+  const auto tabulated = p <= splat<T>(w.inverse_top_gauge_pa);
+  const T delta = risingInversePack(w, tabulated & (p > zero) ? p : zero);  // +0 at rest, as the Newton steps give
+  if (!anyOf(~tabulated)) return delta;
+  return tabulated ? delta : newtonStretchPack(w, p, ~tabulated);
 }
 
 /// Stages 1-4 of the membrane or thick wall for a pack of pressures @p p (refused lanes 0: the rest shape), as

@@ -8,6 +8,7 @@
 #include "first_zero.hpp"
 #include "membrane_law.hpp"
 #include "thick_wall.hpp"
+#include "wall_inverse.hpp"
 
 namespace pneumatic_finger {
 
@@ -158,6 +159,13 @@ double tabulatedStretchExcess(const MembraneWall& w, double gauge_pa) {
 }  // namespace
 
 double membraneStretchExcess(const MembraneWall& w, double gauge_pa) {
+  if (w.inverse_pieces > 0 && gauge_pa > 0.0 && gauge_pa <= w.inverse_top_gauge_pa && gauge_pa < w.limit_gauge_pa) {
+    return risingInverse(w, gauge_pa);
+  }
+  return membraneNewtonStretchExcess(w, gauge_pa);
+}
+
+double membraneNewtonStretchExcess(const MembraneWall& w, double gauge_pa) {
   if (!(gauge_pa >= 0.0) || !(gauge_pa < w.limit_gauge_pa)) return std::numeric_limits<double>::quiet_NaN();
   if (gauge_pa == 0.0) return 0.0;
   if (w.has_guess) return tabulatedStretchExcess(w, gauge_pa);

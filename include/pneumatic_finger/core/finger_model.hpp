@@ -45,6 +45,11 @@ struct ModelOptions {
   /// Compute and write each chamber's stretch and bulge even when the solver does not need them (the table solver
   /// skips the chain). false: the state's stretch and bulge hold NaN (not computed), and no evaluation writes them.
   bool chamber_detail = true;
+  /// Under the membrane and thick wall laws, build each wall's inverse (docs/MODEL.md, "The wall's inverse"): an
+  /// evaluation then takes a polynomial instead of Newton steps on the law (the same stretch within 4e-15 of itself
+  /// and the pressure's rounding), for 20 to 300 microseconds more per wall at construction. The calibration and
+  /// the design sweep, which build a model per candidate and evaluate it a few times, build none.
+  bool wall_inverse = true;
 };
 
 /// Everything the model says about the finger at one pressure. Sized once for N chambers.

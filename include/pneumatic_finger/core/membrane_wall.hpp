@@ -13,6 +13,7 @@
 #pragma once
 
 #include <array>
+#include <vector>
 
 #include "pneumatic_finger/core/stages.hpp"
 
@@ -53,6 +54,16 @@ struct MembraneWall {
   static constexpr int kGuessNodes = 32;
   bool has_guess = false;
   std::array<double, kGuessNodes + 1> guess_stretch_excess{}, guess_gauge_pa{}, guess_slope_pa{};
+  /// The rising branch's inverse (docs/MODEL.md, "The wall's inverse"; src/core/wall_inverse.hpp): delta = q g(s) for
+  /// P up to inverse_top_gauge_pa, q = P / inverse_top_gauge_pa and s = sqrt(1 - q), g a degree-15 polynomial on each of
+  /// inverse_pieces equal pieces of s in [0, 1], checked against the law at build. 0 pieces: no inverse (the Newton
+  /// steps from the starting table answer instead), as above the top of a wall that rises to its lock.
+  static constexpr int kInverseCoefficients = 16;
+  static constexpr int kInverseMaxPieces = 64;
+  double inverse_top_gauge_pa = 0.0;  ///< the limit pressure, or where a wall without one stops the inverse (Pa)
+  double inverse_scale_per_pa = 0.0;  ///< 1 / inverse_top_gauge_pa
+  int inverse_pieces = 0;
+  std::vector<double> inverse_coefficients;  ///< kInverseCoefficients per piece, x^0 first, from s = 0 (the top)
 };
 
 /// The membrane of a wall of height @p chamber_height_m (L), thickness @p wall_thickness_m (t), shear modulus
@@ -60,6 +71,13 @@ struct MembraneWall {
 /// @p thick: the thick wall; @p outer_face_bends: its outer face's bulge bends the finger, else its inner face's.
 MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, double chamber_height_m,
                           double locking_jm, bool thick = false, bool outer_face_bends = true);
+
+/// Builds @p wall's inverse (MembraneWall::inverse_*, docs/MODEL.md "The wall's inverse") from its law and starting
+/// table: 4 to 64 pieces, each checked against the law's Newton root at its Chebyshev extrema, the count doubling
+/// until every piece holds. Tens to hundreds of microseconds, so a model builds it only when it will be evaluated
+/// often (ModelOptions::wall_inverse). Leaves inverse_pieces 0 where no count holds (membraneStretchExcess then takes
+/// Newton steps, as without it).
+void buildRisingInverse(MembraneWall& wall);
 
 /// The bulge h (m) that bends the finger at stretch excess @p delta: (L/2) delta for the membrane (and a thick wall's
 /// inner face), B (lambda_b - 1) for a thick wall's outer face.
@@ -77,8 +95,8 @@ double membraneGaugeForStretchExcess(const MembraneWall& wall, double delta);
 /// for both at or beyond the lock.
 void membraneGaugeAndSlope(const MembraneWall& wall, double delta, double& gauge_pa, double& slope_pa);
 
-/// The stretch excess on the rising branch for @p gauge_pa in [0, limit_gauge_pa): safeguarded Newton steps on P,
-/// bracketed by [0, limit_stretch_excess]. NaN for a pressure at or beyond the limit point, negative or NaN.
+/// The stretch excess on the rising branch for @p gauge_pa in [0, limit_gauge_pa): the wall's inverse where it has
+/// one (buildRisingInverse), else safeguarded Newton steps on P, bracketed by [0, limit_stretch_excess]. NaN for a pressure at or beyond the limit point, negative or NaN.
 double membraneStretchExcess(const MembraneWall& wall, double gauge_pa);
 
 /// The stretch excess on the far branch for @p gauge_pa in (far_turning_gauge_pa, +inf): the same safeguarded Newton
