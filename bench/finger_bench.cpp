@@ -227,9 +227,12 @@ pf::FingerParameters siliconeFinger(pf::WallLaw law) {
 // J_m = 50, so a limit point), 64 pressures from rest to 0.99 of the limit point, one at a time as the node runs
 // them; under the membrane law its error against the quad reference (the law by bisection, Wang's half angle by
 // bisection) as a counter. @p law: the membrane or the thick wall (the same finger, its wall's real thickness).
-void benchMembrane(benchmark::State& state, pf::WallLaw law) {
+// @p wall_inverse: the wall's inverse (docs/MODEL.md, "The wall's inverse"), or the Newton steps without it.
+void benchMembrane(benchmark::State& state, pf::WallLaw law, bool wall_inverse) {
   const pf::FingerParameters params = siliconeFinger(law);
-  const pf::FingerModel model(params);
+  pf::ModelOptions options;
+  options.wall_inverse = wall_inverse;
+  const pf::FingerModel model(params, options);
   pf::FingerWorkspace ws(model);
   std::vector<double> pressures;
   for (int i = 1; i <= 64; ++i) pressures.push_back(0.99 * model.limitGaugePa() * i / 64.0);
@@ -250,7 +253,22 @@ void benchMembrane(benchmark::State& state, pf::WallLaw law) {
     benchmark::ClobberMemory();
     if (++i == pressures.size()) i = 0;
   }
-  state.SetLabel(std::string(pf::wallLawName(law)) + " wall law, Gent, up to 0.99 of the limit point");
+  state.SetLabel(std::string(pf::wallLawName(law)) + " wall law, Gent, up to 0.99 of the limit point, " +
+                 (wall_inverse ? "the wall's inverse" : "Newton steps"));
+}
+
+// Building membrane/validated's model (FingerModel's constructor: the wall, its limit point and turning points, the
+// force and volume models) with and without the wall's inverse: what the inverse costs a model once.
+void benchMembraneBuild(benchmark::State& state, pf::WallLaw law, bool wall_inverse) {
+  const pf::FingerParameters params = siliconeFinger(law);
+  pf::ModelOptions options;
+  options.wall_inverse = wall_inverse;
+  for (auto _ : state) {
+    const pf::FingerModel model(params, options);
+    benchmark::DoNotOptimize(model.limitGaugePa());
+  }
+  state.SetLabel(std::string(pf::wallLawName(law)) + " wall law, Gent, FingerModel built " +
+                 (wall_inverse ? "with the wall's inverse" : "without it"));
 }
 
 // The membrane and thick wall laws through the batch (evaluateMany): membrane/validated's finger and range, 4096
@@ -574,8 +592,13 @@ int main(int argc, char** argv) {
   benchmark::RegisterBenchmark("robust_pair/validated", benchPair);
   benchmark::RegisterBenchmark("force/blocked_tip", benchBlockedForce);
   benchmark::RegisterBenchmark("force/contact", benchContactForce);
-  benchmark::RegisterBenchmark("membrane/validated", benchMembrane, pf::WallLaw::kMembrane);
-  benchmark::RegisterBenchmark("thick/validated", benchMembrane, pf::WallLaw::kThick);
+  for (pf::WallLaw law : {pf::WallLaw::kMembrane, pf::WallLaw::kThick}) {
+    const std::string name = pf::wallLawName(law);
+    benchmark::RegisterBenchmark((name + "/validated").c_str(), benchMembrane, law, true);
+    benchmark::RegisterBenchmark((name + "/newton").c_str(), benchMembrane, law, false);
+    benchmark::RegisterBenchmark((name + "/build").c_str(), benchMembraneBuild, law, true);
+    benchmark::RegisterBenchmark((name + "/build_newton").c_str(), benchMembraneBuild, law, false);
+  }
   benchmark::RegisterBenchmark("membrane/volume", benchMembraneVolume);
   for (pf::WallLaw law : {pf::WallLaw::kMembrane, pf::WallLaw::kThick}) {
     for (pf::BatchPath path : {pf::BatchPath::kScalar, pf::BatchPath::kGeneric, pf::BatchPath::kAvx2,

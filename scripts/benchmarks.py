@@ -142,6 +142,9 @@ TARGET_ROBUST_NS, TARGET_TABLE_NS, TARGET_ERROR_RAD, TARGET_P99_US = 100.0, 30.0
 TARGET_LAW_RATIO = 2.0  # the membrane and thick-wall laws: at most this times the paper law's robust evaluation
 TARGET_VOLUME_RATIO = 2.0  # volume as the input: at most this times the same law's pressure evaluation
 membrane_ns, thick_ns = runs["membrane/validated"]["real_time"], runs["thick/validated"]["real_time"]
+membrane_newton_ns, thick_newton_ns = runs["membrane/newton"]["real_time"], runs["thick/newton"]["real_time"]
+build_us = {f"{law}/{kind}": runs[f"{law}/{kind}"]["real_time"] / 1e3
+            for law in ("membrane", "thick") for kind in ("build", "build_newton")}
 volume_ns = runs["membrane/volume"]["real_time"]
 law_rows = "\n".join([
     md_row("paper law, robust (the default)", f"{robust_ns:.0f}", "1.0",
@@ -150,8 +153,14 @@ law_rows = "\n".join([
            fmt_err(runs["membrane/validated"]["max_theta_error_rad"]) + " (θ, rad)"),
     md_row("membrane law, volume in (10 mL of gas in the drive)", f"{volume_ns:.0f}", f"{volume_ns / robust_ns:.1f}",
            fmt_err(runs["membrane/volume"]["max_gauge_relative_error"]) + " (pressure given back, relative)"),
+    md_row("membrane law, pressure in, Newton steps (no inverse)", f"{membrane_newton_ns:.0f}",
+           f"{membrane_newton_ns / robust_ns:.1f}", ""),
     md_row("thick-wall law (Gent, J_m = 50), pressure in", f"{thick_ns:.0f}", f"{thick_ns / robust_ns:.1f}",
-           "tested against the quad reference (test/test_thick_wall.cpp)")])
+           "tested against the quad reference (test/test_thick_wall.cpp)"),
+    md_row("thick-wall law, pressure in, Newton steps (no inverse)", f"{thick_newton_ns:.0f}",
+           f"{thick_newton_ns / robust_ns:.1f}", "")])
+build_rows = "\n".join(md_row(f"{law} wall law", f"{build_us[law + '/build_newton']:.1f}", f"{build_us[law + '/build']:.1f}")
+                       for law in ("membrane", "thick"))
 TARGET_CONTACT_NS = 1000.0
 TARGET_BATCH_PER_S = 20e6
 TARGET_PYTHON_TIP_PER_S, TARGET_PYTHON_OUT_PER_S = 20e6, 10e6  # from Python, 2 M pressures: tip only; every output into out=
@@ -331,15 +340,25 @@ finger's table has {runs[f"table_polynomials/{table_widest}"]["segments"]:.0f} s
 `finger_bench`'s `membrane/validated`, `membrane/volume` and `thick/validated`, in the same run as the first table:
 the paper's finger with a silicone wall (μ = 20 kPa, t = 2 mm, Gent J_m = 50, so a limit point), 64 pressures from
 rest to 0.99 of the limit point, one at a time; the volume input at the volumes those pressures take. Each law's
-rising branch starts from a table of P(δ) its wall builds once (33 Chebyshev nodes, inverse cubic Hermite), then
-Newton steps on P with P and dP/dδ together (`src/core/membrane_wall.cpp`, `increasingNewtonRoot` in
-`src/core/first_zero.hpp`); the volume is closed-form for an incompressible fill and Newton on V_s(δ) with a gas.
-The thick wall's Gent P is a closed form of logarithms and an arctangent per evaluation (the partial fractions of
-docs/MODEL.md, "The thick wall"), with the outer face's stretch, a cube root, beside it; a solve pays for two or three.
+rising branch comes from the wall's inverse, piecewise polynomials in s = √(1 − P/P_lim) that the model builds and
+checks once (docs/MODEL.md, "The wall's inverse"; `src/core/wall_inverse.cpp`). Without it (`membrane/newton`,
+`thick/newton`, as the calibration runs) the rising branch starts from a table of P(δ) its wall builds once (33
+Chebyshev nodes, inverse cubic Hermite), then takes Newton steps on P with P and dP/dδ together
+(`increasingNewtonRoot` in `src/core/first_zero.hpp`): the thick wall's Gent P is a closed form of logarithms and an
+arctangent per evaluation (the partial fractions of docs/MODEL.md, "The thick wall"), with the outer face's stretch, a
+cube root, beside it, and a solve pays for two or three. The volume is closed-form for an incompressible fill and
+Newton on V_s(δ) with a gas.
 
 | law | ns | × paper law | largest error |
 |---|---|---|---|
 {law_rows}
+
+What the inverse costs a model once (`membrane/build`, `thick/build` and their `_newton` twins: FingerModel's
+constructor for that finger, its wall, limit and turning points, force and volume models), in µs:
+
+| finger | built without the inverse | with it |
+|---|---|---|
+{build_rows}
 
 ## Many pressures at once: the batch entry point
 
@@ -434,12 +453,13 @@ Each verdict is computed by `scripts/benchmarks.py` from the figures above; the 
 - **The membrane and thick-wall laws within {TARGET_LAW_RATIO:.0f}× the paper law's evaluation:** membrane
   {verdict(membrane_ns <= TARGET_LAW_RATIO * robust_ns)}: {membrane_ns:.0f} ns, {membrane_ns / robust_ns:.2f}× the
   {robust_ns:.0f} ns of the same run; thick wall {verdict(thick_ns <= TARGET_LAW_RATIO * robust_ns)}: {thick_ns:.0f} ns,
-  {thick_ns / robust_ns:.1f}× (six logarithms, an arctangent and a cube root per pressure evaluation). **The volume input within
+  {thick_ns / robust_ns:.2f}× (by the wall's inverse; {thick_newton_ns / robust_ns:.1f}× by Newton steps, whose every
+  evaluation of the law takes six logarithms, an arctangent and a cube root). **The volume input within
   {TARGET_VOLUME_RATIO:.0f}× the pressure's:** {verdict(volume_ns <= TARGET_VOLUME_RATIO * membrane_ns)}: {volume_ns:.0f} ns,
   {volume_ns / membrane_ns:.2f}× the membrane law's pressure evaluation. **In the batch's SIMD packs, bit for bit:**
   met for both: the membrane law {membrane_batch_ns:.0f} ns per pressure in the fastest packs
   ({membrane_batch_ns / robust_ns:.2f}× the paper law's single evaluation), the thick wall {thick_batch_ns:.0f} ns
-  ({thick_batch_ns / robust_ns:.1f}×; its law lane by lane).
+  ({thick_batch_ns / robust_ns:.1f}×; both by the wall's inverse in the packs).
 - **Batch ≥ {TARGET_BATCH_PER_S / 1e6:.0f} M full-finger evaluations/s on one core (robust, 1e-12 rad):**
   {verdict(best_batch >= TARGET_BATCH_PER_S)}: {best_batch / 1e6:.1f} M/s with the {best_batch_key} packs (the widest this
   CPU has), every output written, at {fmt_err(runs[f"batch/{best_batch_key}"]["max_theta_error_rad"])} rad.

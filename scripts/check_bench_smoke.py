@@ -15,6 +15,7 @@ names = {r["name"] for r in runs}
 expected = {f"{v}/{s}" for v in ("robust", "table", "paper", "eigen_companion", "gsl_complex")
             for s in ("validated", "hard")} | {"robust_pair/validated"} | {f"robust_stage/{i}" for i in range(1, 6)} | {f"latency/{i}" for i in range(4)} | {f"contact/{i}" for i in range(4)} \
     | {"membrane/validated", "membrane/volume", "thick/validated"} \
+    | {f"{law}/{kind}" for law in ("membrane", "thick") for kind in ("newton", "build", "build_newton")} \
     | {f"{b}/{p}" for b in ("batch", "batch_backbone") for p in ("scalar", "generic", "avx2", "avx512")}
 if sim:
     expected = {"sim/cell_step", "sim/step", "sim/step_with_springs"}
