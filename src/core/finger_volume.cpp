@@ -21,6 +21,18 @@ double paperVolumePerBulgeM2(double chamber_height_m, double chamber_width_m) {
   return 0.5 * kPi * chamber_height_m * chamber_width_m;
 }
 
+namespace {
+
+// The supplied volume V = V_o (lambda^3 - 1) + V_g P/(P_o + P) and dV/ddelta at stretch excess @p d, whose pressure and
+// dP/ddelta are @p p and @p dp (the gas's share of a finite P).
+void suppliedVolumeAndSlope(double v_o, double v_g, double p_o, double d, double p, double dp, double& volume,
+                            double& slope) {
+  volume = v_o * membraneVolumeGrowthFactor(d) + v_g * (p / (p_o + p));
+  slope = v_o * membraneVolumeGrowthSlope(d) + v_g * p_o * dp / ((p_o + p) * (p_o + p));
+}
+
+}  // namespace
+
 double deadGasUptakeM3(double dead_volume_m3, double gauge_pa, double atmospheric_pa) {
   if (dead_volume_m3 == 0.0) return 0.0;  // an incompressible fluid, at any pressure
   return dead_volume_m3 * (gauge_pa / (atmospheric_pa + gauge_pa));
@@ -66,6 +78,7 @@ void FingerModel::buildVolumeModel() {
       volume_limit_stretch_excess_ = firstFallBelowZero(slope, wall.limit_stretch_excess, end);
     }
   }
+  buildVolumeGuess();
   if (std::isfinite(volume_limit_stretch_excess_)) {
     volume_limit_m3_ = suppliedVolumeAtStretch(volume_limit_stretch_excess_);
   } else if (std::isfinite(wall.locking_stretch_excess)) {
@@ -74,6 +87,26 @@ void FingerModel::buildVolumeModel() {
     volume_limit_m3_ = volume_coefficient_[0] * membraneVolumeGrowthFactor(wall.locking_stretch_excess) + v_g;
   } else {
     volume_limit_m3_ = kInf;
+  }
+}
+
+// The volume input's starting table: V and dV/ddelta at the wall's nodes (rest to the limit point, or to the lock,
+// where P and dV/ddelta are infinite and the gas is all taken). V rises over them: past the limit point is where
+// the gas could give some back.
+void FingerModel::buildVolumeGuess() {
+  const MembraneWall& wall = groups_[0].membrane;
+  const double v_g = parameters_.dead_volume_m3, p_o = parameters_.atmospheric_pressure_pa;
+  has_volume_guess_ = v_g > 0.0 && wall.has_guess;
+  if (!has_volume_guess_) return;
+  for (std::size_t i = 0; i < volume_guess_m3_.size(); ++i) {
+    const double d = wall.guess_stretch_excess[i], p = wall.guess_gauge_pa[i];
+    if (std::isinf(p)) {
+      volume_guess_m3_[i] = volume_coefficient_[0] * membraneVolumeGrowthFactor(d) + v_g;
+      volume_guess_slope_m3_[i] = kInf;
+      continue;
+    }
+    suppliedVolumeAndSlope(volume_coefficient_[0], v_g, p_o, d, p, wall.guess_slope_pa[i], volume_guess_m3_[i],
+                           volume_guess_slope_m3_[i]);
   }
 }
 
@@ -148,9 +181,17 @@ double FingerModel::stretchForSuppliedVolume(double v) const {
   const auto volume_and_slope = [&wall, v_o, v_g, p_o](double d, double& volume, double& slope) {
     double p = 0.0, dp = 0.0;
     membraneGaugeAndSlope(wall, d, p, dp);
-    volume = v_o * membraneVolumeGrowthFactor(d) + v_g * (p / (p_o + p));
-    slope = v_o * membraneVolumeGrowthSlope(d) + v_g * p_o * dp / ((p_o + p) * (p_o + p));
+    suppliedVolumeAndSlope(v_o, v_g, p_o, d, p, dp, volume, slope);
   };
+  const auto& nodes = volume_guess_m3_;
+  if (has_volume_guess_ && v >= 0.0 && v < nodes.back()) {
+    // The table's interval brackets the root, and the inverse's Hermite interpolation starts the steps near it.
+    const auto i = static_cast<std::size_t>(std::upper_bound(nodes.begin(), nodes.end(), v) - nodes.begin()) - 1;
+    const double lo = wall.guess_stretch_excess[i], hi = wall.guess_stretch_excess[i + 1];
+    const double s0 = volume_guess_slope_m3_[i];
+    const double start = hermiteInverseStart(lo, hi, nodes[i], nodes[i + 1], s0, volume_guess_slope_m3_[i + 1], v);
+    return increasingNewtonRoot(volume_and_slope, v, lo, hi, start, lo, s0);
+  }
   const double hi = std::min(incompressible, volume_limit_stretch_excess_);
   return increasingNewtonRoot(volume_and_slope, v, 0.0, hi, 0.5 * hi);
 }

@@ -47,6 +47,19 @@ double firstFallBelowZero(F&& f, double start, double end) {
   return bisectSignChange(f, at(best - 1), m.x);
 }
 
+/// The inverse's cubic Hermite interpolation at @p y between two nodes (x0, y0) and (x1, y1) of an increasing y(x),
+/// with dy/dx @p s0 and @p s1 there (dx/dy = 1/s at both): a start within about 1e-5 of the root for Newton's steps
+/// on a smooth y; linear where a slope is 0 or infinite (a limit point, a lock) or y1 is infinite.
+inline double hermiteInverseStart(double x0, double x1, double y0, double y1, double s0, double s1, double y) {
+  const double dy = y1 - y0, t = (y - y0) / dy;
+  double x = x0 + t * (x1 - x0);
+  if (s0 > 0.0 && s1 > 0.0 && std::isfinite(dy) && std::isfinite(s1)) {
+    const double t2 = t * t, t3 = t2 * t;
+    x = (2 * t3 - 3 * t2 + 1) * x0 + (t3 - 2 * t2 + t) * dy / s0 + (3 * t2 - 2 * t3) * x1 + (t3 - t2) * dy / s1;
+  }
+  return x;
+}
+
 /// The x in (lo, hi) at which the increasing f reaches @p target, by Newton steps from @p x, with @p fdf(x, f, df)
 /// giving f and its derivative together: a step that would leave the bracket (kept from the signs met) bisects it
 /// instead. The steps stop when one rounds away, or when a Newton step's error, about (f''/2f') step^2 with f'' from

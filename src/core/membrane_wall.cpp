@@ -145,14 +145,8 @@ double risingStretchExcess(const MembraneWall& w, double gauge_pa, double lo, do
 double tabulatedStretchExcess(const MembraneWall& w, double gauge_pa) {
   const auto& p = w.guess_gauge_pa;
   const auto i = static_cast<std::size_t>(std::upper_bound(p.begin(), p.end(), gauge_pa) - p.begin()) - 1;
-  const double dp = p[i + 1] - p[i], t = (gauge_pa - p[i]) / dp;
-  const double s0 = w.guess_slope_pa[i], s1 = w.guess_slope_pa[i + 1];
-  const double lo = w.guess_stretch_excess[i], hi = w.guess_stretch_excess[i + 1];
-  double d = lo + t * (hi - lo);
-  if (s0 > 0.0 && s1 > 0.0 && std::isfinite(dp) && std::isfinite(s1)) {
-    const double t2 = t * t, t3 = t2 * t;
-    d = (2 * t3 - 3 * t2 + 1) * lo + (t3 - 2 * t2 + t) * dp / s0 + (3 * t2 - 2 * t3) * hi + (t3 - t2) * dp / s1;
-  }
+  const double s0 = w.guess_slope_pa[i], lo = w.guess_stretch_excess[i], hi = w.guess_stretch_excess[i + 1];
+  const double d = hermiteInverseStart(lo, hi, p[i], p[i + 1], s0, w.guess_slope_pa[i + 1], gauge_pa);
   return risingStretchExcess(w, gauge_pa, lo, hi, d, lo, s0);
 }
 

@@ -8,6 +8,7 @@
 
 #include <Eigen/Core>
 
+#include <array>
 #include <cstdint>
 #include <limits>
 #include <string>
@@ -391,6 +392,7 @@ class FingerModel {
                         std::string& message) const;
   /// The volume model's constants (finger_volume.cpp): each group's volume coefficient and the volume's limit.
   void buildVolumeModel();
+  void buildVolumeGuess();
   /// Group @p group's chambers' growth (m^3) at bulge @p bulge_m (finger_volume.cpp).
   double groupGrowthM3(std::size_t group, double bulge_m) const;
   /// The supplied volume (m^3) of identical membrane chambers at stretch excess @p delta (>= 0, below the lock).
@@ -438,6 +440,10 @@ class FingerModel {
   std::vector<double> chamber_volume_coefficient_;  // the same per chamber (chamberGrowthM3)
   bool volume_by_stretch_ = false;  // identical membrane chambers: the volume input is solved in delta, past the limit
   double volume_limit_stretch_excess_ = 0.0;  // delta where volumeLimitM3() is reached (volume_by_stretch_)
+  // With a gas in the drive (volume_by_stretch_): the supplied volume and dV/ddelta at the wall's starting-table nodes,
+  // where the volume input's Newton steps start (stretchForSuppliedVolume), as the pressure's do from P there.
+  bool has_volume_guess_ = false;
+  std::array<double, MembraneWall::kGuessNodes + 1> volume_guess_m3_{}, volume_guess_slope_m3_{};
   double limit_point_volume_m3_ = std::numeric_limits<double>::infinity();
   double volume_limit_m3_ = 0.0;
   bool membrane_ = false;  // the membrane wall law (parameters_.wall_law)
