@@ -1,7 +1,7 @@
 """Regenerates docs/BENCHMARKS.md and docs/speed_vs_error.png: the model benchmark (finger_bench) and the node
 benchmark (scripts/bench_node.sh), run now on this machine.
 
-usage: python3 scripts/benchmarks.py     (after scripts/build.sh; takes about a minute)
+usage: python3 scripts/benchmarks.py     (after scripts/build.sh; takes about four minutes)
 """
 import json
 import math
