@@ -92,7 +92,8 @@ TEST(ThickWall, PressureMatchesTheQuadReferenceFromRestToNearTheLock) {
 // The wall's inverse (docs/MODEL.md, "The wall's inverse") for every wall above and the early lock: built, and at
 // pressures from 1e-12 of its top to just below it, the stretch it gives solves the reference's law: the reference
 // pressure there is the one asked for, within 1e-12 of delta's own worth (|P_ref - P| / (delta dP/ddelta), delta's
-// relative error to first order). The far lock (J_m = 1e4) has none: its law's partial fractions round to about
+// relative error to first order); the outer face's bulge B (lambda_b - 1), which the inverse gives from a polynomial
+// of its own, is the reference's from that delta within 1e-12. The far lock (J_m = 1e4) has none: its law's partial fractions round to about
 // 1e-13 of P, more than the inverse's check allows its root, so the Newton steps answer there, as they did.
 TEST(ThickWall, TheInverseSolvesTheQuadReferencesLaw) {
   std::vector<Case> cases(std::begin(kCases), std::end(kCases));
@@ -112,6 +113,11 @@ TEST(ThickWall, TheInverseSolvesTheQuadReferencesLaw) {
       double gauge_pa = 0.0, slope_pa = 0.0;
       pf::membraneGaugeAndSlope(w, d, gauge_pa, slope_pa);
       EXPECT_LT(std::fabs(referenceGauge(d, c.thickness, c.jm) - p) / (slope_pa * d), 1e-12) << p;
+      const pf::WallSolution s = pf::solveMembraneWall(w, p, 4e-5, 0.00575);
+      EXPECT_EQ(s.stretch_excess, d);
+      const quad a = quad(kHeight) / 2, b = a + quad(c.thickness), la = 1 + quad(d);
+      const quad h_ref = b * (cbrtq(1 + (a * a * a) / (b * b * b) * (la * la * la - 1)) - 1);
+      EXPECT_LT(std::fabs(static_cast<double>((quad(s.bulge_m) - h_ref) / h_ref)), 1e-12) << p;
     }
   }
 }

@@ -1,9 +1,10 @@
 // The batch kernel for the membrane and thick wall laws: a finger of identical chambers on their near branch, SIMD
-// across pressures, bit for bit with the single evaluation (membrane_wall.cpp: membraneStretchExcess's table start and
-// Newton steps; stages.cpp: halfAngle; the joints and points as batch_kernel.hpp). The thin law is shared
-// (membrane_law.hpp) and runs in packs; the thick wall's law runs lane by lane. What is the kernel's own is the control,
-// as in batch_kernel.hpp: each lane starts where the single evaluation starts, and its Newton steps stop where the
-// single evaluation's stop (first_zero.hpp, increasingNewtonRoot), the pack going on until its last lane stops.
+// across pressures, bit for bit with the single evaluation (membrane_wall.cpp: the wall's inverse, wall_inverse.hpp, or
+// without one membraneStretchExcess's table start and Newton steps; stages.cpp: halfAngle; the joints and points as
+// batch_kernel.hpp). The inverse's polynomials and the thin law (membrane_law.hpp) run in packs; the thick wall's law,
+// where a wall has no inverse, lane by lane. For the Newton steps the kernel's own is the control, as in
+// batch_kernel.hpp: each lane starts where the single evaluation starts, and its Newton steps stop where the single
+// evaluation's stop (first_zero.hpp, increasingNewtonRoot), the pack going on until its last lane stops.
 // The branches are the caller's (FingerModel::evaluateMany follows them in order and hands over the runs of pressures
 // on the near branch). Internal header of src/core.
 #pragma once
@@ -106,17 +107,29 @@ inline T newtonStretchPack(const MembraneWall& w, T p, M active) {
   return loaded ? delta : zero;
 }
 
-/// membraneStretchExcess for a pack of pressures in [0, limit): the wall's inverse (wall_inverse.hpp) for the lanes
-/// at or below its top, the Newton steps for the rest (a wall that rises to its lock, above the inverse's top).
+/// Stages 1-3 (delta and the bulge h) for a pack of pressures in [0, limit), as solveMembraneWall: the wall's inverse
+/// (wall_inverse.hpp) for the lanes at or below its top, with the outer face's stretch where that face bends; the
+/// Newton steps for the rest (a wall that rises to its lock, above the inverse's top), their outer face's bulge lane
+/// by lane (membraneBulgeM).
 template <class T>
-inline T membraneStretchPack(const MembraneWall& w, T p) {
-  const auto all = p == p;
-  if (w.inverse_pieces == 0) return newtonStretchPack(w, p, all);
+inline void membraneStretchAndBulgePack(const MembraneWall& w, T p, T& delta, T& h) {
   const T zero = splat<T>(0.0);
-  const auto tabulated = p <= splat<T>(w.inverse_top_gauge_pa);
-  const T delta = risingInversePack(w, tabulated & (p > zero) ? p : zero);  // +0 at rest, as the Newton steps give
-  if (!anyOf(~tabulated)) return delta;
-  return tabulated ? delta : newtonStretchPack(w, p, ~tabulated);
+  auto tabulated = p != p;  // none
+  if (w.inverse_pieces > 0) {
+    tabulated = p <= splat<T>(w.inverse_top_gauge_pa);
+    const T p_in = tabulated & (p > zero) ? p : zero;  // +0 at rest, as the Newton steps give
+    T outer = zero;
+    delta = risingInversePack(w, p_in, w.outer_face_bends ? &outer : nullptr);
+    h = w.outer_face_bends ? (0.5 * w.chamber_height_m * w.outer_inner_ratio) * outer : (0.5 * w.chamber_height_m) * delta;
+    if (!anyOf(~tabulated)) return;
+  }
+  const T newton = newtonStretchPack(w, p, ~tabulated);
+  delta = tabulated ? delta : newton;
+  T newton_h = (0.5 * w.chamber_height_m) * newton;  // membraneBulgeM
+  if (w.outer_face_bends) {
+    for (int i = 0; i < lanesOf<T>(); ++i) newton_h[i] = membraneBulgeM(w, newton[i]);
+  }
+  h = tabulated ? h : newton_h;
 }
 
 /// Stages 1-4 of the membrane or thick wall for a pack of pressures @p p (refused lanes 0: the rest shape), as
@@ -127,11 +140,8 @@ __attribute__((always_inline)) inline WallPack<T> membraneWallPack(const Uniform
   const MembraneWall& wall = *spec.wall;
   const UniformRobustSpec& s = spec.finger;
   auto rare = ~(p < wall.limit_gauge_pa);
-  const T delta = membraneStretchPack(wall, rare ? splat<T>(0.0) : p);
-  T h = (0.5 * wall.chamber_height_m) * delta;  // membraneBulgeM
-  if (wall.outer_face_bends) {
-    for (int i = 0; i < lanesOf<T>(); ++i) h[i] = membraneBulgeM(wall, delta[i]);
-  }
+  T delta = splat<T>(0.0), h = splat<T>(0.0);
+  membraneStretchAndBulgePack(wall, rare ? splat<T>(0.0) : p, delta, h);
   const double two_over_b = 2.0 / s.wall_critical_height_m;
   T rad, cos_half, sin_half, tan_half;
   stageFour(h, sqrtOf(h * s.gap_m) * two_over_b, s.gap_m, two_over_b, rare, rad, cos_half, sin_half, tan_half);

@@ -153,9 +153,7 @@ double tabulatedStretchExcess(const MembraneWall& w, double gauge_pa) {
 }  // namespace
 
 double membraneStretchExcess(const MembraneWall& w, double gauge_pa) {
-  if (w.inverse_pieces > 0 && gauge_pa > 0.0 && gauge_pa <= w.inverse_top_gauge_pa && gauge_pa < w.limit_gauge_pa) {
-    return risingInverse(w, gauge_pa);
-  }
+  if (inverseCovers(w, gauge_pa)) return risingInverse(w, gauge_pa);
   return membraneNewtonStretchExcess(w, gauge_pa);
 }
 
@@ -180,6 +178,14 @@ double membraneFarStretchExcess(const MembraneWall& w, double gauge_pa) {
 
 WallSolution solveMembraneWall(const MembraneWall& w, double gauge_pa, double gap_m, double wall_critical_height_m) {
   WallSolution s;
+  if (w.outer_face_bends && inverseCovers(w, gauge_pa)) {
+    // The inverse gives the outer face's stretch too: no cube root.
+    double outer_stretch_excess = 0.0;
+    s.stretch_excess = risingInverse(w, gauge_pa, &outer_stretch_excess);
+    s.bulge_m = outerFaceBulgeM(w, outer_stretch_excess);
+    s.half = halfAngle(s.bulge_m, gap_m, wall_critical_height_m);
+    return s;
+  }
   const double nan = std::numeric_limits<double>::quiet_NaN();
   const double delta = membraneStretchExcess(w, gauge_pa < 0.0 ? 0.0 : gauge_pa);
   if (std::isnan(delta)) {
@@ -208,7 +214,7 @@ double membraneGaugeForBulge(const MembraneWall& w, double bulge_m) {
 
 double membraneBulgeM(const MembraneWall& w, double delta) {
   if (!w.outer_face_bends) return 0.5 * w.chamber_height_m * delta;
-  return 0.5 * w.chamber_height_m * w.outer_inner_ratio * thickOuterStretchExcess(w, delta);
+  return outerFaceBulgeM(w, thickOuterStretchExcess(w, delta));
 }
 
 double membraneStretchForBulge(const MembraneWall& w, double bulge_m) {

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "pneumatic_finger/core/units.hpp"
+#include "thick_wall.hpp"
 
 namespace pneumatic_finger {
 
@@ -41,23 +42,33 @@ void chebyshevToMonomial(const double (&a)[kTerms], double* c) {
   }
 }
 
-// g = delta / q at the piece's Chebyshev nodes (the law's own roots), interpolated, into @p coefficients. false
-// where a node has no root.
-bool fitPiece(const MembraneWall& w, int piece, double* coefficients) {
-  double a[kTerms] = {};
+// The piece's row of coefficients.
+double* pieceRow(MembraneWall& w, int piece) {
+  const auto stride = static_cast<std::size_t>(w.inverse_functions) * kTerms;
+  return &w.inverse_coefficients[static_cast<std::size_t>(piece) * stride];
+}
+
+// g = delta / q (and g_b = delta_b / q) at the piece's Chebyshev nodes (the law's own roots), interpolated, into
+// the piece's row. false where a node has no root.
+bool fitPiece(MembraneWall& w, int piece) {
+  double a[2][kTerms] = {};
   for (int j = 0; j < kTerms; ++j) {
     const double angle = kPi * (j + 0.5) / kTerms;
     const double p = gaugeAtPosition(w, piece + 0.5 * (std::cos(angle) + 1.0));
-    const double g = membraneNewtonStretchExcess(w, p) / (p * w.inverse_scale_per_pa);
-    if (!std::isfinite(g)) return false;
-    for (int k = 0; k < kTerms; ++k) a[k] += (k == 0 ? 1.0 : 2.0) / kTerms * g * std::cos(k * angle);
+    const double q = p * w.inverse_scale_per_pa, delta = membraneNewtonStretchExcess(w, p);
+    const double g[2] = {delta / q, w.inverse_functions == 2 ? thickOuterStretchExcess(w, delta) / q : 0.0};
+    if (!std::isfinite(g[0]) || !std::isfinite(g[1])) return false;
+    for (int f = 0; f < w.inverse_functions; ++f) {
+      for (int k = 0; k < kTerms; ++k) a[f][k] += (k == 0 ? 1.0 : 2.0) / kTerms * g[f] * std::cos(k * angle);
+    }
   }
-  chebyshevToMonomial(a, coefficients);
+  for (int f = 0; f < w.inverse_functions; ++f) chebyshevToMonomial(a[f], pieceRow(w, piece) + f * kTerms);
   return true;
 }
 
 // The inverse against the law's root at the piece's Chebyshev extrema (between the nodes, where the interpolation
 // errs most, and its ends), as the evaluation computes it: from the pressure.
+// The outer face's stretch is checked likewise, its spread the root's times d delta_b / d delta.
 bool pieceHolds(const MembraneWall& w, int piece) {
   for (int m = 0; m <= kTerms; ++m) {
     const double p = gaugeAtPosition(w, piece + 0.5 * (1.0 - std::cos(kPi * m / kTerms)));
@@ -66,28 +77,39 @@ bool pieceHolds(const MembraneWall& w, int piece) {
     double gauge_pa = 0.0, slope_pa = 0.0;
     membraneGaugeAndSlope(w, delta, gauge_pa, slope_pa);
     const double spread = kPressureRoundings * kEpsilon * p / slope_pa;
-    if (!(std::fabs(risingInverse(w, p) - delta) <= kRelativeTolerance * delta + spread)) return false;
+    double outer = 0.0;
+    const double inverse = risingInverse(w, p, w.inverse_functions == 2 ? &outer : nullptr);
+    if (!(std::fabs(inverse - delta) <= kRelativeTolerance * delta + spread)) return false;
+    if (w.inverse_functions == 1) continue;
+    const double delta_b = thickOuterStretchExcess(w, delta), la = 1.0 + delta, lb = 1.0 + delta_b;
+    const double outer_spread = spread * w.inner_outer_volume_ratio * la * la / (lb * lb);
+    if (!(std::fabs(outer - delta_b) <= kRelativeTolerance * delta_b + outer_spread)) return false;
   }
   return true;
 }
 
 // At rest g is exactly top / (dP/ddelta at 0): the last piece is shifted to end there, so that the smallest pressures
 // keep delta's digits as the Newton steps do (the interpolation alone is off by a few 1e-15 there).
+// The outer face's g_b likewise, times d delta_b / d delta at rest, (A/B)^3.
 void pinRest(MembraneWall& w) {
   double gauge_pa = 0.0, slope_pa = 0.0;
   membraneGaugeAndSlope(w, 0.0, gauge_pa, slope_pa);
-  double* last = &w.inverse_coefficients[static_cast<std::size_t>(w.inverse_pieces - 1) * kTerms];
-  double c[kTerms];
-  for (int j = 0; j < kTerms; ++j) c[j] = last[j];
-  last[0] += w.inverse_top_gauge_pa / slope_pa - inversePolynomial(c, 1.0);
+  const double at_rest[2] = {w.inverse_top_gauge_pa / slope_pa,
+                             w.inverse_top_gauge_pa / slope_pa * w.inner_outer_volume_ratio};
+  for (int f = 0; f < w.inverse_functions; ++f) {
+    double* last = pieceRow(w, w.inverse_pieces - 1) + f * kTerms;
+    double c[kTerms];
+    for (int j = 0; j < kTerms; ++j) c[j] = last[j];
+    last[0] += at_rest[f] - inversePolynomial(c, 1.0);
+  }
 }
 
 // Every piece fitted, then every piece checked (a piece's end is its neighbour's start).
 bool fitAndCheck(MembraneWall& w, int pieces) {
   w.inverse_pieces = pieces;
-  w.inverse_coefficients.assign(static_cast<std::size_t>(pieces) * kTerms, 0.0);
+  w.inverse_coefficients.assign(static_cast<std::size_t>(pieces * w.inverse_functions) * kTerms, 0.0);
   for (int piece = 0; piece < pieces; ++piece) {
-    if (!fitPiece(w, piece, &w.inverse_coefficients[static_cast<std::size_t>(piece) * kTerms])) return false;
+    if (!fitPiece(w, piece)) return false;
   }
   pinRest(w);
   for (int piece = 0; piece < pieces; ++piece) {
@@ -110,6 +132,7 @@ void buildRisingInverse(MembraneWall& w) {
   if (!(top > 0.0) || !std::isfinite(top)) return;
   w.inverse_top_gauge_pa = top;
   w.inverse_scale_per_pa = 1.0 / top;
+  w.inverse_functions = w.outer_face_bends ? 2 : 1;
   for (int pieces = 4; pieces <= MembraneWall::kInverseMaxPieces; pieces *= 2) {
     if (fitAndCheck(w, pieces)) return;
   }

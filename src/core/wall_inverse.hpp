@@ -41,35 +41,56 @@ inline T inversePosition(const MembraneWall& w, T p) {
   return sqrtOf((w.inverse_top_gauge_pa - p) * w.inverse_scale_per_pa) * static_cast<double>(w.inverse_pieces);
 }
 
+/// Whether @p w's inverse answers @p p (> 0: rest is answered exactly elsewhere; below the limit point and up to the
+/// inverse's top).
+inline bool inverseCovers(const MembraneWall& w, double p) {
+  return w.inverse_pieces > 0 && p > 0.0 && p <= w.inverse_top_gauge_pa && p < w.limit_gauge_pa;
+}
+
 /// The piece at @p position (s K; s = 0, the top, falls in the first piece, and s = 1, rest, in the last) and its
-/// coefficients; @p x the position within it.
+/// row of coefficients (delta's, then the outer face's where the wall has them); @p x the position within it.
 inline const double* inversePiece(const MembraneWall& w, double position, double& x) {
   int piece = static_cast<int>(position);
   piece = piece < w.inverse_pieces ? piece : w.inverse_pieces - 1;
   x = 2.0 * (position - piece) - 1.0;
-  return &w.inverse_coefficients[static_cast<std::size_t>(piece) * MembraneWall::kInverseCoefficients];
+  const auto stride = static_cast<std::size_t>(w.inverse_functions) * MembraneWall::kInverseCoefficients;
+  return &w.inverse_coefficients[static_cast<std::size_t>(piece) * stride];
 }
 
-/// delta for a pressure @p p in [0, inverse_top_gauge_pa] (the caller's to check; inverse_pieces > 0).
-inline double risingInverse(const MembraneWall& w, double p) {
-  double x = 0.0, c[MembraneWall::kInverseCoefficients];
+/// delta for a pressure @p p in [0, inverse_top_gauge_pa] (the caller's to check; inverse_pieces > 0), and, when
+/// @p outer_stretch_excess is given (a wall whose outer face bends, inverse_functions 2), the outer face's delta_b.
+inline double risingInverse(const MembraneWall& w, double p, double* outer_stretch_excess = nullptr) {
+  constexpr int kTerms = MembraneWall::kInverseCoefficients;
+  double x = 0.0, c[kTerms];
   const double* row = inversePiece(w, inversePosition(w, p), x);
-  for (int j = 0; j < MembraneWall::kInverseCoefficients; ++j) c[j] = row[j];
-  return (p * w.inverse_scale_per_pa) * inversePolynomial(c, x);
+  const double q = p * w.inverse_scale_per_pa;
+  for (int j = 0; j < kTerms; ++j) c[j] = row[j];
+  const double delta = q * inversePolynomial(c, x);
+  if (outer_stretch_excess != nullptr) {
+    for (int j = 0; j < kTerms; ++j) c[j] = row[kTerms + j];
+    *outer_stretch_excess = q * inversePolynomial(c, x);
+  }
+  return delta;
 }
 
 /// risingInverse lane by lane for a pack, with the same operations.
 template <class T>
-inline T risingInversePack(const MembraneWall& w, T p) {
+inline T risingInversePack(const MembraneWall& w, T p, T* outer_stretch_excess = nullptr) {
+  constexpr int kTerms = MembraneWall::kInverseCoefficients;
   const T position = inversePosition(w, p);
-  T x = splat<T>(0.0), c[MembraneWall::kInverseCoefficients] = {};
+  T x = splat<T>(0.0), c[kTerms] = {}, outer[kTerms] = {};
   for (int i = 0; i < lanesOf<T>(); ++i) {
     double xi = 0.0;
     const double* row = inversePiece(w, position[i], xi);
     x[i] = xi;
-    for (int j = 0; j < MembraneWall::kInverseCoefficients; ++j) c[j][i] = row[j];
+    for (int j = 0; j < kTerms; ++j) c[j][i] = row[j];
+    if (outer_stretch_excess != nullptr) {
+      for (int j = 0; j < kTerms; ++j) outer[j][i] = row[kTerms + j];
+    }
   }
-  return (p * w.inverse_scale_per_pa) * inversePolynomial(c, x);
+  const T q = p * w.inverse_scale_per_pa;
+  if (outer_stretch_excess != nullptr) *outer_stretch_excess = q * inversePolynomial(outer, x);
+  return q * inversePolynomial(c, x);
 }
 
 }  // namespace

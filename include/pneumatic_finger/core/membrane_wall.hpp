@@ -63,7 +63,11 @@ struct MembraneWall {
   double inverse_top_gauge_pa = 0.0;  ///< the limit pressure, or where a wall without one stops the inverse (Pa)
   double inverse_scale_per_pa = 0.0;  ///< 1 / inverse_top_gauge_pa
   int inverse_pieces = 0;
-  std::vector<double> inverse_coefficients;  ///< kInverseCoefficients per piece, x^0 first, from s = 0 (the top)
+  /// 1: delta; 2: delta and the outer face's delta_b = q g_b(s) (outer_face_bends, whose bulge would otherwise take a
+  /// cube root per evaluation).
+  int inverse_functions = 1;
+  /// Per piece, from s = 0 (the top): kInverseCoefficients for g, x^0 first, then as many for g_b.
+  std::vector<double> inverse_coefficients;
 };
 
 /// The membrane of a wall of height @p chamber_height_m (L), thickness @p wall_thickness_m (t), shear modulus
@@ -78,6 +82,11 @@ MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, doub
 /// often (ModelOptions::wall_inverse). Leaves inverse_pieces 0 where no count holds (membraneStretchExcess then takes
 /// Newton steps, as without it).
 void buildRisingInverse(MembraneWall& wall);
+
+/// A thick wall's outer face's bulge B (lambda_b - 1) (m) from its stretch excess @p outer_stretch_excess.
+inline double outerFaceBulgeM(const MembraneWall& wall, double outer_stretch_excess) {
+  return 0.5 * wall.chamber_height_m * wall.outer_inner_ratio * outer_stretch_excess;
+}
 
 /// The bulge h (m) that bends the finger at stretch excess @p delta: (L/2) delta for the membrane (and a thick wall's
 /// inner face), B (lambda_b - 1) for a thick wall's outer face.
