@@ -15,6 +15,9 @@ namespace pneumatic_finger {
 
 namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
+// How closely the stretch found must hold the volume asked for (relative): a root holds it to its last bits; a
+// stretch stopped at the last double before a lock is off by far more.
+constexpr double kVolumeTolerance = 1e-9;
 }  // namespace
 
 double paperVolumePerBulgeM2(double chamber_height_m, double chamber_width_m) {
@@ -174,6 +177,7 @@ double FingerModel::suppliedVolumeAtStretch(double delta) const {
 double FingerModel::stretchForSuppliedVolume(double v) const {
   // The chambers take all of v when the fluid is incompressible, lambda^3 - 1 = v / V_o, and at most v otherwise (the
   // gas takes its share): that stretch bounds the root, below the volume's own limit.
+  if (!(v > 0.0)) return 0.0;  // rest (the steps would halve their way to the smallest double)
   const double v_o = volume_coefficient_[0], v_g = parameters_.dead_volume_m3, p_o = parameters_.atmospheric_pressure_pa;
   const double incompressible = std::expm1(std::log1p(v / v_o) / 3.0);
   if (v_g == 0.0) return incompressible;
@@ -196,14 +200,22 @@ double FingerModel::stretchForSuppliedVolume(double v) const {
   return increasingNewtonRoot(volume_and_slope, v, 0.0, hi, 0.5 * hi);
 }
 
-bool FingerModel::writeStretchState(double delta, FingerState& out) const {
+bool FingerModel::writeStretchState(double delta, double supplied_volume_m3, FingerState& out) const {
   const ChamberGroup& group = groups_[0];
+  // Next to a Gent wall's lock the pressure climbs faster than a double's last bits of delta can follow, and a volume
+  // that needs more of the gas than they reach has no stretch: the one found holds another volume (or none, where the
+  // pressure overflows). That is no answer.
+  const double gauge_pa = membraneGaugeForStretchExcess(group.membrane, delta);
+  if (!std::isfinite(gauge_pa)) return false;
+  const double held_m3 = volume_coefficient_[0] * membraneVolumeGrowthFactor(delta) +
+                         deadGasUptakeM3(parameters_.dead_volume_m3, gauge_pa, parameters_.atmospheric_pressure_pa);
+  if (!(std::fabs(held_m3 - supplied_volume_m3) <= kVolumeTolerance * supplied_volume_m3)) return false;
   const double bulge_m = membraneBulgeM(group.membrane, delta);
   const HalfAngle half = halfAngle(bulge_m, group.chamber_gap_m, group.wall_critical_height_m);
   if (!std::isfinite(half.rad)) return false;
   uniformWriterFor(parameters_.chamber_count)(parameters_, first_joint_series_, options_.chamber_detail, 1.0 + delta,
                                               bulge_m, half.rad, half.cos, half.sin, half.tan, out);
-  out.gauge_pa = membraneGaugeForStretchExcess(group.membrane, delta);
+  out.gauge_pa = gauge_pa;
   return true;
 }
 
@@ -231,7 +243,7 @@ const FingerState& FingerModel::evaluateVolume(double supplied_volume_m3, Finger
     return state;
   }
   if (volume_by_stretch_) {
-    written = writeStretchState(stretchForSuppliedVolume(v), state);
+    written = writeStretchState(stretchForSuppliedVolume(v), v, state);
   } else {
     double hi = std::isfinite(limit_gauge_pa_) ? belowLimitGaugePa() : 1e3;
     while (!std::isfinite(limit_gauge_pa_) && suppliedVolumeAt(hi) < v && hi < 1e300) hi *= 2.0;

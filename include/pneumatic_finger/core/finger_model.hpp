@@ -400,9 +400,10 @@ class FingerModel {
   // Identical membrane chambers: the stretch excess at which the supply has pushed in @p v (m^3, below
   // volume_limit_m3_): closed-form for an incompressible fluid, else Newton steps on V_s(delta).
   double stretchForSuppliedVolume(double v) const;
-  /// The state of identical membrane chambers at stretch excess @p delta into @p out (gauge_pa included); false for a
-  /// non-finite half angle.
-  bool writeStretchState(double delta, FingerState& out) const;
+  /// The state of identical membrane chambers at stretch excess @p delta, found for the supplied volume
+  /// @p supplied_volume_m3, into @p out (gauge_pa included); false for a non-finite pressure or half angle, or a
+  /// stretch that does not hold that volume (next to a lock, where no double does).
+  bool writeStretchState(double delta, double supplied_volume_m3, FingerState& out) const;
   /// Throws: @p workspace was sized for a model of another shape (evaluate(), evaluateMany()).
   [[noreturn]] void refuseWorkspace(const FingerWorkspace& workspace) const;
   /// The rest shape, with NaN for stretch and bulge when the options leave them out (chamber_detail false).
