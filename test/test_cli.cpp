@@ -243,6 +243,38 @@ TEST(CalibrateCli, PrintsTableTwoAndWritesTheParameterFile) {
   EXPECT_EQ(readFile(out_file), readFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml"));
 }
 
+// Issue 47, defects 5 and 8: the calibrated file carries the range it was calibrated on, and every reader takes it;
+// the node's own keys (volume_topic) in the same file are accepted by the tools. The reference is the data: its
+// highest pressure. Before: the validated range was the paper finger's 196133 Pa whatever the data, and a file with
+// volume_topic was refused as "unknown parameter".
+TEST(CalibrateCli, TheFileCarriesTheCalibratedRangeAndTheNodesKeys) {
+  const std::string root = PACKAGE_SOURCE_DIR;
+  const std::string data = testing::TempDir() + "/three_rows.csv", out_file = testing::TempDir() + "/three.yaml";
+  ASSERT_EQ(runShell("grep -v '^#' " + root + "/data/sierra2022_table1.csv | head -4 > " + data).status, 0);
+  const CliRun fit = runShell(std::string(FINGER_CALIBRATE_EXE) + " --data " + data +
+                              " --fit shear_modulus_pa --output " + out_file);
+  ASSERT_EQ(fit.status, 0) << fit.err;
+  EXPECT_NE(readFile(out_file).find("\nvalidated_max_gauge_pa: 147099.75\n"), std::string::npos) << readFile(out_file);
+  const CliRun above = run("--config " + out_file + " --gauge-pa 150000");
+  ASSERT_EQ(above.status, 0) << above.err;
+  EXPECT_NE(above.err.find("gauge pressure 150000 Pa is above the validated range (0 to 147099.75 Pa)"),
+            std::string::npos)
+      << above.err;
+  const std::string with_node_keys = testing::TempDir() + "/node_keys.yaml";
+  ASSERT_EQ(runShell("cp " + out_file + " " + with_node_keys + " && printf 'volume_topic: volume\\npressure_topic: p\\n'"
+                     " >> " + with_node_keys).status, 0);
+  const CliRun node_keys = run("--config " + with_node_keys + " --gauge-pa 1000");
+  EXPECT_EQ(node_keys.status, 0) << node_keys.err;
+  const CliRun inverted = run("--config " + out_file + " --set chamber_count=7 --gauge-pa 1000");
+  EXPECT_EQ(inverted.status, 0) << inverted.err;
+  const std::string bad = testing::TempDir() + "/bad_range.yaml";
+  ASSERT_EQ(runShell("printf 'max_gauge_pa: 1.0e+05\\nvalidated_max_gauge_pa: 2.0e+05\\n' > " + bad).status, 0);
+  const CliRun refused = run("--config " + bad + " --gauge-pa 1000");
+  EXPECT_EQ(refused.status, 2);
+  EXPECT_NE(refused.err.find("validated_max_gauge_pa = 200000 Pa is above max_gauge_pa = 100000 Pa"), std::string::npos)
+      << refused.err;
+}
+
 TEST(Cli, PressuresBeyondTheLimitPointAreNanRowsWithAWarning) {
   const std::string ribbed = std::string(PACKAGE_SOURCE_DIR) + "/config/marchese2015_ribbed.yaml";
   const CliRun r = run("--config " + ribbed + " --gauge-pa 10000 --gauge-pa 40000 --gauge-pa 1e6");
@@ -421,13 +453,20 @@ TEST(Cli, VolumeInputRefusesWhatItCannotModel) {
   const CliRun plate = run("--supplied-volume-m3 1e-6 --blocked-tip-force");
   EXPECT_EQ(plate.status, 2);
   EXPECT_NE(plate.err.find("changes its volume, which is not modelled"), std::string::npos) << plate.err;
-  const CliRun clamp = run("--supplied-volume-m3 1e-6 --max-gauge-pa 1e5");
-  EXPECT_EQ(clamp.status, 2);
-  EXPECT_NE(clamp.err.find("only with --obstacle-disk"), std::string::npos) << clamp.err;
-  // Drawn out of an incompressible fluid: the straight finger, gauge nan, with a warning.
+  // Issue 47, defect 2: a volume above the one that makes max_gauge_pa is clamped there, with the pressure's words:
+  // the row is the finger at max_gauge_pa (before: 661 GPa for 1 m^3, exit 0, no warning).
+  const CliRun clamp = run("--supplied-volume-m3 1.0 --max-gauge-pa 1e5");
+  ASSERT_EQ(clamp.status, 0) << clamp.err;
+  EXPECT_NEAR(std::stod(fields(lines(clamp.out)[1])[0]), 1e5, 1e-4) << clamp.out;
+  EXPECT_NE(clamp.err.find("warning: supplied volume 1 m^3 is above"), std::string::npos) << clamp.err;
+  EXPECT_NE(clamp.err.find("the volume that makes max_gauge_pa 100000 Pa (the top of the model's range): clamped to "
+                           "it"),
+            std::string::npos)
+      << clamp.err;
+  // Drawn out of an incompressible fluid: the straight finger at absolute zero (the liquid cavitates), with a warning.
   const CliRun drawn = run("--supplied-volume-m3 -1e-6");
   ASSERT_EQ(drawn.status, 0) << drawn.err;
-  EXPECT_EQ(fields(lines(drawn.out)[1])[0], "nan");
+  EXPECT_EQ(fields(lines(drawn.out)[1])[0], "-101325");
   EXPECT_NE(drawn.err.find("draws fluid out"), std::string::npos) << drawn.err;
 }
 
@@ -478,6 +517,22 @@ TEST(UrdfCli, MjcfCarriesTheSpringsOfItsPressure) {
   const CliRun half = runShell(std::string(FINGER_URDF_EXE) + " --mjcf --gripper " + root + "/config/gripper.yaml");
   EXPECT_EQ(half.status, 2);
   EXPECT_NE(half.err.find("--mjcf with --gripper needs --robot"), std::string::npos) << half.err;
+  // Issue 47, defect 7: the range rule of every interface. 5e5 Pa writes the springs at max_gauge_pa, with the
+  // node's and finger_model's words (before: springs for 500 kPa without a word); -1 Pa, the straight finger's.
+  const auto body = [](const std::string& mjcf) { return mjcf.substr(mjcf.find("-->")); };  // past the header comment
+  const CliRun over = runShell(std::string(FINGER_URDF_EXE) + " --mjcf --gauge-pa 5e5");
+  const CliRun top = runShell(std::string(FINGER_URDF_EXE) + " --mjcf --gauge-pa 294199.5");
+  ASSERT_EQ(over.status, 0) << over.err;
+  EXPECT_EQ(body(over.out), body(top.out));
+  EXPECT_NE(over.err.find("warning: gauge pressure 500000 Pa is above max_gauge_pa 294199.5 Pa, the top of the "
+                          "model's range: clamped to it"),
+            std::string::npos)
+      << over.err;
+  const CliRun vacuum = runShell(std::string(FINGER_URDF_EXE) + " --mjcf --gauge-pa -1");
+  const CliRun rest = runShell(std::string(FINGER_URDF_EXE) + " --mjcf --gauge-pa 0");
+  ASSERT_EQ(vacuum.status, 0) << vacuum.err;
+  EXPECT_EQ(body(vacuum.out), body(rest.out));
+  EXPECT_NE(vacuum.err.find("warning: gauge pressure -1 Pa is a vacuum"), std::string::npos) << vacuum.err;
   const CliRun beyond = runShell(std::string(FINGER_URDF_EXE) +
                                  " --mjcf --set wall_law=membrane --set shear_modulus_pa=2e4 --gauge-pa 20000");
   EXPECT_EQ(beyond.status, 2);

@@ -240,6 +240,20 @@ TEST(FingerNodeLimitPoint, DrivenByVolumeTheNeoHookeanWallIsFollowedPastItsLimit
   ros::WallDuration(0.5).sleep();
   EXPECT_EQ(countOf(volume_joints), joints_before) << "a NaN volume is refused";
   EXPECT_EQ(countOf(volume_states), states_before);
+  // Issue 47, defect 3: a volume drawn out is the straight finger with STATUS_VACUUM and the gas's vacuum, as Python
+  // and finger_model give it (before: the last shape, with STATUS_BEYOND_LIMIT_POINT).
+  std_msgs::Float64 drawn;
+  drawn.data = -1e-6;
+  pub.publish(drawn);
+  ASSERT_TRUE(waitFor([&] { return countOf(volume_joints) > joints_before; }, 10));
+  ros::WallDuration(0.05).sleep();
+  const pf::FingerState& want = model.evaluateVolume(drawn.data, ws);
+  ASSERT_EQ(want.status, pf::EvaluationStatus::kVacuum);
+  const pf::FingerModelState got = lastOf(volume_states);
+  EXPECT_EQ(got.status, pf::FingerModelState::STATUS_VACUUM);
+  EXPECT_EQ(got.gauge_pa, want.gauge_pa);
+  EXPECT_DOUBLE_EQ(got.gauge_pa, 101325.0 * -1e-6 / (1e-5 + 1e-6)) << "the dead gas's isothermal vacuum";
+  EXPECT_EQ(got.tip_angle_rad, 0.0);
 }
 
 std::vector<pf::FingerModelState> object_states;

@@ -12,6 +12,7 @@
 
 #include "pneumatic_finger/core/chamber_volume.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "reference_quad.hpp"
 #include "test_support.hpp"
@@ -299,7 +300,12 @@ TEST(FingerVolume, BadVolumesAreRefusedOrGiveTheRestShape) {
   EXPECT_DOUBLE_EQ(drawn.gauge_pa, kAtmosphere * -1e-6 / (8e-5 + 1e-6));
   const pf::FingerModel water(membraneFinger(0.0, 0.0));
   pf::FingerWorkspace ws_water(water);
-  EXPECT_TRUE(std::isnan(water.evaluateVolume(-1e-6, ws_water).gauge_pa)) << "an incompressible fluid has no vacuum";
+  // An incompressible fluid is the gas's limit V_g -> 0 of P_o v/(V_g - v): absolute zero, where the liquid
+  // cavitates (issue 47: before, NaN here, and the node kept the last shape instead).
+  const pf::FingerState& drawn_water = water.evaluateVolume(-1e-6, ws_water);
+  EXPECT_EQ(drawn_water.status, pf::EvaluationStatus::kVacuum);
+  EXPECT_EQ(drawn_water.gauge_pa, -kAtmosphere);
+  EXPECT_EQ(drawn_water.tip_angle_rad, 0.0);
   EXPECT_EQ(water.evaluateVolume(0.0, ws_water).gauge_pa, 0.0);
 }
 
@@ -403,4 +409,40 @@ TEST(FingerVolume, TheBatchByVolumeWritesEachRowAsEvaluateVolumeDoesAndNaNWhereI
     }
     EXPECT_EQ(batch_ws.state().tip_angle_rad, single_ws.state().tip_angle_rad) << "the workspace holds the last state";
   }
+}
+
+// Issue 47, defect 2: the volume input has the pressure's range. The top is the volume whose pressure is max_gauge_pa;
+// the reference is the model's own pressure at that volume (evaluateVolume's output), and on the paper law its forward
+// volume at max_gauge_pa. Before, 1 m^3 gave the paper finger 661 GPa with status ok.
+TEST(FingerVolume, AVolumeAboveTheOneThatMakesMaxGaugePaIsClampedToIt) {
+  const pf::FingerModel paper(pf::FingerParameters::defaults());
+  pf::FingerWorkspace ws(paper);
+  const pf::PressureRange range;
+  const double top = pf::maxSuppliedVolumeM3(paper, range);
+  EXPECT_EQ(top, paper.suppliedVolumeAt(range.max_gauge_pa));
+  EXPECT_NEAR(paper.evaluateVolume(top, ws).gauge_pa, range.max_gauge_pa, 1e-9 * range.max_gauge_pa);
+  const pf::VolumeCheck big = pf::checkVolumeRange(1.0, top);
+  EXPECT_TRUE(big.clamped);
+  EXPECT_EQ(big.volume_m3, top);
+  EXPECT_FALSE(pf::checkVolumeRange(0.5 * top, top).clamped);
+  EXPECT_FALSE(pf::checkVolumeRange(-1e-6, top).clamped) << "a negative volume is the model's vacuum, not a clamp";
+  EXPECT_TRUE(std::isnan(pf::checkVolumeRange(NAN, top).volume_m3));
+  EXPECT_EQ(pf::volumeClampedMessage(1.0, 2e-6, range),
+            "supplied volume 1 m^3 is above 2e-06 m^3, the volume that makes max_gauge_pa 294199.5 Pa (the top of "
+            "the model's range): clamped to it");
+  // A Gent membrane whose limit point lies inside the range: past it the pressure falls, then climbs on the far
+  // branch; the top is where it passes max_gauge_pa there, and just below it the pressure is within the range.
+  const pf::FingerModel gent(membraneFinger(19.0, 0.0));
+  pf::FingerWorkspace wg(gent);
+  const pf::PressureRange low = pf::PressureRange::upTo(1.5 * gent.limitGaugePa());
+  const double gent_top = pf::maxSuppliedVolumeM3(gent, low);
+  ASSERT_TRUE(std::isfinite(gent_top));
+  EXPECT_GT(gent_top, gent.limitPointVolumeM3());
+  EXPECT_NEAR(gent.evaluateVolume(gent_top, wg).gauge_pa, low.max_gauge_pa, 1e-9 * low.max_gauge_pa);
+  for (double f = 0.0; f < 1.0; f += 0.01) {
+    EXPECT_LE(gent.evaluateVolume(f * gent_top, wg).gauge_pa, low.max_gauge_pa * (1 + 1e-12)) << f;
+  }
+  // A Neo-Hookean balloon never gets back to its limit pressure: no top (its limit point's rule applies).
+  const pf::FingerModel balloon(membraneFinger(0.0, 0.0));
+  EXPECT_TRUE(std::isinf(pf::maxSuppliedVolumeM3(balloon, pf::PressureRange::upTo(1.5 * balloon.limitGaugePa()))));
 }

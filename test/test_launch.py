@@ -110,3 +110,23 @@ def test_every_node_refuses_a_bad_parameter_by_name(master, node, params, messag
     out = done.stdout + done.stderr
     assert done.returncode == 2, out
     assert message in out, out
+
+
+def test_a_calibrated_file_with_round_values_loads_in_finger_launch(tmp_path):
+    # Issue 47, defect 1: finger_calibrate --output wrote 1e-05, a string to rosparam's YAML 1.1, and finger_node
+    # refused the file ("parameter 'chamber_gap_m' = '1e-05' is not a number"). Round values, written and launched.
+    out = tmp_path / "round.yaml"
+    fit = subprocess.run(["rosrun", "pneumatic_finger", "finger_calibrate", "--fit", "shear_modulus_pa",
+                          "--set", "chamber_gap_m=1e-5", "--set", "dead_volume_m3=1e-5", "--output", str(out)],
+                         capture_output=True, text=True)
+    assert fit.returncode == 0, fit.stderr
+    text = out.read_text()
+    assert "\nchamber_gap_m: 1.0e-05\n" in text and "\ndead_volume_m3: 1.0e-05\n" in text, text
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI=f"http://localhost:{port}", ROS_HOSTNAME="localhost")
+    done = subprocess.run(["timeout", "25", "roslaunch", "-p", str(port), "pneumatic_finger", "finger.launch",
+                           f"config:={out}", "rviz:=false"], capture_output=True, text=True, env=env)
+    log = done.stdout + done.stderr
+    assert "/finger_node: 7 chambers" in log, log  # the node read the file and started
+    assert "is not a number" not in log and "exit code" not in log, log
+    assert done.returncode == 124, log  # still running when the timeout ended it

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <regex>
 
 #include <cmath>
 
@@ -187,4 +188,28 @@ TEST(Parameters, EveryKeyRefusesEveryKindOfBadValueNamingTheKey) {
       EXPECT_NE(message.find(key), std::string::npos) << "'" << text << "' gave: '" << message << "'";
     }
   }
+}
+
+// Issue 47, defect 1: a written file must read as numbers under YAML 1.1, which rosparam and PyYAML's safe_load use.
+// The reference is YAML 1.1's own float and int patterns (yaml.org/type/float.html, /int.html, decimal forms):
+// "1e-05" matches neither, so rosparam read it as a string and finger_node refused the file.
+TEST(Parameters, WrittenNumbersAreYaml11NumbersThatReadBackExactly) {
+  const std::regex yaml11_float(R"([-+]?([0-9][0-9_]*)?\.[0-9.]*([eE][-+][0-9]+)?)");
+  const std::regex yaml11_int(R"([-+]?(0|[1-9][0-9_]*))");
+  for (double v : {1e-05, 1e-20, 3e+20, -2.5e-7, 0.1, 90000.0, 0.0, 223531464.01998678, 4.9640761700248786e-05,
+                   1e300, 5e-324, -1.0}) {
+    const std::string text = pf::formatYamlNumber(v);
+    EXPECT_TRUE(std::regex_match(text, yaml11_float) || std::regex_match(text, yaml11_int)) << text;
+    EXPECT_EQ(std::strtod(text.c_str(), nullptr), v) << text;
+  }
+  EXPECT_EQ(pf::formatYamlNumber(1e-05), "1.0e-05");
+  EXPECT_EQ(pf::formatYamlNumber(std::nan("")), ".nan");
+  EXPECT_EQ(pf::formatYamlNumber(-INFINITY), "-.inf");
+  // The whole file: dead_volume_m3 and chamber_gap_m are the keys that were refused.
+  pf::FingerParameters p = pf::FingerParameters::defaults();
+  p.dead_volume_m3 = 1e-05;
+  p.chamber_gap_m.assign(p.chamber_gap_m.size(), 1e-05);
+  const std::string yaml = pf::parametersToYaml(p);
+  EXPECT_NE(yaml.find("\ndead_volume_m3: 1.0e-05\n"), std::string::npos) << yaml;
+  EXPECT_NE(yaml.find("\nchamber_gap_m: 1.0e-05"), std::string::npos) << yaml;
 }

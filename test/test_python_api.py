@@ -8,6 +8,7 @@ import io
 import math
 import os
 import pathlib
+import re
 import subprocess
 
 import numpy
@@ -349,7 +350,7 @@ def test_evaluate_volume_refuses_bad_input_naming_it():
     nan = model.evaluate_volume(math.nan)
     assert pf.STATUS[nan["status"]] == "not finite" and math.isnan(nan["gauge_pa"])
     drawn = model.evaluate_volume(-1e-6)
-    assert pf.STATUS[drawn["status"]] == "vacuum" and math.isnan(drawn["gauge_pa"])
+    assert pf.STATUS[drawn["status"]] == "vacuum" and drawn["gauge_pa"] == -101325.0  # absolute zero: it cavitates
     assert drawn["tip_angle_rad"] == 0.0
 
 
@@ -377,3 +378,55 @@ def test_a_ramp_snaps_through_and_back_as_the_cli_prints_it():
     with pytest.raises(ValueError, match="start_branch = 'up' is not one of near, far"):
         model.evaluate(middle, start_branch="up")
     assert pf.FingerModel().far_turning_gauge_pa == math.inf
+
+
+def test_one_status_list_in_the_message_and_python():
+    # Issue 47, defect 6: pf.STATUS (indexed by code) and finger_state's STATUS_* constants are one list. The reference
+    # is the message file as a user reads it; before, 4 was "beyond limit point" in Python and 3 in the message.
+    msg = pathlib.Path(__file__).resolve().parent.parent / "msg" / "FingerModelState.msg"
+    constants = dict((m.group(1), int(m.group(2))) for m in
+                     (re.match(r"uint8 (STATUS_\w+)=(\d+)", line) for line in msg.read_text().splitlines()) if m)
+    names = {"STATUS_OK": "ok", "STATUS_VACUUM": "vacuum", "STATUS_CLAMPED": "clamped to max_gauge_pa",
+             "STATUS_BEYOND_LIMIT_POINT": "beyond limit point", "STATUS_SNAPPED_THROUGH": "snapped through",
+             "STATUS_NOT_FINITE": "not finite", "STATUS_SOLVER_FAILURE": "solver failure"}
+    assert set(constants) == set(names) and len(pf.STATUS) == len(names), (constants, pf.STATUS)
+    for constant, code in constants.items():
+        assert pf.STATUS[code] == names[constant], (constant, code, pf.STATUS)
+
+
+def test_a_volume_has_the_pressures_range_and_python_refuses_what_is_not_a_number():
+    # Issue 47, defects 2 and 10: 1 m^3 was 'ok' with a 20.9 rad tip; None gave NaN and '100000' a pressure;
+    # supplied_volume(array) a raw pybind error.
+    model = pf.FingerModel()
+    top = model.max_supplied_volume_m3
+    assert top == model.supplied_volume(294199.5)
+    with pytest.warns(RuntimeWarning, match=r"supplied volume 1 m\^3 is above .* clamped to it"):
+        big = model.evaluate_volume([1e-7, 1.0])
+    assert [pf.STATUS[c] for c in big["status"]] == ["ok", "clamped to max_gauge_pa"]
+    assert big["supplied_volume_m3"][1] == top and abs(big["gauge_pa"][1] - 294199.5) < 1e-3
+    volumes = model.supplied_volume(numpy.array([0.0, 1e5]))
+    assert volumes.shape == (2,) and volumes[1] == model.supplied_volume(1e5)
+    for bad in (None, "100000", [1e5, "x"]):
+        with pytest.raises(ValueError, match=r"gauge_pa = .* is not a number: give a number or a 1-D array"):
+            model.evaluate(bad)
+    with pytest.raises(ValueError, match=r"supplied_volume_m3 = None is not a number"):
+        model.evaluate_volume(None)
+
+
+def test_calibrate_writes_the_file_every_interface_loads(tmp_path):
+    # Issue 47, defects 1, 5 and 10: Python writes the file finger_calibrate --output writes (the same keys, the
+    # calibrated range), in YAML 1.1 numbers (PyYAML's safe_load reads as rosparam does: '1e-05' would be a string).
+    import yaml
+    out = tmp_path / "python.yaml"
+    pf.calibrate(leave_one_out=True, output=str(out), overrides={"dead_volume_m3": 1e-5})
+    text = out.read_text()
+    loaded = yaml.safe_load(text)
+    assert loaded["dead_volume_m3"] == 1e-5 and loaded["validated_max_gauge_pa"] == 196133
+    shipped = (pathlib.Path(__file__).resolve().parent.parent / "config" / "finger.yaml").read_text()
+    keys = "\nchamber_count:"
+    assert text[text.index(keys):].replace("dead_volume_m3: 1.0e-05", "dead_volume_m3: 0") == \
+        shipped[shipped.index(keys):], "the same keys as finger_calibrate --output wrote to config/finger.yaml"
+    model = pf.FingerModel(config=str(out))
+    assert model.validated_max_gauge_pa == 196133.0 and model.max_gauge_pa == 294199.5
+    with pytest.raises(ValueError, match=r"max_gauge_pa = -1 Pa must be finite and > 0"):
+        model.gauge_for_tip_angle(1.0, max_gauge_pa=-1)

@@ -69,7 +69,7 @@ def _data(data):
 
 
 def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=None, average_column="",
-              compare=None, leave_one_out=False, wall_law=None, drive=None):
+              compare=None, leave_one_out=False, wall_law=None, drive=None, output=None):
     """finger_calibrate from Python: the same defaults, data check, fit and leave-one-out.
 
     data: a CSV path, or a mapping of column names to arrays: gauge_pa and/or supplied_volume_m3, and any of
@@ -85,11 +85,20 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
     _tip_angle_rad (R,), measured_/model_tip_m (R, 2); NaN where nothing was measured), model_evaluations,
     uncertainty (key -> one standard deviation), correlation (keys x keys array), warnings (columns not read, keys
     that trade off or sit on their search range's end), and leave_one_out: with leave_one_out=True (or
-    wall_law="auto") the residuals of each row predicted by a fit to the others, else None."""
+    wall_law="auto") the residuals of each row predicted by a fit to the others, else None; parameter_file: the text
+    of the calibrated parameter file. output: a path to write that file to, as `finger_calibrate --output` does (the
+    fitted keys, the calibrated range validated_max_gauge_pa, the error bar), which finger_node, finger_model and
+    FingerModel(config=) load alike."""
     path, names, columns = _data(data)
-    return _calibrate(path, names, columns, _keys(keys), objective,
-                      config if config is not None else default_config(), dict(overrides or {}), average_column,
-                      compare or "", wall_law or "", bool(leave_one_out) or wall_law == "auto", drive or "")
+    result = _calibrate(path, names, columns, _keys(keys), objective,
+                        config if config is not None else default_config(), dict(overrides or {}), average_column,
+                        compare or "", wall_law or "", bool(leave_one_out) or wall_law == "auto", drive or "")
+    if output is not None:
+        with open(output, "w") as f:
+            f.write("# A calibrated actuator, written by pneumatic_finger.core.calibrate(output=): the base parameters "
+                    "with the\n# fitted keys replaced (docs/CALIBRATE.md). Load it with finger.launch config:=FILE.\n"
+                    + result["parameter_file"])
+    return result
 
 
 class FingerModel(_FingerModel):

@@ -1,8 +1,13 @@
 // One calibration, as finger_calibrate and pf.calibrate run it (calibration_run.hpp).
 #include "pneumatic_finger/core/calibration_run.hpp"
 
+#include <algorithm>
+#include <cmath>
+
 #include <string>
 #include <vector>
+
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pneumatic_finger {
 
@@ -64,6 +69,23 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
   run.warnings = data.notes;
   for (const std::string& w : run.best().fit.warnings) run.warnings.push_back(w);
   return run;
+}
+
+PressureRange calibratedRange(const CalibrationRun& run, const PressureRange& file_range) {
+  double top_pa = 0.0;
+  for (const Residual& r : run.best().fit.residuals) {
+    if (std::isfinite(r.gauge_pa)) top_pa = std::max(top_pa, r.gauge_pa);
+  }
+  PressureRange range = file_range;
+  if (!(top_pa > 0.0)) return range;  // no pressure seen: the file's range stands
+  range.validated_max_gauge_pa = top_pa;
+  range.max_gauge_pa = std::max(range.max_gauge_pa, top_pa);
+  return range;
+}
+
+std::string calibratedParameterYaml(const CalibrationRun& run, const PressureRange& file_range) {
+  return parametersToYaml(run.best().fit.parameters) + "\n" + rangeToYaml(calibratedRange(run, file_range)) + "\n" +
+         tipUncertaintyToYaml(run.tip_uncertainty);
 }
 
 }  // namespace pneumatic_finger

@@ -235,10 +235,11 @@ const FingerState& FingerModel::evaluateVolume(double supplied_volume_m3, Finger
   ++ws.computations_;
   bool written = false;
   if (v < 0.0) {
-    // Drawn out: the chambers are at rest (the model has no vacuum), and only a gas can give the volume.
+    // Drawn out: the chambers are at rest (the model has no vacuum), and only a gas can give the volume. An
+    // incompressible fluid is the gas's limit v_g -> 0: the pressure falls to absolute zero (the liquid cavitates).
     written = writeStateAt(0.0, ws, state);
     state.gauge_pa = v_g > 0.0 ? parameters_.atmospheric_pressure_pa * v / (v_g - v)
-                               : std::numeric_limits<double>::quiet_NaN();
+                               : -parameters_.atmospheric_pressure_pa;
     state.status = written ? EvaluationStatus::kVacuum : EvaluationStatus::kSolverFailure;
     return state;
   }

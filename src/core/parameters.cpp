@@ -178,6 +178,16 @@ std::string formatShortest(double value) {
   return buffer;
 }
 
+std::string formatYamlNumber(double value) {
+  if (std::isnan(value)) return ".nan";
+  if (std::isinf(value)) return value > 0 ? ".inf" : "-.inf";
+  std::string text = formatShortest(value);
+  const std::size_t e = text.find('e');
+  // YAML 1.1 reads a float only with a dot in its mantissa: 1e-05 is a string, 1.0e-05 a float.
+  if (e != std::string::npos && text.find('.') == std::string::npos) text.insert(e, ".0");
+  return text;
+}
+
 std::string formatMessage(double value) {
   if (std::isnan(value)) return "nan";
   char buffer[40];
@@ -338,7 +348,7 @@ double parseParameterText(const ParameterSpec& spec, const std::string& text) {
 }
 
 std::string formatParameterValue(const ParameterSpec& spec, double value) {
-  if (spec.shape != ParameterShape::kChoice) return formatShortest(value);
+  if (spec.shape != ParameterShape::kChoice) return formatYamlNumber(value);
   const std::vector<std::string> names = choiceNames(spec);
   const auto k = static_cast<std::size_t>(value);
   return value >= 0 && k < names.size() ? names[k] : formatExact(value);

@@ -185,6 +185,11 @@ void PressureInputPolicy::noteVolumeNotFollowed(const std::string& what, double 
   problem(what, now_s);
 }
 
+void PressureInputPolicy::noteVolumeClamped(const std::string& what, double now_s) {
+  ++counters_.clamped;
+  problem(what, now_s);
+}
+
 void PressureInputPolicy::noteVacuum(double gauge_pa, double now_s) {
   ++counters_.vacuum;
   problem(vacuumMessage(gauge_pa) + " is published", now_s);

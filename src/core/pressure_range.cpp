@@ -3,7 +3,9 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
+#include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 
 namespace pneumatic_finger {
@@ -60,6 +62,70 @@ void markClamped(const double* in, std::uint8_t* status, std::size_t count, cons
       status[i] = static_cast<std::uint8_t>(EvaluationStatus::kClamped);
     }
   }
+}
+
+namespace {
+
+// The pressure a volume makes, or NaN where the model does not follow it.
+double gaugeOfVolume(const FingerModel& model, FingerWorkspace& ws, double v) {
+  const FingerState& s = model.evaluateVolume(v, ws);
+  const bool answered = s.status == EvaluationStatus::kOk || s.status == EvaluationStatus::kSnappedThrough;
+  return answered ? s.gauge_pa : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+double maxSuppliedVolumeM3(const FingerModel& model, const PressureRange& range) {
+  const double top_pa = range.max_gauge_pa;
+  if (!(model.limitGaugePa() <= top_pa)) {  // no limit point in the range: the pressure rises with the volume
+    const double v = model.suppliedVolumeAt(top_pa);
+    return std::isfinite(v) ? std::min(v, model.volumeLimitM3()) : std::numeric_limits<double>::infinity();
+  }
+  // Past the limit point the pressure falls, then (a Gent wall's far branch) climbs again: find where it passes the
+  // top, by growing steps from the limit point's volume, then halving the last step.
+  FingerWorkspace ws(model);
+  const double cap = std::min(model.volumeLimitM3(), 1e3 * model.limitPointVolumeM3());
+  double lo = model.limitPointVolumeM3(), hi = lo;
+  bool crossed = false;
+  while (!crossed && hi < cap) {
+    lo = hi;
+    hi = std::min(cap, hi * 1.25);
+    const double p = gaugeOfVolume(model, ws, hi);
+    if (std::isnan(p)) return std::numeric_limits<double>::infinity();  // no longer followed: volumeLimitM3's rule
+    crossed = p > top_pa;
+  }
+  if (!crossed) return std::numeric_limits<double>::infinity();
+  for (int i = 0; i < 80 && hi - lo > 1e-15 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (gaugeOfVolume(model, ws, mid) > top_pa ? hi : lo) = mid;
+  }
+  return lo;
+}
+
+VolumeCheck checkVolumeRange(double supplied_volume_m3, double max_supplied_volume_m3) {
+  VolumeCheck c;
+  c.volume_m3 = supplied_volume_m3;
+  if (supplied_volume_m3 > max_supplied_volume_m3 && std::isfinite(supplied_volume_m3)) {
+    c.clamped = true;
+    c.volume_m3 = max_supplied_volume_m3;
+  }
+  return c;
+}
+
+std::string volumeClampedMessage(double supplied_volume_m3, double max_supplied_volume_m3, const PressureRange& range) {
+  return "supplied volume " + formatMessage(supplied_volume_m3) + " m^3 is above " +
+         formatMessage(max_supplied_volume_m3) + " m^3, the volume that makes max_gauge_pa " +
+         formatMessage(range.max_gauge_pa) + " Pa (the top of the model's range): clamped to it";
+}
+
+std::size_t clampVolumesToRange(const double* in, double* out, std::size_t count, double max_supplied_volume_m3) {
+  std::size_t clamped = 0;
+  for (std::size_t i = 0; i < count; ++i) {
+    const VolumeCheck c = checkVolumeRange(in[i], max_supplied_volume_m3);
+    out[i] = c.volume_m3;
+    clamped += c.clamped ? 1 : 0;
+  }
+  return clamped;
 }
 
 }  // namespace pneumatic_finger

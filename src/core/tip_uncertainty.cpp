@@ -101,7 +101,7 @@ std::string tipUncertaintyToYaml(const TipUncertainty& u) {
   std::ostringstream out;
   auto list = [&out](const std::vector<double>& v) {
     out << "[";
-    for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << (std::isnan(v[i]) ? ".nan" : formatShortest(v[i]));
+    for (std::size_t i = 0; i < v.size(); ++i) out << (i ? ", " : "") << formatYamlNumber(v[i]);
     out << "]\n";
   };
   out << "# How far to trust the tip (written by finger_calibrate; docs/ACCURACY.md): at each calibrated gauge pressure\n"

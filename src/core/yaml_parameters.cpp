@@ -2,6 +2,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <fstream>
 #include <sstream>
 
@@ -29,12 +30,48 @@ double toNumber(const YAML::Node& node, const std::string& key, const std::strin
   }
 }
 
+const ParameterSpec* findRangeSpec(const std::string& key) {
+  for (const ParameterSpec& spec : rangeParameterSpecs()) {
+    if (key == spec.key) return &spec;
+  }
+  return nullptr;
+}
+
+bool isNodeInterfaceKey(const std::string& key) {
+  const std::vector<std::string>& keys = nodeInterfaceKeys();
+  return std::find(keys.begin(), keys.end(), key) != keys.end();
+}
+
+// The file's range keys onto @p range, each checked by the one rule, and the validated range within the model's.
+void rangeFromNode(const YAML::Node& root, const std::string& origin, PressureRange& range) {
+  if (!root.IsMap()) return;
+  for (const ParameterSpec& spec : rangeParameterSpecs()) {
+    const YAML::Node node = root[spec.key];
+    if (!node) continue;
+    if (!node.IsScalar()) throw ParameterError(origin + ": parameter '" + spec.key + "' must be a number");
+    const double value = toNumber(node, spec.key, origin);
+    try {
+      checkParameterValue(spec, value);
+    } catch (const ParameterError& e) {
+      throw ParameterError(origin + ": " + e.what());
+    }
+    (std::string(spec.key) == "max_gauge_pa" ? range.max_gauge_pa : range.validated_max_gauge_pa) = value;
+  }
+  if (!root["validated_max_gauge_pa"]) range.validated_max_gauge_pa = std::min(range.validated_max_gauge_pa, range.max_gauge_pa);
+  if (range.validated_max_gauge_pa > range.max_gauge_pa) {
+    throw ParameterError(origin + ": validated_max_gauge_pa = " + formatMessage(range.validated_max_gauge_pa) +
+                         " Pa is above max_gauge_pa = " + formatMessage(range.max_gauge_pa) +
+                         " Pa: the validated range lies within the model's");
+  }
+}
+
 void fromNode(const YAML::Node& root, const std::string& origin, RawParameterMap& raw) {
   if (root.IsNull()) return;  // an empty file: all defaults
   if (!root.IsMap()) throw ParameterError(origin + ": expected a mapping of parameter keys to values");
   for (const auto& item : root) {
     const std::string key = item.first.as<std::string>();
     if (key == kTipUncertaintyKey) continue;  // not the actuator: the calibration's error bar (tip_uncertainty.hpp)
+    if (findRangeSpec(key) != nullptr || isNodeInterfaceKey(key)) continue;  // the range's, and the node's own
     if (findParameterSpec(key) == nullptr) throw ParameterError(origin + ": unknown parameter '" + key + "'");
     RawParameterValue value;
     if (item.second.IsSequence()) {
@@ -50,8 +87,37 @@ void fromNode(const YAML::Node& root, const std::string& origin, RawParameterMap
 
 }  // namespace
 
+const std::vector<ParameterSpec>& rangeParameterSpecs() {
+  static const std::vector<ParameterSpec> specs = {
+      {"max_gauge_pa", "P_max", "Pa", kModelMaxGaugePa, 0.0, false, 1e7, ParameterShape::kScalar,
+       "top of the model's range: a higher pressure (or the volume that makes it) is clamped to it"},
+      {"validated_max_gauge_pa", "P_val", "Pa", kValidatedMaxGaugePa, 0.0, false, 1e7, ParameterShape::kScalar,
+       "top of the validated range (written by finger_calibrate: the highest pressure it calibrated on); above it "
+       "the twin extrapolates and says so"}};
+  return specs;
+}
+
+const std::vector<std::string>& nodeInterfaceKeys() {
+  static const std::vector<std::string> keys = {
+      "frame_prefix",       "parent_frame",      "mount_xyz_m",          "mount_rpy_rad",      "gripper_file",
+      "solver",             "publish_tf",        "max_rate_hz",          "stale_timeout_s",    "stamp_tolerance_s",
+      "time_jump_s",        "description_param", "pressure_topic",       "volume_topic",       "joint_states_topic",
+      "finger_state_topic", "grasp_object_topic", "object_rate_hz",      "transform_timeout_s", "force_arrow_m_per_n"};
+  return keys;
+}
+
+std::string rangeToYaml(const PressureRange& range) {
+  std::ostringstream out;
+  for (const ParameterSpec& spec : rangeParameterSpecs()) {
+    const double value = std::string(spec.key) == "max_gauge_pa" ? range.max_gauge_pa : range.validated_max_gauge_pa;
+    out << "# " << spec.description << " (" << spec.unit << ", allowed " << describeRange(spec) << ")\n"
+        << spec.key << ": " << formatYamlNumber(value) << "\n";
+  }
+  return out.str();
+}
+
 void loadRawParametersFromYamlText(const std::string& text, const std::string& origin, RawParameterMap& raw,
-                                   TipUncertainty* tip_uncertainty) {
+                                   TipUncertainty* tip_uncertainty, PressureRange* range) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -59,17 +125,21 @@ void loadRawParametersFromYamlText(const std::string& text, const std::string& o
     throw ParameterError(origin + ": not valid YAML: " + e.what());
   }
   fromNode(root, origin, raw);
+  PressureRange file_range = range != nullptr ? *range : PressureRange{};
+  rangeFromNode(root, origin, file_range);  // checked for every reader, as the error bar is
+  if (range != nullptr) *range = file_range;
   // A malformed error bar is refused by every reader of the file, whether it asked for it or not.
   const TipUncertainty read = tipUncertaintyFromYamlNode(root, origin);
   if (tip_uncertainty != nullptr) *tip_uncertainty = read;
 }
 
-void loadRawParametersFromYamlFile(const std::string& path, RawParameterMap& raw, TipUncertainty* tip_uncertainty) {
+void loadRawParametersFromYamlFile(const std::string& path, RawParameterMap& raw, TipUncertainty* tip_uncertainty,
+                                   PressureRange* range) {
   std::ifstream in(path);
   if (!in) throw ParameterError("cannot read parameter file '" + path + "'");
   std::stringstream text;
   text << in.rdbuf();
-  loadRawParametersFromYamlText(text.str(), path, raw, tip_uncertainty);
+  loadRawParametersFromYamlText(text.str(), path, raw, tip_uncertainty, range);
 }
 
 std::string parametersToYaml(const FingerParameters& parameters) {
@@ -82,7 +152,7 @@ std::string parametersToYaml(const FingerParameters& parameters) {
         << spec.key << ": ";
     if (v.is_list) {
       out << "[";
-      for (std::size_t i = 0; i < v.values.size(); ++i) out << (i ? ", " : "") << formatShortest(v.values[i]);
+      for (std::size_t i = 0; i < v.values.size(); ++i) out << (i ? ", " : "") << formatYamlNumber(v.values[i]);
       out << "]";
     } else {
       out << formatParameterValue(spec, v.values[0]);

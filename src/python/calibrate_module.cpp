@@ -107,6 +107,11 @@ py::dict calibrate(const py::object& path, const std::vector<std::string>& names
   const std::size_t k = best.fit.keys.size();
   d["correlation"] = table(k, k, [&](std::size_t a, std::size_t b) { return best.fit.correlation[a * k + b]; });
   d["warnings"] = py::cast(run.warnings);
+  // The file finger_calibrate --output writes (its keys; the Python wrapper adds the header): calibrate(output=).
+  pf::RawParameterMap raw;
+  pf::PressureRange file_range;
+  if (!config.empty()) pf::loadRawParametersFromYamlFile(config, raw, nullptr, &file_range);
+  d["parameter_file"] = pf::calibratedParameterYaml(run, file_range);
   return d;
 }
 

@@ -41,6 +41,13 @@ using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
 Array pressures(const py::object& gauge_pa, bool& scalar, const char* name = "gauge_pa", const char* unit = "Pa") {
   scalar = !py::isinstance<py::array>(gauge_pa) && !py::isinstance<py::list>(gauge_pa) &&
            !py::isinstance<py::tuple>(gauge_pa);
+  // Numbers only: forcecast would read None as NaN and '100000' as a pressure, so the natural dtype is checked first.
+  const py::array natural = py::array::ensure(gauge_pa);
+  const char kind = natural ? natural.dtype().kind() : 'O';
+  if (kind != 'f' && kind != 'i' && kind != 'u') {
+    throw py::value_error(std::string(name) + " = " + std::string(py::repr(gauge_pa)) +
+                          " is not a number: give a number or a 1-D array of numbers (" + unit + ")");
+  }
   Array p = Array::ensure(gauge_pa);
   if (!p || p.ndim() > 1) {
     throw py::value_error(std::string(name) + " must be a number or a 1-D array of them (" + unit + ")");
@@ -71,8 +78,15 @@ class PyFingerModel {
                 const py::object& max_gauge_pa) {
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);
-    if (!max_gauge_pa.is_none()) range_ = pf::PressureRange::upTo(max_gauge_pa.cast<double>());
-    model_ = std::make_unique<pf::FingerModel>(pf::FingerParameters::fromRaw(loadRaw(config, overrides)), options);
+    // The file's range (max_gauge_pa, validated_max_gauge_pa), as every interface reads it; max_gauge_pa= on top.
+    model_ = std::make_unique<pf::FingerModel>(pf::FingerParameters::fromRaw(loadRaw(config, overrides, &range_)),
+                                               options);
+    if (!max_gauge_pa.is_none()) {
+      const double validated = range_.validated_max_gauge_pa;
+      range_ = pf::PressureRange::upTo(max_gauge_pa.cast<double>());
+      range_.validated_max_gauge_pa = std::min(validated, range_.max_gauge_pa);
+    }
+    max_volume_m3_ = pf::maxSuppliedVolumeM3(*model_, range_);
   }
 
   // A scalar gives arrays without the leading pressure axis; an array of P pressures gives (P, ...). Only the outputs
@@ -132,11 +146,29 @@ class PyFingerModel {
     const auto count = static_cast<std::size_t>(v.size());
     OutputArrays arrays(kVolumeFields, outputs, out, v.size(), model_->chamberCount());
     arrays.refuseOverlap(v.data(), count * sizeof(double));
+    std::size_t clamped = 0;
     {
       py::gil_scoped_release release;
       pf::FingerWorkspace workspace(*model_);
-      model_->evaluateVolumeMany(v.data(), count, stateRows(arrays), arrays.data<double>("gauge_pa"), workspace);
-      if (double* d = arrays.data<double>("supplied_volume_m3")) std::copy(v.data(), v.data() + count, d);
+      // The range rule of every interface, for a volume (pressure_range.hpp): above the volume that makes
+      // max_gauge_pa, the finger at that volume, status clamped.
+      std::vector<double> in_range(v.data(), v.data() + count);
+      clamped = pf::clampVolumesToRange(v.data(), in_range.data(), count, max_volume_m3_);
+      const pf::BatchOutputs rows = stateRows(arrays);
+      model_->evaluateVolumeMany(in_range.data(), count, rows, arrays.data<double>("gauge_pa"), workspace);
+      if (double* d = arrays.data<double>("supplied_volume_m3")) std::copy(in_range.begin(), in_range.end(), d);
+      for (std::size_t i = 0; clamped > 0 && rows.status && i < count; ++i) {
+        const auto ok = static_cast<std::uint8_t>(pf::EvaluationStatus::kOk);
+        if (in_range[i] != v.data()[i] && rows.status[i] == ok) {
+          rows.status[i] = static_cast<std::uint8_t>(pf::EvaluationStatus::kClamped);
+        }
+      }
+    }
+    if (clamped > 0) {
+      const double* first = std::find_if(v.data(), v.data() + count, [this](double x) { return x > max_volume_m3_; });
+      const std::string what = pf::volumeClampedMessage(*first, max_volume_m3_, range_) +
+                               (clamped > 1 ? " (and " + std::to_string(clamped - 1) + " more)" : std::string());
+      if (PyErr_WarnEx(PyExc_RuntimeWarning, what.c_str(), 1) != 0) throw py::error_already_set();
     }
     return arrays.result(scalar);
   }
@@ -183,7 +215,10 @@ class PyFingerModel {
   // The inverse at one tip angle or an array of them (numpy-shaped as evaluate). A tip angle no pressure up to the
   // limit reaches is refused, by its index in an array.
   py::object gaugeForTipAngle(const py::object& tip_angle_rad, const py::object& max_gauge_pa) const {
-    return inverse(tip_angle_rad, max_gauge_pa.is_none() ? range_.max_gauge_pa : max_gauge_pa.cast<double>(),
+    // A cap is a pressure range's top: refused by the one rule unless finite and > 0 (PressureRange::upTo).
+    return inverse(tip_angle_rad,
+                   max_gauge_pa.is_none() ? range_.max_gauge_pa
+                                          : pf::PressureRange::upTo(max_gauge_pa.cast<double>()).max_gauge_pa,
                    &pf::FingerModel::gaugeForTipAngle);
   }
 
@@ -277,16 +312,26 @@ class PyFingerModel {
   }
   double contactGaugePa() const { return model_->contactGaugePa(); }
   double maxGaugePa() const { return range_.max_gauge_pa; }
+  double validatedMaxGaugePa() const { return range_.validated_max_gauge_pa; }
   double limitGaugePa() const { return model_->limitGaugePa(); }
   double volumeLimitM3() const { return model_->volumeLimitM3(); }
   double farTurning() const { return model_->farTurningGaugePa(); }
-  double suppliedVolume(double gauge_pa) const { return model_->suppliedVolumeAt(gauge_pa); }
+  py::object suppliedVolume(const py::object& gauge_pa) const {
+    bool scalar = false;
+    const Array p = pressures(gauge_pa, scalar);
+    Array v(p.size());
+    for (py::ssize_t i = 0; i < p.size(); ++i) v.mutable_data()[i] = model_->suppliedVolumeAt(p.data()[i]);
+    if (scalar) return py::float_(v.data()[0]);
+    return std::move(v);
+  }
+  double maxSuppliedVolumeM3() const { return max_volume_m3_; }
   std::string solver() const { return pf::solverName(model_->options().solver); }
 
 
  private:
   std::unique_ptr<const pf::FingerModel> model_;
   pf::PressureRange range_;  // what evaluate() clamps to, as finger_node's ~max_gauge_pa
+  double max_volume_m3_ = 0.0;  // what evaluate_volume() clamps to: the volume that makes range_.max_gauge_pa
 };
 
 }  // namespace
@@ -322,11 +367,15 @@ void defineVolume(py::class_<PyFingerModel>& c) {
            "chambers' growth plus the compression of dead_volume_m3 of gas) or a 1-D array of them, in order. The "
            "outputs of evaluate and gauge_pa (P,), the pressure the volume makes; under the membrane law with "
            "identical chambers the volume sets the shape past the limit point too. NaN and status 'beyond limit "
-           "point' above the most the model follows (volume_limit_m3); 'vacuum' for a negative volume")
-      .def("supplied_volume", [](const PyFingerModel& self, double gauge_pa) { return self.suppliedVolume(gauge_pa); },
-           py::arg("gauge_pa"),
-           "The supplied volume (m^3) at a gauge pressure (Pa): the chambers' growth and the dead gas's compression; "
-           "NaN at or beyond the limit point")
+           "point' above the most the model follows (volume_limit_m3); clamped above max_supplied_volume_m3; 'vacuum' "
+           "for a negative volume (the straight finger, gauge_pa the dead gas's vacuum)")
+      .def("supplied_volume", &PyFingerModel::suppliedVolume, py::arg("gauge_pa"),
+           "The supplied volume (m^3) at a gauge pressure (Pa) or a 1-D array of them: the chambers' growth and the "
+           "dead gas's compression; NaN at or beyond the limit point")
+      .def_property_readonly("max_supplied_volume_m3", &PyFingerModel::maxSuppliedVolumeM3,
+                             "the top of evaluate_volume's range (m^3): the volume that makes max_gauge_pa; a larger "
+                             "volume is clamped to it (status 'clamped to max_gauge_pa', a RuntimeWarning), as "
+                             "evaluate clamps a pressure; inf where the pressure never reaches max_gauge_pa")
       .def_property_readonly("volume_limit_m3", &PyFingerModel::volumeLimitM3,
                              "the largest supplied volume (m^3) evaluate_volume follows: inf where the volume sets the "
                              "shape without end; finite with a large dead gas volume (the gas snaps the finger) or a "
@@ -347,7 +396,7 @@ PYBIND11_MODULE(_core, m) {
       PyErr_SetString(PyExc_ValueError, error.what());
     }
   });
-  m.attr("STATUS") = py::tuple(py::cast(std::vector<std::string>(kEvaluationStatus.begin(), kEvaluationStatus.end())));
+  m.attr("STATUS") = py::tuple(py::cast(evaluationStatusNames()));
   m.attr("CONTACT_STATUS") = py::tuple(py::cast(std::vector<std::string>(kContactStatus.begin(), kContactStatus.end())));
   defineCalibrate(m);
   m.def(
@@ -407,5 +456,10 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("solver", &PyFingerModel::solver)
       .def_property_readonly("max_gauge_pa", &PyFingerModel::maxGaugePa,
                              "the top of the model's range (Pa gauge): evaluate() clamps a pressure above it to it, "
-                             "with status 'clamped to max_gauge_pa' and a RuntimeWarning, as finger_node does");
+                             "with status 'clamped to max_gauge_pa' and a RuntimeWarning, as finger_node does; the "
+                             "parameter file's max_gauge_pa unless max_gauge_pa= was given")
+      .def_property_readonly("validated_max_gauge_pa", &PyFingerModel::validatedMaxGaugePa,
+                             "the top of the validated range (Pa gauge): the parameter file's validated_max_gauge_pa "
+                             "(finger_calibrate writes the highest pressure it calibrated on), no higher than "
+                             "max_gauge_pa");
 }

@@ -36,9 +36,10 @@ inline pf::RawParameterValue rawValue(const std::string& key, const py::handle& 
 }
 
 // A parameter file with Python overrides on top: the raw map every reader validates the same way.
-inline pf::RawParameterMap loadRaw(const std::string& config, const py::dict& overrides) {
+inline pf::RawParameterMap loadRaw(const std::string& config, const py::dict& overrides,
+                                   pf::PressureRange* range = nullptr) {
   pf::RawParameterMap raw;
-  if (!config.empty()) pf::loadRawParametersFromYamlFile(config, raw);
+  if (!config.empty()) pf::loadRawParametersFromYamlFile(config, raw, nullptr, range);
   for (const auto& item : overrides) {
     const std::string key = py::str(item.first);
     raw[key] = rawValue(key, item.second);

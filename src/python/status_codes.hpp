@@ -13,13 +13,13 @@ namespace pneumatic_finger_python {
 namespace pf = pneumatic_finger;
 
 // The status codes' names, indexed by code: pf.STATUS and pf.CONTACT_STATUS in Python.
-inline const std::vector<const char*> kEvaluationStatus = {
-    pf::evaluationStatusName(pf::EvaluationStatus::kOk), pf::evaluationStatusName(pf::EvaluationStatus::kVacuum),
-    pf::evaluationStatusName(pf::EvaluationStatus::kNotFinite),
-    pf::evaluationStatusName(pf::EvaluationStatus::kSolverFailure),
-    pf::evaluationStatusName(pf::EvaluationStatus::kBeyondLimitPoint),
-    pf::evaluationStatusName(pf::EvaluationStatus::kClamped),
-    pf::evaluationStatusName(pf::EvaluationStatus::kSnappedThrough)};
+inline std::vector<const char*> evaluationStatusNames() {
+  std::vector<const char*> names;
+  for (std::uint8_t code = 0; code < pf::kEvaluationStatusCount; ++code) {
+    names.push_back(pf::evaluationStatusName(static_cast<pf::EvaluationStatus>(code)));
+  }
+  return names;
+}
 inline const std::vector<const char*> kContactStatus = {"free", "in contact", "overlaps at rest", "solver failure",
                                                         "beyond limit point"};
 

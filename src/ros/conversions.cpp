@@ -15,6 +15,18 @@ static_assert(FingerModelState::OBJECT_NONE == static_cast<int>(GraspObjectStatu
               "msg/FingerModelState.msg's OBJECT_* follow GraspObjectStatus");
 std::uint8_t toMessage(GraspObjectStatus status) { return static_cast<std::uint8_t>(status); }
 
+// finger_state's STATUS_* constants are the core's EvaluationStatus codes: one list (issue 47), with Python's pf.STATUS.
+static_assert(FingerModelState::STATUS_OK == static_cast<int>(EvaluationStatus::kOk) &&
+                  FingerModelState::STATUS_VACUUM == static_cast<int>(EvaluationStatus::kVacuum) &&
+                  FingerModelState::STATUS_CLAMPED == static_cast<int>(EvaluationStatus::kClamped) &&
+                  FingerModelState::STATUS_BEYOND_LIMIT_POINT == static_cast<int>(EvaluationStatus::kBeyondLimitPoint) &&
+                  FingerModelState::STATUS_SNAPPED_THROUGH == static_cast<int>(EvaluationStatus::kSnappedThrough) &&
+                  FingerModelState::STATUS_NOT_FINITE == static_cast<int>(EvaluationStatus::kNotFinite) &&
+                  FingerModelState::STATUS_SOLVER_FAILURE == static_cast<int>(EvaluationStatus::kSolverFailure) &&
+                  kEvaluationStatusCount == 7,
+              "msg/FingerModelState.msg's STATUS_* are EvaluationStatus's codes, all of them");
+std::uint8_t statusCode(EvaluationStatus status) { return static_cast<std::uint8_t>(status); }
+
 Eigen::Isometry3d isometryFromMessage(const geometry_msgs::Transform& t) {
   return Eigen::Translation3d(t.translation.x, t.translation.y, t.translation.z) *
          Eigen::Quaterniond(t.rotation.w, t.rotation.x, t.rotation.y, t.rotation.z);

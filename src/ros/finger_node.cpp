@@ -22,6 +22,7 @@ void FingerNode::buildModel(ros::NodeHandle& nh) {
   options.table_max_gauge_pa = settings_.urdf.max_gauge_pa;
   model_ = std::make_unique<FingerModel>(settings_.finger, options);
   workspace_ = std::make_unique<FingerWorkspace>(*model_);
+  max_volume_m3_ = maxSuppliedVolumeM3(*model_, input_.range());  // the range rule for ~volume_topic
   // The URDF, for rviz and for anyone who reads the chain (planners): the same names as joint_states and tf. Its
   // joint limits follow the actuator, so it is republished when the actuator changes.
   nh.setParam(settings_.description_param, fingerUrdf(settings_.finger, settings_.urdf));
@@ -253,10 +254,9 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
   }
   finger_state_.walls_in_contact = state.walls_in_contact;
   finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.input.validated_max_gauge_pa;
-  finger_state_.status = state.status == EvaluationStatus::kVacuum           ? FingerModelState::STATUS_VACUUM
-                          : clamped                                            ? FingerModelState::STATUS_CLAMPED
-                          : state.status == EvaluationStatus::kSnappedThrough ? FingerModelState::STATUS_SNAPPED_THROUGH
-                                                                               : FingerModelState::STATUS_OK;
+  // The message's codes are the core's (one list, static_asserts in conversions.cpp); clamped is the interface's.
+  finger_state_.status = statusCode(clamped && state.status != EvaluationStatus::kVacuum ? EvaluationStatus::kClamped
+                                                                                          : state.status);
   finger_state_.object_id = object_ ? object_->id : std::string();
   finger_state_.object_status = toMessage(contact ? grasp_->statusWith(*contact) : grasp_->status());
   finger_state_.touch_gauge_pa = grasp_->touchGaugePa();
@@ -336,12 +336,12 @@ void FingerNode::onGraspObject(const GraspObject::ConstPtr& msg) {
   object_refused_.clear();
   grasp_->clear();
   object_timer_.stop();
-  if (msg->id.empty()) {
-    ROS_INFO("%s: grasp object cleared", log_name_.c_str());
-  } else if (acceptObject(msg)) {
-    ROS_INFO("%s: grasp object '%s' in '%s'", log_name_.c_str(), msg->id.c_str(), msg->header.frame_id.c_str());
-    updateObject();
-  }
+  // Said once per change: the physics cell sends the object at 50 Hz as it moves, with the same id and frame.
+  const std::string said = msg->id.empty() ? "cleared" : "'" + msg->id + "' in '" + msg->header.frame_id + "'";
+  if (!msg->id.empty() && !acceptObject(msg)) return republish();
+  if (said != announced_object_) ROS_INFO("%s: grasp object %s", log_name_.c_str(), said.c_str());
+  announced_object_ = said;
+  if (!msg->id.empty()) updateObject();
   republish();
 }
 

@@ -50,16 +50,18 @@ void FingerNode::followVolume(double volume_m3, const ros::Time& now) {
   last_volume_m3_ = volume_m3;
   // An object within reach holds the walls it touches, which then take less volume: the contact rule's own volume.
   if (volume_m3 >= 0.0 && grasp_->inReach()) return followVolumeInContact(volume_m3, now);
-  const FingerState& state = model_->evaluateVolume(volume_m3, *workspace_);
-  const bool drawn_from_liquid = state.status == EvaluationStatus::kVacuum && std::isnan(state.gauge_pa);
-  if (state.status == EvaluationStatus::kBeyondLimitPoint || state.status == EvaluationStatus::kSolverFailure ||
-      drawn_from_liquid) {
+  // The range rule of every interface (pressure_range.hpp): above the volume that makes max_gauge_pa, the finger there.
+  const VolumeCheck in_range = checkVolumeRange(volume_m3, max_volume_m3_);
+  if (in_range.clamped) {
+    input_.noteVolumeClamped(volumeClampedMessage(volume_m3, max_volume_m3_, input_.range()), now.toSec());
+    ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), input_.lastProblem().c_str());
+  }
+  const FingerState& state = model_->evaluateVolume(in_range.volume_m3, *workspace_);
+  if (state.status == EvaluationStatus::kBeyondLimitPoint || state.status == EvaluationStatus::kSolverFailure) {
     // No invented shape: finger_state repeats the last one and says why; joint_states and tf stay as they were.
     const std::string why =
         "supplied volume " + formatMessage(volume_m3) + " m^3 " +
-        (drawn_from_liquid ? std::string("draws fluid out of an incompressible drive (dead_volume_m3 = 0), which the "
-                                         "model does not follow")
-         : state.status == EvaluationStatus::kSolverFailure
+        (state.status == EvaluationStatus::kSolverFailure
              ? std::string("found no finite answer")
              : "is beyond the most the model follows, " + formatMessage(model_->volumeLimitM3()) +
                    " m^3 (the drive's gas snaps the finger there, or the wall locks)") +
@@ -73,7 +75,7 @@ void FingerNode::followVolume(double volume_m3, const ros::Time& now) {
     }
     return;
   }
-  if (state.status == EvaluationStatus::kVacuum) {
+  if (state.status == EvaluationStatus::kVacuum) {  // the straight finger, as Python and finger_model give it
     input_.noteVacuum(state.gauge_pa, now.toSec());
     ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), input_.lastProblem().c_str());
   }
@@ -81,8 +83,8 @@ void FingerNode::followVolume(double volume_m3, const ros::Time& now) {
   input_.noteGaugeFromVolume(state.gauge_pa, volume_m3 > model_->limitPointVolumeM3());
   have_pressure_ = true;
   last_gauge_pa_ = state.gauge_pa;
-  last_clamped_ = false;
-  publish(state, nullptr, now, false, volume_m3);
+  last_clamped_ = in_range.clamped;
+  publish(state, nullptr, now, in_range.clamped, in_range.volume_m3);
 }
 
 // The pressure at which the finger closing on the object has taken the volume (gaugeForVolumeInContact), then the

@@ -4,6 +4,8 @@
 
 #include <ros/names.h>
 
+#include <cctype>
+#include <cstdlib>
 #include <iostream>
 #include <sstream>
 
@@ -20,10 +22,26 @@ ParameterSpec asCoreSpec(const NodeParameterSpec& sp, double max_value) {
 
 }  // namespace
 
+namespace {
+
+// YAML 1.1 (rosparam) reads "1e-05" as a string where yaml-cpp, finger_model and Python read a number: the node takes
+// a string that is one whole number, so that a hand-written file loads the same everywhere ("fast" is still refused).
+bool parseNumberText(const std::string& text, double& out) {
+  if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return false;
+  char* end = nullptr;
+  const double value = std::strtod(text.c_str(), &end);
+  if (end != text.c_str() + text.size()) return false;
+  out = value;
+  return true;
+}
+
+}  // namespace
+
 bool asParameterNumber(const XmlRpc::XmlRpcValue& v, double& out) {
   auto& x = const_cast<XmlRpc::XmlRpcValue&>(v);
   if (x.getType() == XmlRpc::XmlRpcValue::TypeDouble) out = static_cast<double>(x);
   else if (x.getType() == XmlRpc::XmlRpcValue::TypeInt) out = static_cast<int>(x);
+  else if (x.getType() == XmlRpc::XmlRpcValue::TypeString) return parseNumberText(static_cast<std::string>(x), out);
   else return false;
   return true;
 }

@@ -283,8 +283,7 @@ int main(int argc, char** argv) {
       out << "# A calibrated actuator, written by `finger_calibrate --output`: the base parameters with the fitted\n"
           << "# keys replaced, and the fit's report (docs/CALIBRATE.md). Load it with finger.launch config:=FILE.\n"
           << table << "\n"
-          << pf::parametersToYaml(run.best().fit.parameters) << "\n"
-          << pf::tipUncertaintyToYaml(run.tip_uncertainty);
+          << pf::calibratedParameterYaml(run, parameters.loadRange());
     }
     return 0;
   });

@@ -209,8 +209,11 @@ bool printVolumeRowInContact(const pf::FingerModel& model, pf::FingerWorkspace& 
 // Volume as the input: a row per supplied volume, gauge_pa the pressure it makes (docs/MODEL.md, Volume); closing on
 // @p obstacle when one is given (then up to @p max_gauge_pa).
 void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::vector<double>& volumes,
-                    const pf::Obstacle* obstacle, double max_gauge_pa) {
+                    const pf::Obstacle* obstacle, const pf::PressureRange& range) {
   const int n = model.chamberCount();
+  const double max_gauge_pa = range.max_gauge_pa;
+  const double max_volume_m3 = pf::maxSuppliedVolumeM3(model, range);  // the range rule, for a volume
+  bool warned_clamp = false;
   std::ostringstream out;
   printHeader(out, n, false, false);
   bool warned_limit = false, warned_vacuum = false;
@@ -225,7 +228,11 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
       }
       continue;
     }
-    const pf::FingerState& s = model.evaluateVolume(v, ws);
+    const pf::VolumeCheck in_range = pf::checkVolumeRange(v, max_volume_m3);
+    if (in_range.clamped && !RowWarnings::once(warned_clamp)) {
+      std::cerr << "finger_model: warning: " << pf::volumeClampedMessage(v, max_volume_m3, range) << "\n";
+    }
+    const pf::FingerState& s = model.evaluateVolume(in_range.volume_m3, ws);
     if (s.status == pf::EvaluationStatus::kBeyondLimitPoint || s.status == pf::EvaluationStatus::kSolverFailure) {
       if (!warned_limit) {
         std::cerr << "finger_model: warning: supplied volume " << pf::formatMessage(v) << " m^3 is "
@@ -244,11 +251,11 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
     if (s.status == pf::EvaluationStatus::kVacuum && !warned_vacuum) {
       std::cerr << "finger_model: warning: supplied volume " << pf::formatMessage(v)
                 << " m^3 draws fluid out: the model has no vacuum; the straight finger is printed, gauge_pa the "
-                << "dead gas's pressure (nan for an incompressible fluid, dead_volume_m3 = 0)\n";
+                << "dead gas's pressure (-atmospheric_pressure_pa for an incompressible fluid, dead_volume_m3 = 0: it cavitates)\n";
       warned_vacuum = true;
     }
     printShape(out, s, s.joint_angle_rad, s.tip());
-    out << ',' << pf::formatExact(v) << '\n';
+    out << ',' << pf::formatExact(in_range.volume_m3) << '\n';
   }
   std::cout << out.str();
 }
@@ -341,8 +348,9 @@ int main(int argc, char** argv) {
   CsvColumns columns;
   std::string max_gauge;
   app.add_option("--max-gauge-pa", max_gauge,
-                 "top of the model's range (Pa, default 294199.5 = 3 kg/cm2): a pressure above it is clamped to it, "
-                 "with a warning, as finger_node's ~max_gauge_pa does");
+                 "top of the model's range (Pa; default the parameter file's max_gauge_pa, else 294199.5 = 3 kg/cm2): "
+                 "a pressure above it, or a volume that makes more, is clamped to it, with a warning, as finger_node's "
+                 "~max_gauge_pa does");
   app.add_flag("--blocked-tip-force", columns.blocked_tip_force,
                "add blocked_tip_force_n: the tip force (N) of the finger held straight by a plate at its tip");
   std::string flow_lpm, duration_s, step_s;
@@ -376,12 +384,8 @@ int main(int argc, char** argv) {
       throw pf::ParameterError("--supplied-volume-m3 takes no --blocked-tip-force: a finger held straight by a plate "
                                "changes its volume, which is not modelled");
     }
-    if (!supplied.empty() && disk.empty() && !max_gauge.empty()) {
-      throw pf::ParameterError("--supplied-volume-m3 takes --max-gauge-pa only with --obstacle-disk: the free finger's "
-                               "pressure is an output, not clamped");
-    }
     columns.start_far = volume.start_branch == "far";
-    if (!max_gauge.empty()) columns.range = pf::PressureRange::upTo(pf::parseFiniteOption("--max-gauge-pa", max_gauge));
+    columns.range = parameters.loadRange(max_gauge);  // the file's range, --max-gauge-pa on top
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);
     const pf::FingerParameters finger = parameters.load();
@@ -392,7 +396,7 @@ int main(int argc, char** argv) {
     const pf::Obstacle obstacle = parseDisk(disk);
     columns.obstacle = disk.empty() ? nullptr : &obstacle;
     if (!supplied.empty()) {
-      printVolumeCsv(model, ws, supplied, columns.obstacle, columns.range.max_gauge_pa);
+      printVolumeCsv(model, ws, supplied, columns.obstacle, columns.range);
       return 0;
     }
     columns.times = times;

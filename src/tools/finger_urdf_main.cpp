@@ -4,6 +4,7 @@
 #include <fstream>
 #include <iostream>
 
+#include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
 #include "pneumatic_finger/sim/finger_mjcf.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
@@ -21,6 +22,21 @@ std::array<double, 3> parseTriple(const std::string& option, const std::string& 
   const std::vector<std::string> f = pf::splitFields(text);
   if (f.size() != 3) throw pf::ParameterError(option + " expects three numbers X,Y,Z, got '" + text + "'");
   return {pf::parseFiniteOption(option, f[0]), pf::parseFiniteOption(option, f[1]), pf::parseFiniteOption(option, f[2])};
+}
+
+// --gauge-pa through the range rule of every interface (pressure_range.hpp), in its words: above --max-gauge-pa the
+// springs of the finger there; a vacuum, the straight finger's (the model has none).
+double springGaugePa(const std::string& text, double max_gauge_pa) {
+  const double requested = pf::parseFiniteOption("--gauge-pa", text);
+  const pf::PressureRange range = pf::PressureRange::upTo(max_gauge_pa);
+  const pf::RangeCheck check = pf::checkGaugeRange(requested, range);
+  if (check.clamped) {
+    std::cerr << "finger_urdf: warning: " << pf::clampedMessage(requested, range) << " (the springs are written there)\n";
+  } else if (requested < 0.0) {
+    std::cerr << "finger_urdf: warning: " << pf::vacuumMessage(requested) << "'s springs are written (at rest)\n";
+    return 0.0;
+  }
+  return check.gauge_pa;
 }
 
 }  // namespace
@@ -60,7 +76,7 @@ int main(int argc, char** argv) {
     std::string urdf;
     if (!mjcf_gauge.empty() && !mjcf) throw pf::ParameterError("--gauge-pa needs --mjcf");
     if (mjcf) {
-      if (!mjcf_gauge.empty()) mjcf_options.gauge_pa = pf::parseFiniteOption("--gauge-pa", mjcf_gauge);
+      if (!mjcf_gauge.empty()) mjcf_options.gauge_pa = springGaugePa(mjcf_gauge, options.max_gauge_pa);
       if (!gripper.empty() && robot.empty()) {
         throw pf::ParameterError("--mjcf with --gripper needs --robot (the whole cell), or neither (one finger)");
       }

@@ -2,6 +2,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -49,6 +50,17 @@ RawParameterMap ParameterOptions::loadRaw() const {
 }
 
 FingerParameters ParameterOptions::load() const { return FingerParameters::fromRaw(loadRaw()); }
+
+PressureRange ParameterOptions::loadRange(const std::string& max_gauge_text) const {
+  RawParameterMap raw;
+  PressureRange range;
+  loadRawParametersFromYamlFile(config.empty() ? defaultParameterFile() : config, raw, nullptr, &range);
+  if (max_gauge_text.empty()) return range;
+  const double validated = range.validated_max_gauge_pa;
+  range = PressureRange::upTo(parseFiniteOption("--max-gauge-pa", max_gauge_text));
+  range.validated_max_gauge_pa = std::min(validated, range.max_gauge_pa);
+  return range;
+}
 
 int runTool(const char* tool, CLI::App& app, int argc, char** argv, const std::function<int()>& body) {
   try {

@@ -8,6 +8,7 @@
 
 #include "pneumatic_finger/core/calibration.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
+#include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 
 namespace pneumatic_finger {
@@ -49,5 +50,14 @@ FingerParameters calibrationBase(RawParameterMap raw, const std::string& wall_la
 /// checkMeasurementsPlausible, an unknown objective, quantity or law)
 CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet& data,
                               const CalibrationRequest& request);
+
+/// The range a calibration validated: @p file_range (the base file's) with validated_max_gauge_pa the highest pressure
+/// of the fit's rows (measured, or the model's at a row's volume), and max_gauge_pa raised to it where it was lower.
+PressureRange calibratedRange(const CalibrationRun& run, const PressureRange& file_range);
+
+/// The calibrated parameter file's keys: the chosen fit's parameters, the calibrated range and the error bar, each in
+/// the one YAML writer's numbers (formatYamlNumber), so that rosparam, yaml-cpp and PyYAML read the same values.
+/// finger_calibrate --output and Python's calibrate(output=) write it.
+std::string calibratedParameterYaml(const CalibrationRun& run, const PressureRange& file_range);
 
 }  // namespace pneumatic_finger

@@ -7,23 +7,28 @@
 
 namespace pneumatic_finger {
 
-/// Outcome of one evaluation.
+/// Outcome of one evaluation. The one status list: FingerModelState's STATUS_* constants, Python's pf.STATUS (indexed
+/// by code) and the tools' words are these codes and evaluationStatusName's names, and tests hold each interface to
+/// them (test_finger_node: the message's constants; test_python_api: pf.STATUS). New codes go at the end.
 enum class EvaluationStatus : std::uint8_t {
-  kOk,            ///< pressure in the model's domain
-  kVacuum,        ///< gauge < 0: outside the model; the straight (rest) finger is returned
-  kNotFinite,     ///< NaN or infinite pressure: refused (evaluate() keeps the previous state; a batch writes NaN)
-  kSolverFailure, ///< the solver produced no finite answer (the paper's closed forms can): nothing is computed
-  kBeyondLimitPoint,  ///< the membrane law's pressure maximum reached or passed: the pressure does not determine the
-                      ///< shape, so none is given (evaluate() keeps the previous state; a batch writes NaN)
-  kClamped,       ///< above the model's range (pressure_range.hpp): the finger at max_gauge_pa is given. Set by the
+  kOk = 0,        ///< pressure in the model's domain
+  kVacuum = 1,    ///< gauge < 0: outside the model; the straight (rest) finger is returned
+  kClamped = 2,   ///< above the model's range (pressure_range.hpp): the finger at max_gauge_pa is given. Set by the
                   ///< interfaces that apply the range rule (finger_node, finger_model, Python), never by FingerModel
-  kSnappedThrough,  ///< the membrane law: some wall has snapped through its limit point to the far branch, where it
-                    ///< stays until the pressure falls to the branch's lower turning point (docs/MODEL.md, "The
-                    ///< snap-through"): the shape given is that branch's, and depends on the path
+  kBeyondLimitPoint = 3,  ///< the membrane law's pressure maximum reached or passed: the pressure does not determine
+                          ///< the shape, so none is given (evaluate() keeps the previous state; a batch writes NaN)
+  kSnappedThrough = 4,  ///< the membrane law: some wall has snapped through its limit point to the far branch, where
+                        ///< it stays until the pressure falls to the branch's lower turning point (docs/MODEL.md, "The
+                        ///< snap-through"): the shape given is that branch's, and depends on the path
+  kNotFinite = 5,     ///< NaN or infinite pressure: refused (evaluate() keeps the previous state; a batch writes NaN)
+  kSolverFailure = 6, ///< the solver produced no finite answer (the paper's closed forms can): nothing is computed
 };
 
-/// "ok", "vacuum", "not finite", "solver failure", "beyond limit point", "clamped to max_gauge_pa" or "snapped
-/// through": the names tools and Python print.
+/// How many codes EvaluationStatus has (0 .. count - 1).
+inline constexpr std::uint8_t kEvaluationStatusCount = 7;
+
+/// "ok", "vacuum", "clamped to max_gauge_pa", "beyond limit point", "snapped through", "not finite" or "solver
+/// failure": the names tools and Python print.
 const char* evaluationStatusName(EvaluationStatus status);
 
 /// Where FingerModel::evaluateMany writes: row-major arrays the caller owns, for `count` pressures. A null pointer

@@ -178,8 +178,9 @@ class FingerModel {
   /// identical chambers the volume sets the stretch, and so the shape, before, at and past the pressure's limit point
   /// (the pressure falls there while the volume rises); with unequal chambers it is followed up to that point. Status
   /// kBeyondLimitPoint (previous numbers kept) above volumeLimitM3(); kVacuum for a negative volume (the rest shape,
-  /// gauge_pa the dead gas's vacuum, NaN for an incompressible fluid); kNotFinite for NaN or inf (previous numbers
-  /// kept). Always computes (the unchanged-pressure cache is left out and cleared).
+  /// gauge_pa the dead gas's vacuum, -atmospheric_pressure_pa for an incompressible fluid, which cavitates); kNotFinite
+  /// for NaN or inf (previous numbers kept). Always computes (the unchanged-pressure cache is left out and cleared).
+  /// The interfaces clamp a volume above maxSuppliedVolumeM3 (pressure_range.hpp) first, as they clamp a pressure.
   /// @throws std::invalid_argument when @p workspace was sized for a model of another shape
   const FingerState& evaluateVolume(double supplied_volume_m3, FingerWorkspace& workspace) const;
 

@@ -126,6 +126,11 @@ std::string formatExact(double value);  // NaN as "nan", whatever its sign bit
 /// parameter files are written.
 std::string formatShortest(double value);
 
+/// formatShortest in YAML 1.1's float syntax, which rosparam (and PyYAML) read: "1.0e-05", not "1e-05" (a string
+/// there), and ".nan", ".inf", "-.inf". Whole numbers stay whole ("90000"): every reader takes an integer for a
+/// number. Every parameter file this package writes uses it, so that the node loads what the tools write.
+std::string formatYamlNumber(double value);
+
 /// The one number format of messages (errors, warnings, logs, reports): the fewest digits, up to eight, that read back
 /// exactly ("294199.5", "-0.1", "3.7e+08"), else six significant digits ("91503.6"), NaN as "nan". Data a program reads back (CSV
 /// rows, parameter files) uses formatExact or formatShortest instead.
@@ -144,7 +149,7 @@ std::string describeRange(const ParameterSpec& spec);
 /// @throws ParameterError naming the key, the text and what is allowed
 double parseParameterText(const ParameterSpec& spec, const std::string& text);
 
-/// A value as it is written back: a choice key's name, else the shortest exact number (formatShortest).
+/// A value as it is written back: a choice key's name, else the shortest exact number in YAML 1.1 (formatYamlNumber).
 std::string formatParameterValue(const ParameterSpec& spec, double value);
 
 }  // namespace pneumatic_finger

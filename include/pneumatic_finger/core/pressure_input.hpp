@@ -91,9 +91,13 @@ class PressureInputPolicy {
     past_limit_point_ = past_limit_point;
   }
 
-  /// A supplied volume the model does not follow (above its volume limit, or drawn out of an incompressible drive):
-  /// counted with the limit point's, the last state kept, @p what reported.
+  /// A supplied volume the model does not follow (above its volume limit): counted with the limit point's, the last
+  /// state kept, @p what reported.
   void noteVolumeNotFollowed(const std::string& what, double now_s);
+
+  /// A supplied volume above the one that makes max_gauge_pa (maxSuppliedVolumeM3): counted with the clamped
+  /// pressures, @p what reported.
+  void noteVolumeClamped(const std::string& what, double now_s);
 
   /// The model's answer to an accepted message was a vacuum (gauge < 0): counted and reported.
   void noteVacuum(double gauge_pa, double now_s);

@@ -12,6 +12,8 @@
 
 namespace pneumatic_finger {
 
+class FingerModel;
+
 /// Where the model holds (Pa gauge).
 struct PressureRange {
   /// Above it the finger at max_gauge_pa is given, status kClamped: the URDF's joint limits are there, and the walls
@@ -47,5 +49,27 @@ std::size_t clampToRange(const double* in, double* out, std::size_t count, const
 /// After a batch of clamped pressures: the status of each row whose input was above max_gauge_pa becomes kClamped,
 /// unless the model said otherwise at max_gauge_pa (beyond a membrane wall's limit point, a solver failure).
 void markClamped(const double* in, std::uint8_t* status, std::size_t count, const PressureRange& range);
+
+/// The same rule for the volume input (issue 47: "one input domain"): the most a supply may push in is the volume that
+/// makes max_gauge_pa along the inflation, and a larger volume gives the finger at that volume, status kClamped, with
+/// volumeClampedMessage's words. Below the pressure's limit point that is suppliedVolumeAt(max_gauge_pa); with the
+/// limit point within the range, the volume past it where the far branch's pressure climbs back to max_gauge_pa; +inf
+/// where the pressure never gets there (a Neo-Hookean balloon: volumeLimitM3() and the backbone's self-contact bound
+/// it). Computed once per model and range (a few hundred volume solves at most): the interfaces keep it.
+double maxSuppliedVolumeM3(const FingerModel& model, const PressureRange& range);
+
+/// One volume against its top (NaN and inf pass unchanged: the model refuses them with its own status; a negative
+/// volume passes too: the model's vacuum).
+struct VolumeCheck {
+  double volume_m3 = 0.0;  ///< what to evaluate: the volume, or the top above it
+  bool clamped = false;    ///< it was above the top
+};
+VolumeCheck checkVolumeRange(double supplied_volume_m3, double max_supplied_volume_m3);
+
+/// The words every interface says for a clamped volume.
+std::string volumeClampedMessage(double supplied_volume_m3, double max_supplied_volume_m3, const PressureRange& range);
+
+/// A batch of volumes through the rule, as clampToRange: returns how many were clamped.
+std::size_t clampVolumesToRange(const double* in, double* out, std::size_t count, double max_supplied_volume_m3);
 
 }  // namespace pneumatic_finger

@@ -4,8 +4,10 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "pneumatic_finger/core/parameters.hpp"
+#include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 
 namespace pneumatic_finger {
@@ -16,12 +18,27 @@ namespace pneumatic_finger {
 /// @param[out] tip_uncertainty when given, the file's error bar (tip_uncertainty), read from the same parse
 /// @throws ParameterError naming the file and the key for an unreadable file, malformed YAML, a key whose value
 ///         is not a number or a list of numbers, or an unknown key
+/// @param[in,out] range when given, the file's max_gauge_pa and validated_max_gauge_pa (rangeParameterSpecs) replace
+///        its fields; the keys are checked whether it is given or not
+/// One file serves every interface (issue 47): the range keys are read by each (finger_node, finger_model, Python),
+/// and finger_node's own keys (nodeInterfaceKeys: topics, rates, frames) are left to the node by the others.
 void loadRawParametersFromYamlFile(const std::string& path, RawParameterMap& raw,
-                                   TipUncertainty* tip_uncertainty = nullptr);
+                                   TipUncertainty* tip_uncertainty = nullptr, PressureRange* range = nullptr);
 
 /// Same as loadRawParametersFromYamlFile for YAML text; @p origin names it in messages.
 void loadRawParametersFromYamlText(const std::string& text, const std::string& origin, RawParameterMap& raw,
-                                   TipUncertainty* tip_uncertainty = nullptr);
+                                   TipUncertainty* tip_uncertainty = nullptr, PressureRange* range = nullptr);
+
+/// The parameter file's range keys: max_gauge_pa (the top of the model's range) and validated_max_gauge_pa (the top
+/// of the pressures its calibration saw: finger_calibrate writes it). Every interface reads them from the file.
+const std::vector<ParameterSpec>& rangeParameterSpecs();
+
+/// finger_node's keys that a parameter file may carry (volume_topic, frame_prefix, ...): the other interfaces accept
+/// and ignore them. test_finger_node holds this list to the node's own parameter table.
+const std::vector<std::string>& nodeInterfaceKeys();
+
+/// The range keys' text for a parameter file, commented, in formatYamlNumber's numbers.
+std::string rangeToYaml(const PressureRange& range);
 
 /// The parameter file text for @p parameters: every key, with its unit and meaning as a comment.
 std::string parametersToYaml(const FingerParameters& parameters);

@@ -12,6 +12,7 @@
 #include "pneumatic_finger/FingerModelState.h"
 #include "pneumatic_finger/GraspObject.h"
 #include "pneumatic_finger/core/contact.hpp"
+#include "pneumatic_finger/core/evaluation.hpp"
 #include "pneumatic_finger/core/grasp_object.hpp"
 #include "pneumatic_finger/core/object_section.hpp"
 
@@ -19,6 +20,9 @@ namespace pneumatic_finger {
 
 /// finger_state's object_status for a GraspObjectStatus.
 std::uint8_t toMessage(GraspObjectStatus status);
+
+/// finger_state's status for an EvaluationStatus: the same code (the message's STATUS_* are the core's list).
+std::uint8_t statusCode(EvaluationStatus status);
 
 /// A transform message as an isometry.
 Eigen::Isometry3d isometryFromMessage(const geometry_msgs::Transform& t);

@@ -139,6 +139,8 @@ class FingerNode {
   bool on_far_branch_ = false;              // the walls' branch after the last evaluation (the snap-through)
   long snaps_through_ = 0, snaps_back_ = 0;  // jumps between the branches, for diagnostics
   double last_gauge_pa_ = 0.0;
+  std::string announced_object_;  // the grasp object (id and frame) last logged: each change is logged once
+  double max_volume_m3_ = 0.0;   // the volume that makes max_gauge_pa: above it a volume is clamped (pressure_range.hpp)
   double last_volume_m3_ = 0.0;  // the last accepted supplied volume (~volume_topic), re-followed when the object moves
 };
 

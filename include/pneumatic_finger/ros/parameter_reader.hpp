@@ -44,7 +44,8 @@ NodeParameterSpec listParameter(const char* key, const char* type, const char* u
 /// A value as a message shows it: numbers with every digit, lists as [a, b, c], text in quotes.
 std::string describeParameterValue(const XmlRpc::XmlRpcValue& v);
 
-/// A number (a double or an int) as @p out; false for any other type.
+/// A number (a double, an int, or a string that is one whole number: rosparam reads "1e-05" as a string) as @p out;
+/// false for anything else.
 bool asParameterNumber(const XmlRpc::XmlRpcValue& v, double& out);
 
 /// The entries of a list value as numbers. @throws ParameterError naming the key, the value and the entry

@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pneumatic_finger/core/parameters.hpp"
+#include "pneumatic_finger/core/pressure_range.hpp"
 
 namespace pneumatic_finger {
 
@@ -34,6 +35,11 @@ struct ParameterOptions {
   /// The same keys before validation (calibrationBase validates them under the law it fits).
   /// @throws ParameterError naming the file or the assignment
   RawParameterMap loadRaw() const;
+
+  /// The file's range (max_gauge_pa, validated_max_gauge_pa; the defaults where it has none), as every interface
+  /// reads it; @p max_gauge_text, a tool's --max-gauge-pa when given, replaces the top (the validated range no higher).
+  /// @throws ParameterError naming the file or the option
+  PressureRange loadRange(const std::string& max_gauge_text = "") const;
 };
 
 /// Parses the command line with @p app and runs @p body. The convention of every tool: --help prints the usage and
