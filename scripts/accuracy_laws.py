@@ -84,8 +84,9 @@ def write_rows(rows, directory, name):
 def predict(config, overrides, pressures, column):
     """The model's compared quantity at each pressure (NaN where it has no shape: beyond the limit point)."""
     out = pf.FingerModel(str(ROOT / config), overrides).evaluate(np.asarray(pressures, dtype=float))
-    # In pressure order, as a ramp: a wall past its limit point is on its far branch ("snapped through"), a shape too.
-    shaped = np.isin(out["status"], [pf.STATUS.index(s) for s in ("ok", "vacuum", "snapped through")])
+    # In pressure order, as a ramp: a wall past its limit point is on its far branch ("snapped through"), a shape too;
+    # so is a curl past a full turn ("meets itself"): the model's shape, said to pass through the finger.
+    shaped = np.isin(out["status"], [pf.STATUS.index(s) for s in ("ok", "vacuum", "snapped through", "meets itself")])
     value = out["joint_angle_rad"][:, 1:].mean(axis=1) if column == "avg" else out["tip_angle_rad"]
     return np.where(shaped, value, np.nan)
 

@@ -36,8 +36,9 @@ PACKAGES=("$@"
   libbenchmark-dev libgsl-dev pkg-config
   # tests (package.xml: gtest; test_depend) and the docs' plots
   libgtest-dev googletest python3-matplotlib
-  # the simulator that checks the descriptions (package.xml: test_depend libmujoco-dev)
-  libmujoco-dev
+  # the simulator that checks the descriptions (package.xml: test_depend libmujoco-dev), and its viewer and tools
+  # (mujoco-simulate, mujoco-compile, mujoco-testspeed), which docs/SIMULATION.md uses
+  libmujoco-dev libmujoco-samples
   # lint (checked by scripts/test.sh): catkin_lint, and Universal Ctags for the function lengths
   catkin-lint universal-ctags
 )

@@ -232,3 +232,23 @@ TEST(CalibrationByVolume, ARunWithoutPressuresIsDrivenByVolume) {
   EXPECT_EQ(refusal([&] { pf::runCalibration(start, set, request); }),
             "line 1: no gauge_pa to drive the finger by pressure (drive it by volume, or give the column)");
 }
+
+// Issue 47, defect 14: a header that cannot be read says what it probably meant, and data given as columns name their
+// rows as rows everywhere (before: "row 6" in one message, "line 1" in another).
+TEST(CalibrationData, RefusalsGiveTheLikelyCauseAndNameRowsOneWay) {
+  EXPECT_EQ(refusal([] { pf::parseMeasurementSet("gauge_pa;tip_angle_rad\n1000;0.1\n", "m.csv", 1); }),
+            "m.csv:1: header has no 'gauge_pa' column (nor 'supplied_volume_m3', for a finger set by volume); the header "
+            "reads as one column 'gauge_pa;tip_angle_rad': separate the columns with commas");
+  EXPECT_EQ(refusal([] { pf::parseMeasurementSet("pressure_kpa,tip_angle_rad\n10,0.1\n", "m.csv", 1); }),
+            "m.csv:1: header has no 'gauge_pa' column (nor 'supplied_volume_m3', for a finger set by volume); column "
+            "'pressure_kpa' looks like a pressure: give it as gauge_pa, gauge pressure in Pa (1 kPa = 1000 Pa, 1 bar = "
+            "100000 Pa, 1 psi = 6894.76 Pa)");
+  const pf::MeasurementSet table =
+      pf::measurementSetFromColumns({"gauge_pa", "tip_angle_rad"}, {{1000, 2000}, {0.1, 40.0}}, "data", 1, "");
+  EXPECT_EQ(table.rows[1].where(), "row 2");
+  EXPECT_EQ(refusal([&] { pf::checkMeasurementsPlausible(pf::FingerParameters::defaults(), table.rows); }).rfind(
+                "row 2: tip_angle_rad = 40 rad is beyond 2 pi", 0),
+            0u);
+  const pf::MeasurementSet file = pf::parseMeasurementSet("gauge_pa,tip_angle_rad\n1000,0.1\n", "m.csv", 1);
+  EXPECT_EQ(file.rows[0].where(), "line 2");
+}

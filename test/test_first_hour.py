@@ -163,7 +163,7 @@ def test_python_is_numpy_shaped():
     assert angles.shape == (2,) and angles[0] == model.gauge_for_tip_angle(0.2)
     with pytest.raises(ValueError, match=r"tip_angle_rad\[1\]"):
         model.gauge_for_tip_angle([0.2, 50.0])
-    assert len(pf.STATUS) == 7 and pf.STATUS[2] == "clamped to max_gauge_pa" and pf.STATUS[4] == "snapped through"
+    assert len(pf.STATUS) == 8 and pf.STATUS[2] == "clamped to max_gauge_pa" and pf.STATUS[4] == "snapped through"
 
 
 def readme_block(after):

@@ -5,8 +5,11 @@
 
 #include <cfloat>
 #include <cmath>
+#include <vector>
 
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/self_contact.hpp"
+#include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/core/stages.hpp"
 #include "test_support.hpp"
 
@@ -218,4 +221,40 @@ TEST(HardCase, NonPhysicalGeometryIsRefusedNamingTheKey) {
       EXPECT_NE(std::string(e.what()).find(kv.first), std::string::npos) << e.what();
     }
   }
+}
+
+// Issue 47, defect 4: where the backbone meets itself. The reference is geometry drawn by hand: a square spiral that
+// crosses its first side, a C that turns by 270 degrees without closing, a chain whose end lands on its base.
+TEST(HardCase, TheBackboneMeetingItselfIsFoundAndOnlyThen) {
+  const auto chain = [](std::vector<Eigen::Vector2d> points) {
+    Eigen::Matrix2Xd m(2, static_cast<Eigen::Index>(points.size()));
+    for (std::size_t i = 0; i < points.size(); ++i) m.col(static_cast<Eigen::Index>(i)) = points[i];
+    return m;
+  };
+  const double quarter = pf::kPi / 2;
+  // Out 2, up 1, back 1.5, down 2: the last side crosses the first (at x = 0.5).
+  const Eigen::Matrix2Xd spiral = chain({{0, 0}, {2, 0}, {2, 1}, {0.5, 1}, {0.5, -1}});
+  const double spiral_q[] = {quarter, quarter, quarter};
+  EXPECT_TRUE(pf::backboneMeetsItself(spiral, spiral_q));
+  // Out 2, up 1, back 1, down 0.5: three quarter turns, open.
+  const Eigen::Matrix2Xd c_shape = chain({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 0.5}});
+  EXPECT_FALSE(pf::backboneMeetsItself(c_shape, spiral_q));
+  // Down exactly onto the first side: touching is meeting.
+  const Eigen::Matrix2Xd touch = chain({{0, 0}, {2, 0}, {2, 1}, {1, 1}, {1, 0}});
+  EXPECT_TRUE(pf::backboneMeetsItself(touch, spiral_q));
+  // The model's own chain: the paper law at a tenth of its stiffness curls past a full turn between 200 and 290 kPa.
+  pf::RawParameterMap raw;
+  raw["shear_modulus_pa"] = {{2e7}, false};
+  const pf::FingerParameters soft = pf::FingerParameters::fromRaw(raw);
+  const pf::FingerModel model(soft);
+  pf::FingerWorkspace ws(model);
+  const pf::FingerState& open = model.evaluate(2e5, ws);
+  EXPECT_FALSE(pf::backboneMeetsItself(open.backbone_m, open.joint_angle_rad.data()));
+  EXPECT_FALSE(pf::jointsMeetThemselves(soft, open.joint_angle_rad.data()));
+  const pf::FingerState& curled = model.evaluate(2.9e5, ws);
+  EXPECT_GT(curled.tip_angle_rad, 2 * pf::kPi - 0.5);
+  EXPECT_TRUE(pf::backboneMeetsItself(curled.backbone_m, curled.joint_angle_rad.data()));
+  EXPECT_TRUE(pf::jointsMeetThemselves(soft, curled.joint_angle_rad.data())) << "built from the joints alone";
+  EXPECT_EQ(pf::selfContactMessage(6.5), "the finger meets itself (tip angle 6.5 rad): its backbone crosses itself, "
+                                         "where the model, which has no self-contact, passes through the finger");
 }

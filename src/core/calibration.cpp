@@ -238,7 +238,7 @@ void checkTheDrive(const FingerParameters& base, const std::vector<std::string>&
   }
   for (const auto& m : data) {
     if (pressure && !m.hasGauge()) {
-      throw ParameterError("line " + std::to_string(m.line) + ": no gauge_pa to compare the model's pressure with");
+      throw ParameterError(m.where() + ": no gauge_pa to compare the model's pressure with");
     }
   }
 }
@@ -270,7 +270,7 @@ void checkKeysAndData(const FingerParameters& base, const std::vector<std::strin
                      : angle     ? m.hasTipAngle() || m.hasJoints()
                                  : m.hasTipPosition() || m.hasJoints();
     if (!has) {
-      throw ParameterError("line " + std::to_string(m.line) + ": no measurement for '" + quantityName(quantity) +
+      throw ParameterError(m.where() + ": no measurement for '" + quantityName(quantity) +
                            "' (columns " +
                            (uses_joints ? "joint_1_rad..joint_N_rad"
                             : angle     ? "tip_angle_rad or the joints"
@@ -278,7 +278,7 @@ void checkKeysAndData(const FingerParameters& base, const std::vector<std::strin
                            ")");
     }
     if (m.hasJoints() && m.joint_rad.size() != static_cast<std::size_t>(base.chamber_count)) {
-      throw ParameterError("line " + std::to_string(m.line) + ": " + std::to_string(m.joint_rad.size()) +
+      throw ParameterError(m.where() + ": " + std::to_string(m.joint_rad.size()) +
                            " measured joints, but chamber_count is " + std::to_string(base.chamber_count));
     }
   }

@@ -42,6 +42,7 @@ const char* evaluationStatusName(EvaluationStatus status) {
     case EvaluationStatus::kBeyondLimitPoint: return "beyond limit point";
     case EvaluationStatus::kClamped: return "clamped to max_gauge_pa";
     case EvaluationStatus::kSnappedThrough: return "snapped through";
+    case EvaluationStatus::kMeetsItself: return "meets itself";
   }
   return "unknown";
 }

@@ -5,6 +5,7 @@
 #include "pneumatic_finger/core/units.hpp"
 
 #include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <fstream>
 #include <functional>
@@ -101,6 +102,25 @@ std::vector<std::string> unusedColumnNotes(const std::vector<std::string>& unuse
   return notes;
 }
 
+// What the header probably meant, for the message that refuses it: another separator, or a pressure in another unit.
+std::string headerHint(const std::vector<std::string>& header) {
+  for (const std::string& name : header) {
+    if (name.find(';') != std::string::npos || name.find('\t') != std::string::npos) {
+      return "; the header reads as one column '" + name + "': separate the columns with commas";
+    }
+  }
+  for (const std::string& name : header) {
+    std::string lower = name;
+    std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char ch) { return std::tolower(ch); });
+    if (lower.find("pressure") != std::string::npos || lower.find("kpa") != std::string::npos ||
+        lower.find("psi") != std::string::npos || lower.find("bar") != std::string::npos) {
+      return "; column '" + name + "' looks like a pressure: give it as gauge_pa, gauge pressure in Pa (1 kPa = 1000 "
+             "Pa, 1 bar = 100000 Pa, 1 psi = 6894.76 Pa)";
+    }
+  }
+  return "";
+}
+
 // The header's columns. @throws ParameterError naming the line and what the header lacks.
 CsvColumns readHeader(const std::vector<std::string>& header, const std::string& average_column,
                       const std::string& at) {
@@ -122,7 +142,8 @@ CsvColumns readHeader(const std::vector<std::string>& header, const std::string&
   }
   if (!average_column.empty() && c.average < 0) throw ParameterError(at + "header has no '" + average_column + "' column");
   if (c.gauge < 0 && c.volume < 0) {
-    throw ParameterError(at + "header has no 'gauge_pa' column (nor 'supplied_volume_m3', for a finger set by volume)");
+    throw ParameterError(at + "header has no 'gauge_pa' column (nor 'supplied_volume_m3', for a finger set by volume)" +
+                         headerHint(header));
   }
   for (int k = 1;; ++k) {
     const auto it = std::find(header.begin(), header.end(), "joint_" + std::to_string(k) + "_rad");
@@ -207,7 +228,7 @@ MeasurementSet withNotes(const CsvColumns& columns) {
 void driveByVolume(std::vector<Measurement>& data, bool by_volume) {
   for (Measurement& m : data) {
     if (by_volume ? !m.hasSuppliedVolume() : !m.hasGauge()) {
-      throw ParameterError("line " + std::to_string(m.line) + ": no " +
+      throw ParameterError(m.where() + ": no " +
                            (by_volume ? "supplied_volume_m3 to drive the finger by volume"
                                       : "gauge_pa to drive the finger by pressure (drive it by volume, or give the "
                                         "column)"));
@@ -285,6 +306,7 @@ MeasurementSet measurementSetFromColumns(const std::vector<std::string>& names,
           return v;
         },
         c, row, at));
+    set.rows.back().in_table = true;
   }
   requireRows(set, min_rows, origin + ": ");
   return set;
@@ -306,9 +328,10 @@ namespace {
 
 // An angle beyond what the finger can turn: refused, with the degrees hint (a value in degrees read as radians is
 // 57 times too large, so a bend of a few degrees already passes a full turn).
-void checkAngle(double value_rad, double bound_rad, const char* bound_name, const std::string& column, int line) {
+void checkAngle(double value_rad, double bound_rad, const char* bound_name, const std::string& column,
+                const std::string& where) {
   if (std::fabs(value_rad) <= bound_rad) return;
-  throw ParameterError("line " + std::to_string(line) + ": " + column + " = " + formatMessage(value_rad) +
+  throw ParameterError(where + ": " + column + " = " + formatMessage(value_rad) +
                        " rad is beyond " + bound_name + ", more than this finger can bend; were the angles in "
                        "degrees? (radians = degrees x pi/180)");
 }
@@ -320,16 +343,16 @@ void checkMeasurementsPlausible(const FingerParameters& parameters, const std::v
   const double length_m = rest.tip().norm();  // the straight finger's reach: no bent tip reaches farther
   for (const Measurement& m : data) {
     for (std::size_t k = 0; k < m.joint_rad.size(); ++k) {
-      checkAngle(m.joint_rad[k], kPi, "pi (half a turn)", "joint_" + std::to_string(k + 1) + "_rad", m.line);
+      checkAngle(m.joint_rad[k], kPi, "pi (half a turn)", "joint_" + std::to_string(k + 1) + "_rad", m.where());
     }
-    if (m.hasTipAngle()) checkAngle(m.tip_angle_rad, 2 * kPi, "2 pi (a full turn)", "tip_angle_rad", m.line);
-    if (!std::isnan(m.given_average_rad)) checkAngle(m.given_average_rad, kPi, "pi (half a turn)", "the average", m.line);
+    if (m.hasTipAngle()) checkAngle(m.tip_angle_rad, 2 * kPi, "2 pi (a full turn)", "tip_angle_rad", m.where());
+    if (!std::isnan(m.given_average_rad)) checkAngle(m.given_average_rad, kPi, "pi (half a turn)", "the average", m.where());
     if (m.hasTipPosition()) {
       const double reach_m = std::hypot(m.tip_x_m, m.tip_y_m);
       // 1e-9 m of slack: a tip measured at the straight finger's own end, written with a few digits, reads back a
       // hair past it.
       if (reach_m > length_m * (1 + 1e-9) + 1e-9) {
-        throw ParameterError("line " + std::to_string(m.line) + ": the tip (tip_x_m, tip_y_m) = (" +
+        throw ParameterError(m.where() + ": the tip (tip_x_m, tip_y_m) = (" +
                              formatMessage(m.tip_x_m) + ", " + formatMessage(m.tip_y_m) + ") m lies " +
                              formatMessage(reach_m) + " m from the mount, farther than the finger is long (" +
                              formatMessage(length_m) + " m); were the positions in mm? (m = mm / 1000)");

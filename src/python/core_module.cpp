@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -20,6 +21,7 @@
 #include "pneumatic_finger/core/design_sweep.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/pressure_range.hpp"
+#include "pneumatic_finger/core/self_contact.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "calibrate_module.hpp"
 #include "python_parameters.hpp"
@@ -104,6 +106,7 @@ class PyFingerModel {
     arrays.refuseOverlap(p.data(), count * sizeof(double));
     pf::BatchOutputs rows = stateRows(arrays);  // (bulge_m may get a scratch array below, for the supplied volume)
     std::size_t clamped = 0;
+    double meets = NAN;  // the first tip angle whose backbone crosses itself
     {
       // The loop runs in C++ without the GIL. The model is const; each call has its own workspace, so calls from
       // several Python threads run at once.
@@ -121,19 +124,19 @@ class PyFingerModel {
       // The supplied volume, only when asked for, from each row's bulges (any branch): the batch writes them, into
       // a scratch array when the bulges were not asked for themselves.
       double* volume = arrays.data<double>("supplied_volume_m3");
-      std::vector<double> bulge_scratch;
-      if (volume && !rows.bulge_m) {
-        bulge_scratch.resize(count * static_cast<std::size_t>(model_->chamberCount()));
-        rows.bulge_m = bulge_scratch.data();
-      }
+      std::vector<double> bulge_scratch, joint_scratch;
+      if (volume && !rows.bulge_m) rows.bulge_m = scratch(bulge_scratch, count);
+      if (!rows.joint_angle_rad) rows.joint_angle_rad = scratch(joint_scratch, count);  // for the self-contact check
       model_->evaluateMany(evaluated, count, rows, workspace);
       const auto n = static_cast<std::size_t>(model_->chamberCount());
       for (std::size_t i = 0; volume && i < count; ++i) {
         volume[i] = model_->suppliedVolumeForBulges(rows.bulge_m + i * n, evaluated[i]);  // NaN rows stay NaN
       }
       if (clamped > 0 && rows.status) pf::markClamped(p.data(), rows.status, count, range_);
+      meets = markSelfContact(rows, count);
     }
     if (clamped > 0) warnClamped(p.data(), count, clamped);
+    warnSelfContact(meets);
     return arrays.result(scalar);
   }
 
@@ -147,6 +150,7 @@ class PyFingerModel {
     OutputArrays arrays(kVolumeFields, outputs, out, v.size(), model_->chamberCount());
     arrays.refuseOverlap(v.data(), count * sizeof(double));
     std::size_t clamped = 0;
+    double meets = NAN;  // the first tip angle whose backbone crosses itself
     {
       py::gil_scoped_release release;
       pf::FingerWorkspace workspace(*model_);
@@ -154,8 +158,11 @@ class PyFingerModel {
       // max_gauge_pa, the finger at that volume, status clamped.
       std::vector<double> in_range(v.data(), v.data() + count);
       clamped = pf::clampVolumesToRange(v.data(), in_range.data(), count, max_volume_m3_);
-      const pf::BatchOutputs rows = stateRows(arrays);
+      pf::BatchOutputs rows = stateRows(arrays);
+      std::vector<double> joint_scratch;
+      if (!rows.joint_angle_rad) rows.joint_angle_rad = scratch(joint_scratch, count);  // for the self-contact check
       model_->evaluateVolumeMany(in_range.data(), count, rows, arrays.data<double>("gauge_pa"), workspace);
+      meets = markSelfContact(rows, count);
       if (double* d = arrays.data<double>("supplied_volume_m3")) std::copy(in_range.begin(), in_range.end(), d);
       for (std::size_t i = 0; clamped > 0 && rows.status && i < count; ++i) {
         const auto ok = static_cast<std::uint8_t>(pf::EvaluationStatus::kOk);
@@ -170,6 +177,7 @@ class PyFingerModel {
                                (clamped > 1 ? " (and " + std::to_string(clamped - 1) + " more)" : std::string());
       if (PyErr_WarnEx(PyExc_RuntimeWarning, what.c_str(), 1) != 0) throw py::error_already_set();
     }
+    warnSelfContact(meets);
     return arrays.result(scalar);
   }
 
@@ -184,6 +192,34 @@ class PyFingerModel {
     rows.tip_angle_rad = arrays.data<double>("tip_angle_rad");
     rows.status = arrays.data<std::uint8_t>("status");
     return rows;
+  }
+
+  // A scratch array of count x N, for an output the caller did not ask for but a check needs.
+  double* scratch(std::vector<double>& storage, std::size_t count) const {
+    storage.resize(count * static_cast<std::size_t>(model_->chamberCount()));
+    return storage.data();
+  }
+
+  // Rows whose backbone crosses itself (self_contact.hpp) get status 'meets itself', as finger_node's; returns the
+  // first one's tip angle (NaN: none).
+  double markSelfContact(const pf::BatchOutputs& rows, std::size_t count) const {
+    const auto n = static_cast<std::size_t>(model_->chamberCount());
+    double first = NAN;
+    for (std::size_t i = 0; i < count; ++i) {
+      const double* q = rows.joint_angle_rad + i * n;
+      if (!pf::jointsMeetThemselves(model_->parameters(), q)) continue;  // NaN rows never do
+      if (std::isnan(first)) first = std::accumulate(q, q + n, 0.0);
+      if (rows.status && rows.status[i] != static_cast<std::uint8_t>(pf::EvaluationStatus::kVacuum)) {
+        rows.status[i] = static_cast<std::uint8_t>(pf::EvaluationStatus::kMeetsItself);
+      }
+    }
+    return first;
+  }
+
+  static void warnSelfContact(double tip_angle_rad) {
+    if (std::isnan(tip_angle_rad)) return;
+    const std::string what = pf::selfContactMessage(tip_angle_rad);
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, what.c_str(), 1) != 0) throw py::error_already_set();
   }
 
   // The interfaces' words for a clamp, once per call, as a RuntimeWarning.

@@ -23,9 +23,15 @@ static_assert(FingerModelState::STATUS_OK == static_cast<int>(EvaluationStatus::
                   FingerModelState::STATUS_SNAPPED_THROUGH == static_cast<int>(EvaluationStatus::kSnappedThrough) &&
                   FingerModelState::STATUS_NOT_FINITE == static_cast<int>(EvaluationStatus::kNotFinite) &&
                   FingerModelState::STATUS_SOLVER_FAILURE == static_cast<int>(EvaluationStatus::kSolverFailure) &&
-                  kEvaluationStatusCount == 7,
+                  FingerModelState::STATUS_MEETS_ITSELF == static_cast<int>(EvaluationStatus::kMeetsItself) &&
+                  kEvaluationStatusCount == 8,
               "msg/FingerModelState.msg's STATUS_* are EvaluationStatus's codes, all of them");
-std::uint8_t statusCode(EvaluationStatus status) { return static_cast<std::uint8_t>(status); }
+std::uint8_t publishedStatus(EvaluationStatus model_status, bool clamped, bool meets_itself) {
+  EvaluationStatus shown = model_status;  // the interface's own statuses over ok (and over a snap, which the flags keep)
+  if (shown != EvaluationStatus::kVacuum && clamped) shown = EvaluationStatus::kClamped;
+  if (shown != EvaluationStatus::kVacuum && meets_itself) shown = EvaluationStatus::kMeetsItself;
+  return static_cast<std::uint8_t>(shown);
+}
 
 Eigen::Isometry3d isometryFromMessage(const geometry_msgs::Transform& t) {
   return Eigen::Translation3d(t.translation.x, t.translation.y, t.translation.z) *

@@ -12,6 +12,7 @@
 #include <utility>
 
 #include "pneumatic_finger/core/units.hpp"
+#include "pneumatic_finger/core/self_contact.hpp"
 #include "pneumatic_finger/ros/conversions.hpp"
 
 namespace pneumatic_finger {
@@ -254,9 +255,9 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
   }
   finger_state_.walls_in_contact = state.walls_in_contact;
   finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.input.validated_max_gauge_pa;
-  // The message's codes are the core's (one list, static_asserts in conversions.cpp); clamped is the interface's.
-  finger_state_.status = statusCode(clamped && state.status != EvaluationStatus::kVacuum ? EvaluationStatus::kClamped
-                                                                                          : state.status);
+  const bool meets_itself = backboneMeetsItself(backbone, q_rad);  // said, and published with its status
+  if (meets_itself) ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), selfContactMessage(tip_angle_rad).c_str());
+  finger_state_.status = publishedStatus(state.status, clamped, meets_itself);
   finger_state_.object_id = object_ ? object_->id : std::string();
   finger_state_.object_status = toMessage(contact ? grasp_->statusWith(*contact) : grasp_->status());
   finger_state_.touch_gauge_pa = grasp_->touchGaugePa();

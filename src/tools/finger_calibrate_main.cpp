@@ -21,8 +21,8 @@ namespace {
 constexpr const char* kDescription =
     "Fits the model's effective parameters to what was measured: joint angles (the default data, the paper's\n"
     "Table 1), tip angles or tip positions. Prints, per row, the error of every joint, of the joints 2..N average\n"
-    "(the paper's measure), of the tip angle (deg) and of the tip position (mm), for the fit and leave-one-out, and\n"
-    "writes the calibrated parameter file when --output is given.";
+    "(the paper's measure), of the tip angle (rad) and of the tip position (m), for the fit and leave-one-out (the\n"
+    "summary lines add degrees and mm), and writes the calibrated parameter file when --output is given.";
 
 constexpr double kDeg = pf::kDegPerRad;
 

@@ -14,6 +14,7 @@
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/core/regulator.hpp"
+#include "pneumatic_finger/core/self_contact.hpp"
 #include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
 
@@ -90,7 +91,18 @@ void printShape(std::ostream& out, const pf::FingerState& s, const Eigen::Vector
 
 // The warnings of finger_model's rows, each said once (on stderr), in the words every interface uses.
 struct RowWarnings {
-  bool vacuum = false, failure = false, limit = false, clamp = false, extrapolated = false, snap = false;
+  bool vacuum = false, failure = false, limit = false, clamp = false, extrapolated = false, snap = false, meets = false;
+
+  // The backbone crossing itself, said once, as every interface says it (self_contact.hpp).
+  void noteShape(const pf::FingerState& s) {
+    const bool shaped = s.status != pf::EvaluationStatus::kNotFinite && s.status != pf::EvaluationStatus::kSolverFailure &&
+                        s.status != pf::EvaluationStatus::kBeyondLimitPoint;
+    if (shaped && !meets && pf::backboneMeetsItself(s.backbone_m, s.joint_angle_rad.data())) {
+      std::cerr << "finger_model: warning: at " << pf::formatMessage(s.gauge_pa) << " Pa gauge "
+                << pf::selfContactMessage(s.tip_angle_rad) << "\n";
+      meets = true;
+    }
+  }
 
   void note(const pf::FingerModel& model, const pf::FingerState& s, const pf::RangeCheck& range, double requested,
             const pf::PressureRange& limits) {
@@ -104,6 +116,7 @@ struct RowWarnings {
     } else if (range.above_validated && !range.clamped && !once(extrapolated)) {
       std::cerr << "finger_model: warning: " << pf::aboveValidatedMessage(p, limits) << "\n";
     }
+    noteShape(s);
     if (s.status == pf::EvaluationStatus::kSnappedThrough && !once(snap)) {
       std::cerr << "finger_model: note: at " << pf::formatMessage(p) << " Pa the walls are on their far branch "
                 << "(snapped through past the limit point, " << pf::formatMessage(model.limitGaugePa())
@@ -214,6 +227,7 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
   const double max_gauge_pa = range.max_gauge_pa;
   const double max_volume_m3 = pf::maxSuppliedVolumeM3(model, range);  // the range rule, for a volume
   bool warned_clamp = false;
+  RowWarnings shape_warnings;  // the backbone crossing itself, as for a pressure
   std::ostringstream out;
   printHeader(out, n, false, false);
   bool warned_limit = false, warned_vacuum = false;
@@ -251,9 +265,11 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
     if (s.status == pf::EvaluationStatus::kVacuum && !warned_vacuum) {
       std::cerr << "finger_model: warning: supplied volume " << pf::formatMessage(v)
                 << " m^3 draws fluid out: the model has no vacuum; the straight finger is printed, gauge_pa the "
-                << "dead gas's pressure (-atmospheric_pressure_pa for an incompressible fluid, dead_volume_m3 = 0: it cavitates)\n";
+                << "dead gas's pressure (-atmospheric_pressure_pa for an incompressible fluid, dead_volume_m3 = 0: "
+                << "it cavitates)\n";
       warned_vacuum = true;
     }
+    shape_warnings.noteShape(s);
     printShape(out, s, s.joint_angle_rad, s.tip());
     out << ',' << pf::formatExact(in_range.volume_m3) << '\n';
   }

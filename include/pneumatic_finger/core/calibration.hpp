@@ -20,7 +20,7 @@ namespace pneumatic_finger {
 /// One row of measurements. A file gives joint angles, a tip angle, a tip position, or several of them; what a
 /// file lacks is empty (joints) or NaN.
 struct Measurement {
-  int line = 0;                    ///< line number in the file, for messages
+  int line = 0;                    ///< line number in the file (or row of a table, from 1), for messages
   double gauge_pa = 0.0;           ///< gauge pressure (Pa); NaN where only the supplied volume was measured
   std::vector<double> joint_rad;   ///< measured joint angles q_1..q_N (rad), columns joint_1_rad..joint_N_rad
   double given_average_rad = NAN;  ///< average of joints 2..N read from a column instead (NaN: compute it)
@@ -30,7 +30,10 @@ struct Measurement {
   /// What set the finger's state: its supplied volume (a syringe pump, a displacement-controlled cylinder: the model is
   /// then evaluated by evaluateVolume and its pressure is an output) or, false, its pressure. driveByVolume sets it.
   bool driven_by_volume = false;
+  bool in_table = false;  ///< given as columns (Python's dict), not a file: messages say "row", not "line"
 
+  /// "line 7" or, for a table, "row 6": how every message names it.
+  std::string where() const { return (in_table ? "row " : "line ") + std::to_string(line); }
   bool hasJoints() const { return !joint_rad.empty(); }
   bool hasGauge() const { return !std::isnan(gauge_pa); }
   bool hasSuppliedVolume() const { return !std::isnan(supplied_volume_m3); }

@@ -22,13 +22,16 @@ enum class EvaluationStatus : std::uint8_t {
                         ///< snap-through"): the shape given is that branch's, and depends on the path
   kNotFinite = 5,     ///< NaN or infinite pressure: refused (evaluate() keeps the previous state; a batch writes NaN)
   kSolverFailure = 6, ///< the solver produced no finite answer (the paper's closed forms can): nothing is computed
+  kMeetsItself = 7,   ///< the backbone crosses itself (self_contact.hpp): the shape is the model's, which passes
+                      ///< through the finger. Set by the interfaces (finger_node, finger_model, Python), never by
+                      ///< FingerModel; it takes the place of kOk, kClamped or kSnappedThrough
 };
 
 /// How many codes EvaluationStatus has (0 .. count - 1).
-inline constexpr std::uint8_t kEvaluationStatusCount = 7;
+inline constexpr std::uint8_t kEvaluationStatusCount = 8;
 
-/// "ok", "vacuum", "clamped to max_gauge_pa", "beyond limit point", "snapped through", "not finite" or "solver
-/// failure": the names tools and Python print.
+/// "ok", "vacuum", "clamped to max_gauge_pa", "beyond limit point", "snapped through", "not finite", "solver
+/// failure" or "meets itself": the names tools and Python print.
 const char* evaluationStatusName(EvaluationStatus status);
 
 /// Where FingerModel::evaluateMany writes: row-major arrays the caller owns, for `count` pressures. A null pointer
