@@ -440,7 +440,12 @@ TEST(Cli, VolumeInputAnswersThePressureAndPassesTheLimitPoint) {
   EXPECT_EQ(p[0], pf::formatExact(s.gauge_pa));
   EXPECT_LT(std::stod(p[0]), model.limitGaugePa()) << "past the limit point the pressure has fallen";
   EXPECT_EQ(p[10], pf::formatExact(s.joint_angle_rad[6]));
-  EXPECT_EQ(past.err, "");
+  // Three times the limit point's volume curls this soft segment past a full turn (13.1 rad): said, once (issue 47).
+  EXPECT_EQ(past.err.rfind("finger_model: warning: at " + pf::formatMessage(s.gauge_pa) +
+                               " Pa gauge the finger meets itself (tip angle 13.1",
+                           0),
+            0u)
+      << past.err;
 }
 
 TEST(Cli, VolumeInputRefusesWhatItCannotModel) {

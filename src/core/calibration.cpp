@@ -408,24 +408,53 @@ double leaveOneOutObjective(const std::vector<Residual>& leave_one_out, Calibrat
   return objectiveOver(leave_one_out, quantity, objective);
 }
 
-TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out) {
+namespace {
+
+// The fit's residual scatter: the standard error sqrt(sum e^2 / (n - k)) over the rows that measured the quantity,
+// k the fitted keys (a fit of k keys to n rows leaves n - k of the noise in its residuals); 0 without rows.
+double residualScatter(const std::vector<Residual>& fit, std::size_t fitted_keys, double (*error)(const Residual&)) {
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (const Residual& r : fit) {
+    const double e = error(r);
+    if (std::isnan(e)) continue;
+    sum += e * e;
+    ++n;
+  }
+  const std::size_t dof = n > fitted_keys ? n - fitted_keys : 1;
+  return n == 0 ? 0.0 : std::sqrt(sum / static_cast<double>(dof));
+}
+
+double angleError(const Residual& r) { return r.tip_angle_error_rad(); }
+double positionError(const Residual& r) { return r.tip_position_error_m(); }
+
+}  // namespace
+
+TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out,
+                              std::size_t fitted_keys) {
   if (fit.size() != leave_one_out.size()) throw ParameterError("tipUncertainty: fit and leave-one-out rows differ");
   std::vector<std::size_t> order(fit.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
   std::sort(order.begin(), order.end(), [&fit](std::size_t a, std::size_t b) { return fit[a].gauge_pa < fit[b].gauge_pa; });
+  // No bar below the noise the fit leaves: a row the fit happens to hit is no better measured than the others.
+  const double angle_floor = residualScatter(fit, fitted_keys, angleError);
+  const double position_floor = residualScatter(fit, fitted_keys, positionError);
   std::vector<double> gauge, angle, position;
   for (std::size_t i : order) {
     if (!(fit[i].gauge_pa > 0.0)) continue;  // the rest shape needs no error bar
+    const double a = std::max({std::fabs(fit[i].tip_angle_error_rad()), std::fabs(leave_one_out[i].tip_angle_error_rad()),
+                               angle_floor});
+    const double x = std::max({fit[i].tip_position_error_m(), leave_one_out[i].tip_position_error_m(), position_floor});
+    const double angle_bar = std::isnan(fit[i].tip_angle_error_rad()) ? std::nan("") : a;  // NaN: not measured
+    const double position_bar = std::isnan(fit[i].tip_position_error_m()) ? std::nan("") : x;
     if (!gauge.empty() && fit[i].gauge_pa == gauge.back()) {  // repeated pressure: keep the larger bar
-      angle.back() = std::max({angle.back(), std::fabs(fit[i].tip_angle_error_rad()),
-                               std::fabs(leave_one_out[i].tip_angle_error_rad())});
-      position.back() = std::max({position.back(), fit[i].tip_position_error_m(),
-                                  leave_one_out[i].tip_position_error_m()});
+      angle.back() = std::fmax(angle.back(), angle_bar);
+      position.back() = std::fmax(position.back(), position_bar);
       continue;
     }
     gauge.push_back(fit[i].gauge_pa);
-    angle.push_back(std::max(std::fabs(fit[i].tip_angle_error_rad()), std::fabs(leave_one_out[i].tip_angle_error_rad())));
-    position.push_back(std::max(fit[i].tip_position_error_m(), leave_one_out[i].tip_position_error_m()));
+    angle.push_back(angle_bar);
+    position.push_back(position_bar);
   }
   return TipUncertainty::fromLists(gauge, angle, position, "calibration");
 }

@@ -64,7 +64,8 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
   } else {
     run.fits = calibrateWallLaws(base, laws, request.keys, driven.rows, run.objective, run.quantity);
     run.chosen = chosenWallLaw(run.fits);
-    run.tip_uncertainty = tipUncertainty(run.best().fit.residuals, run.best().leave_one_out);
+    run.tip_uncertainty =
+        tipUncertainty(run.best().fit.residuals, run.best().leave_one_out, run.best().fit.keys.size());
   }
   run.warnings = data.notes;
   for (const std::string& w : run.best().fit.warnings) run.warnings.push_back(w);

@@ -21,8 +21,10 @@ TipUncertainty::At TipUncertainty::at(double pressure_pa) const {
     const double scale = pressure_pa / gauge_pa[last];
     return {tip_angle_rad[last] * scale, tip_position_m[last] * scale, true};
   }
-  // Between (0, 0) and the first calibrated point, or between two calibrated points.
-  double p0 = 0.0, a0 = 0.0, x0 = 0.0;
+  // Below the first calibrated pressure the calibration saw nothing: its bar, flagged (it once shrank to 0 here).
+  if (pressure_pa < gauge_pa[0]) return {tip_angle_rad[0], tip_position_m[0], true};
+  // Between two calibrated points: linear.
+  double p0 = gauge_pa[0], a0 = tip_angle_rad[0], x0 = tip_position_m[0];
   for (std::size_t i = 0; i <= last; ++i) {
     const double p1 = gauge_pa[i];
     if (pressure_pa <= p1) {
@@ -105,8 +107,9 @@ std::string tipUncertaintyToYaml(const TipUncertainty& u) {
     out << "]\n";
   };
   out << "# How far to trust the tip (written by finger_calibrate; docs/ACCURACY.md): at each calibrated gauge pressure\n"
-      << "# (Pa), the larger of the fit's and the leave-one-out error of the tip angle (rad) and of the tip position (m).\n"
-      << "# finger_node interpolates it linearly in pressure (from 0 at rest) and flags pressures above the last one.\n"
+      << "# (Pa), the largest of the fit's error, the leave-one-out error and the fit's residual scatter, for the tip\n"
+      << "# angle (rad) and the tip position (m). finger_node interpolates it linearly in pressure between them and\n"
+      << "# flags pressures outside them (below the first: its bar; above the last: that bar scaled by the pressure).\n"
       << kTipUncertaintyKey << ":\n  gauge_pa: ";
   list(u.gauge_pa);
   out << "  tip_angle_rad: ";

@@ -123,8 +123,8 @@ std::string uncertaintyLines(const pf::CalibrationRun& run) {
 
 // The error bar's line: at each calibrated pressure, the tip angle's and the tip position's bar.
 std::string errorBarLine(const pf::TipUncertainty& bar) {
-  std::string line = "# error bar written to the parameter file (tip_uncertainty: the larger of fit and "
-                     "leave-one-out):";
+  std::string line = "# error bar written to the parameter file (tip_uncertainty: the largest of fit, leave-one-out "
+                     "and the fit's scatter):";
   for (std::size_t i = 0; i < bar.gauge_pa.size(); ++i) {
     line += " at " + pf::formatMessage(bar.gauge_pa[i]) + " Pa";
     if (!std::isnan(bar.tip_angle_rad[i])) line += " " + pf::formatMessage(bar.tip_angle_rad[i]) + " rad";

@@ -239,9 +239,11 @@ std::size_t chosenWallLaw(const std::vector<WallLawFit>& fits);
 /// "auto" (both laws), "paper" or "membrane". @throws ParameterError for anything else.
 std::vector<WallLaw> parseWallLawChoice(const std::string& name);
 
-/// The tip's error bar from a calibration: at each row's pressure, the larger of @p fit's and @p leave_one_out's
-/// |error| of the tip angle and of the tip position (NaN where the data measured no tip position). The rows of both
-/// are the same measurements, in the same order.
-TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out);
+/// The tip's error bar from a calibration: at each row's pressure, the largest of @p fit's and @p leave_one_out's
+/// |error| and of the fit's residual scatter (sqrt(sum e^2 / (n - k)) over the rows, k = @p fitted_keys), for the tip
+/// angle and for the tip position (NaN where the data measured no tip position): no bar is below the noise the fit
+/// leaves, even at a row it happens to hit. The rows of both are the same measurements, in the same order.
+TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out,
+                              std::size_t fitted_keys);
 
 }  // namespace pneumatic_finger

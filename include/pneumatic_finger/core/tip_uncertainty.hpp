@@ -9,8 +9,9 @@
 
 namespace pneumatic_finger {
 
-/// At each calibrated gauge pressure: the larger of the fit's error and the leave-one-out error there (what a
-/// pressure the fit has not seen gets), for the tip angle and for the tip position.
+/// At each calibrated gauge pressure: the largest of the fit's error there, the leave-one-out error there (what a
+/// pressure the fit has not seen gets) and the fit's residual scatter (the noise it leaves), for the tip angle and for
+/// the tip position (tipUncertainty, calibration.hpp).
 struct TipUncertainty {
   std::vector<double> gauge_pa;        ///< the calibrated pressures (Pa), ascending, > 0
   std::vector<double> tip_angle_rad;   ///< the tip angle's error bar at each (rad), >= 0; NaN: not measured
@@ -22,13 +23,14 @@ struct TipUncertainty {
   struct At {
     double tip_angle_rad;   ///< NaN when empty or not measured
     double tip_position_m;  ///< NaN when empty or not measured
-    bool extrapolated;      ///< the pressure lies above the last calibrated one: the bar is a guess
+    bool extrapolated;      ///< the pressure lies outside the calibrated ones (below the first, above the last)
   };
 
-  /// The bar at @p pressure_pa (gauge). 0 for P <= 0 (the straight finger needs no calibration); linear in P from 0 at P = 0
-  /// to the first calibrated pressure and between calibrated pressures; above the last one, that bar scaled by
-  /// P / P_last with extrapolated = true: the calibration says nothing there, and the bar says so instead of
-  /// pretending (the scaling only keeps it growing as the finger bends further).
+  /// The bar at @p pressure_pa (gauge). 0 for P <= 0 (the straight finger needs no calibration); below the first
+  /// calibrated pressure, the first bar with extrapolated = true (the calibration saw none of these pressures);
+  /// linear in P between calibrated pressures; above the last one, that bar scaled by P / P_last with extrapolated =
+  /// true: the calibration says nothing there, and the bar says so instead of pretending (the scaling only keeps it
+  /// growing as the finger bends further).
   At at(double pressure_pa) const;
 
   /// Builds one from its three lists, as read from a parameter file or rosparam.
