@@ -12,7 +12,6 @@
 #include <limits>
 #include <map>
 #include <memory>
-#include <numeric>
 #include <string>
 #include <vector>
 
@@ -21,7 +20,6 @@
 #include "pneumatic_finger/core/design_sweep.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/pressure_range.hpp"
-#include "pneumatic_finger/core/self_contact.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "calibrate_module.hpp"
 #include "python_parameters.hpp"
@@ -133,7 +131,7 @@ class PyFingerModel {
         volume[i] = model_->suppliedVolumeForBulges(rows.bulge_m + i * n, evaluated[i]);  // NaN rows stay NaN
       }
       if (clamped > 0 && rows.status) pf::markClamped(p.data(), rows.status, count, range_);
-      meets = markSelfContact(rows, count);
+      meets = markSelfContact(model_->parameters(), rows, count);
     }
     if (clamped > 0) warnClamped(p.data(), count, clamped);
     warnSelfContact(meets);
@@ -162,7 +160,7 @@ class PyFingerModel {
       std::vector<double> joint_scratch;
       if (!rows.joint_angle_rad) rows.joint_angle_rad = scratch(joint_scratch, count);  // for the self-contact check
       model_->evaluateVolumeMany(in_range.data(), count, rows, arrays.data<double>("gauge_pa"), workspace);
-      meets = markSelfContact(rows, count);
+      meets = markSelfContact(model_->parameters(), rows, count);
       if (double* d = arrays.data<double>("supplied_volume_m3")) std::copy(in_range.begin(), in_range.end(), d);
       for (std::size_t i = 0; clamped > 0 && rows.status && i < count; ++i) {
         const auto ok = static_cast<std::uint8_t>(pf::EvaluationStatus::kOk);
@@ -198,28 +196,6 @@ class PyFingerModel {
   double* scratch(std::vector<double>& storage, std::size_t count) const {
     storage.resize(count * static_cast<std::size_t>(model_->chamberCount()));
     return storage.data();
-  }
-
-  // Rows whose backbone crosses itself (self_contact.hpp) get status 'meets itself', as finger_node's; returns the
-  // first one's tip angle (NaN: none).
-  double markSelfContact(const pf::BatchOutputs& rows, std::size_t count) const {
-    const auto n = static_cast<std::size_t>(model_->chamberCount());
-    double first = NAN;
-    for (std::size_t i = 0; i < count; ++i) {
-      const double* q = rows.joint_angle_rad + i * n;
-      if (!pf::jointsMeetThemselves(model_->parameters(), q)) continue;  // NaN rows never do
-      if (std::isnan(first)) first = std::accumulate(q, q + n, 0.0);
-      if (rows.status && rows.status[i] != static_cast<std::uint8_t>(pf::EvaluationStatus::kVacuum)) {
-        rows.status[i] = static_cast<std::uint8_t>(pf::EvaluationStatus::kMeetsItself);
-      }
-    }
-    return first;
-  }
-
-  static void warnSelfContact(double tip_angle_rad) {
-    if (std::isnan(tip_angle_rad)) return;
-    const std::string what = pf::selfContactMessage(tip_angle_rad);
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, what.c_str(), 1) != 0) throw py::error_already_set();
   }
 
   // The interfaces' words for a clamp, once per call, as a RuntimeWarning.
