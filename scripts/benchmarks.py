@@ -146,11 +146,15 @@ membrane_newton_ns, thick_newton_ns = runs["membrane/newton"]["real_time"], runs
 build_us = {f"{law}/{kind}": runs[f"{law}/{kind}"]["real_time"] / 1e3
             for law in ("membrane", "thick") for kind in ("build", "build_newton")}
 volume_ns = runs["membrane/volume"]["real_time"]
+paper_volume_ns = runs["paper/volume"]["real_time"]
 law_rows = "\n".join([
     md_row("paper law, robust (the default)", f"{robust_ns:.0f}", "1.0",
            fmt_err(runs["robust/validated"]["max_theta_error_rad"]) + " (θ, rad)"),
     md_row("membrane law (Gent, J_m = 50), pressure in", f"{membrane_ns:.0f}", f"{membrane_ns / robust_ns:.1f}",
            fmt_err(runs["membrane/validated"]["max_theta_error_rad"]) + " (θ, rad)"),
+    md_row("paper law, volume in (incompressible: closed form)", f"{paper_volume_ns:.0f}",
+           f"{paper_volume_ns / robust_ns:.1f}",
+           fmt_err(runs["paper/volume"]["max_gauge_relative_error"]) + " (pressure given back, relative)"),
     md_row("membrane law, volume in (10 mL of gas in the drive)", f"{volume_ns:.0f}", f"{volume_ns / robust_ns:.1f}",
            fmt_err(runs["membrane/volume"]["max_gauge_relative_error"]) + " (pressure given back, relative)"),
     md_row("membrane law, pressure in, Newton steps (no inverse)", f"{membrane_newton_ns:.0f}",
@@ -456,7 +460,9 @@ Each verdict is computed by `scripts/benchmarks.py` from the figures above; the 
   {thick_ns / robust_ns:.2f}× (by the wall's inverse; {thick_newton_ns / robust_ns:.1f}× by Newton steps, whose every
   evaluation of the law takes six logarithms, an arctangent and a cube root). **The volume input within
   {TARGET_VOLUME_RATIO:.0f}× the pressure's:** {verdict(volume_ns <= TARGET_VOLUME_RATIO * membrane_ns)}: {volume_ns:.0f} ns,
-  {volume_ns / membrane_ns:.2f}× the membrane law's pressure evaluation. **In the batch's SIMD packs, bit for bit:**
+  {volume_ns / membrane_ns:.2f}× the membrane law's pressure evaluation; the paper law's incompressible fill
+  {verdict(paper_volume_ns <= TARGET_VOLUME_RATIO * robust_ns)}: {paper_volume_ns:.0f} ns,
+  {paper_volume_ns / robust_ns:.2f}× its pressure evaluation (a bisection on the pressure before). **In the batch's SIMD packs, bit for bit:**
   met for both: the membrane law {membrane_batch_ns:.0f} ns per pressure in the fastest packs
   ({membrane_batch_ns / robust_ns:.2f}× the paper law's single evaluation), the thick wall {thick_batch_ns:.0f} ns
   ({thick_batch_ns / robust_ns:.1f}×; both by the wall's inverse in the packs).

@@ -22,6 +22,11 @@ ALLOWED = {
     "tools": [r"pneumatic_finger/(core|description|sim|tools)/", r"Eigen/", r"CLI/", r"unistd\.h"],
     "python": [r"pneumatic_finger/core/", r"Eigen/", r"pybind11/"],
 }
+# What a ROS layer may not include: the layers above it. The cell is built over src/ros (its regulator, sequencer and
+# nodelets), so src/ros never includes the cell.
+FORBIDDEN = {
+    "ros": [r"pneumatic_finger/cell/"],
+}
 INCLUDE = re.compile(r'^\s*#\s*include\s*[<"]([^>"]+)[>"]')
 
 
@@ -46,6 +51,16 @@ def violations(root):
                     if not any(re.match(a, m.group(1)) for a in allowed):
                         found.append(f"{path.relative_to(root)}:{number}: layer '{layer}' may not include "
                                      f"<{m.group(1)}>")
+    for layer, forbidden in FORBIDDEN.items():
+        for folder in (root / "include" / "pneumatic_finger" / layer, root / "src" / layer):
+            for path in sorted(folder.rglob("*")) if folder.is_dir() else []:
+                if path.suffix not in (".hpp", ".cpp", ".h"):
+                    continue
+                for number, line in enumerate(path.read_text().splitlines(), 1):
+                    m = INCLUDE.match(line)
+                    if m and any(re.match(f, m.group(1)) for f in forbidden):
+                        found.append(f"{path.relative_to(root)}:{number}: layer '{layer}' may not include "
+                                     f"<{m.group(1)}> (a layer above it)")
     return found
 
 
@@ -54,8 +69,12 @@ def self_test():
         root = pathlib.Path(tmp)
         (root / "src" / "core").mkdir(parents=True)
         (root / "src" / "core" / "bad.cpp").write_text('#include <cmath>\n#include <ros/ros.h>\n')
+        (root / "src" / "ros").mkdir(parents=True)
+        (root / "src" / "ros" / "up.cpp").write_text('#include "pneumatic_finger/cell/pressure_regulator.hpp"\n')
         got = violations(root)
-        ok = got == ["src/core/bad.cpp:2: layer 'core' may not include <ros/ros.h>"]
+        ok = got == ["src/core/bad.cpp:2: layer 'core' may not include <ros/ros.h>",
+                     "src/ros/up.cpp:1: layer 'ros' may not include <pneumatic_finger/cell/pressure_regulator.hpp> "
+                     "(a layer above it)"]
         print("check_layers self-test:", "ok" if ok else f"FAILED, got {got}")
         return 0 if ok else 1
 
@@ -67,5 +86,5 @@ if __name__ == "__main__":
     bad = violations(root)
     for b in bad:
         print(b)
-    print(f"check_layers: {len(bad)} violation(s) in core, description, sim, tools and python")
+    print(f"check_layers: {len(bad)} violation(s) in core, description, sim, tools, python and ros")
     sys.exit(1 if bad else 0)

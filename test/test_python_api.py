@@ -10,6 +10,7 @@ import os
 import pathlib
 import re
 import subprocess
+import warnings
 
 import numpy
 import pytest
@@ -450,3 +451,52 @@ def test_a_finger_that_meets_itself_says_so_in_python_and_the_cli():
                           text=True)
     assert done.returncode == 0 and "warning: at 290000 Pa gauge the finger meets itself (tip angle 6.13" in done.stderr, \
         done.stderr
+
+
+def test_the_interfaces_say_the_same_for_the_same_input():
+    # Issue 47: one contract at every edge. The same inputs through Python, finger_model and the MJCF writer give the
+    # same status, the same clamp in the same words, and the same numbers (finger_node says the core's same words:
+    # pressure_range.hpp; its codes are held to the same list by static_asserts and test_one_status_list...).
+    urdf_exe = os.path.join(os.path.dirname(FINGER_MODEL), "finger_urdf") if os.path.dirname(FINGER_MODEL) \
+        else "finger_urdf"
+    model = pf.FingerModel()
+    with pytest.warns(RuntimeWarning) as said:
+        over = model.evaluate(5e5)
+    words = str(said[0].message)
+    assert pf.STATUS[over["status"]] == "clamped to max_gauge_pa" and words.endswith("clamped to it"), words
+    cli = subprocess.run([FINGER_MODEL, "--gauge-pa", "5e5"], capture_output=True, text=True)
+    mjcf = subprocess.run([urdf_exe, "--mjcf", "--gauge-pa", "5e5"], capture_output=True, text=True)
+    assert words in cli.stderr and words in mjcf.stderr, (words, cli.stderr, mjcf.stderr)
+    row = list(csv.DictReader(io.StringIO(cli.stdout)))[0]
+    assert float(row["gauge_pa"]) == model.max_gauge_pa and float(row["tip_x_m"]) == over["backbone_m"][-1, 0]
+    assert [float(row[f"joint_{n + 1}_rad"]) for n in range(7)] == list(over["joint_angle_rad"])
+    # A volume past the one that makes max_gauge_pa: the same clamp, words and numbers by volume.
+    with pytest.warns(RuntimeWarning) as said:
+        big = model.evaluate_volume(1.0)
+    words = str(said[0].message)
+    cli = subprocess.run([FINGER_MODEL, "--supplied-volume-m3", "1.0"], capture_output=True, text=True)
+    assert words in cli.stderr, (words, cli.stderr)
+    row = list(csv.DictReader(io.StringIO(cli.stdout)))[0]
+    assert pf.STATUS[big["status"]] == "clamped to max_gauge_pa"
+    assert float(row["gauge_pa"]) == big["gauge_pa"] and float(row["tip_x_m"]) == big["backbone_m"][-1, 0]
+    assert float(row["supplied_volume_m3"]) == big["supplied_volume_m3"] == model.max_supplied_volume_m3
+
+
+def test_a_path_follows_the_snap_across_calls_as_the_node_does():
+    # Issue 47, defect 10: evaluate(9000.) snapped, then evaluate(7000.) was back on the near branch, where the node
+    # stays on the far one. A FingerPath carries the branch from call to call; the reference is the one-call ramp.
+    model = pf.FingerModel(overrides=GENT)
+    limit, turning = model.limit_gauge_pa, model.far_turning_gauge_pa
+    middle = 0.5 * (limit + turning)
+    with pytest.warns(RuntimeWarning, match="the finger meets itself"):
+        ramp = model.evaluate(numpy.array([0.5 * limit, 1.1 * limit, middle, 0.9 * turning]))
+    path = model.path()
+    tips = []
+    for p in (0.5 * limit, 1.1 * limit, middle, 0.9 * turning):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore", RuntimeWarning)  # the far branch curls past a full turn: said above
+            tips.append(path.evaluate(p, outputs=["tip_angle_rad"])["tip_angle_rad"])
+    assert tips == list(ramp["tip_angle_rad"])
+    assert model.evaluate(middle)["tip_angle_rad"] < tips[2] - 0.5, "separate calls on the model start afresh"
+    with pytest.raises(ValueError, match="start_branch = 'up' is not one of near, far"):
+        model.path("up")

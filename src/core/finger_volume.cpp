@@ -245,6 +245,13 @@ const FingerState& FingerModel::evaluateVolume(double supplied_volume_m3, Finger
   }
   if (volume_by_stretch_) {
     written = writeStretchState(stretchForSuppliedVolume(v), v, state);
+  } else if (!membrane_ && groups_.size() == 1 && v_g == 0.0) {
+    // The paper law's incompressible fill is closed-form: the chambers' growth is linear in the bulge (half an
+    // ellipse), so the bulge is v over the group's coefficient, and the law's inverse gives its pressure.
+    const ChamberGroup& g = groups_[0];
+    const double p = gaugeForBulge(v / volume_coefficient_[0], g.chamber_height_m, g.shear_modulus_pa,
+                                   parameters_.atmospheric_pressure_pa);
+    written = std::isfinite(p) && writeStateAt(p, ws, state);
   } else {
     double hi = std::isfinite(limit_gauge_pa_) ? belowLimitGaugePa() : 1e3;
     while (!std::isfinite(limit_gauge_pa_) && suppliedVolumeAt(hi) < v && hi < 1e300) hi *= 2.0;

@@ -46,13 +46,8 @@ std::string aboveValidatedMessage(double gauge_pa, const PressureRange& range) {
 }
 
 std::size_t clampToRange(const double* in, double* out, std::size_t count, const PressureRange& range) {
-  std::size_t clamped = 0;
-  for (std::size_t i = 0; i < count; ++i) {
-    const RangeCheck c = checkGaugeRange(in[i], range);
-    out[i] = c.gauge_pa;
-    clamped += c.clamped ? 1 : 0;
-  }
-  return clamped;
+  // A volume's top is the pressure's rule with another number: one loop for both (clampVolumesToRange).
+  return clampVolumesToRange(in, out, count, range.max_gauge_pa);
 }
 
 void markClamped(const double* in, std::uint8_t* status, std::size_t count, const PressureRange& range) {

@@ -12,6 +12,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -22,6 +23,7 @@
 #include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "calibrate_module.hpp"
+#include "range_module.hpp"
 #include "python_parameters.hpp"
 #include "contact_rows.hpp"
 #include "output_arrays.hpp"
@@ -91,11 +93,11 @@ class PyFingerModel {
 
   // A scalar gives arrays without the leading pressure axis; an array of P pressures gives (P, ...). Only the outputs
   // asked for are allocated, written and, where the batch kernel can leave them out, computed.
+  // @p path: a FingerPath's workspace, which carries the walls' branch from call to call; nullptr: this call's own,
+  // starting on @p start_branch.
   py::dict evaluate(const py::object& gauge_pa, const py::object& outputs, const py::object& out,
-                    const std::string& start_branch) const {
-    if (start_branch != "near" && start_branch != "far") {
-      throw py::value_error("start_branch = '" + start_branch + "' is not one of near, far");
-    }
+                    const std::string& start_branch, pf::FingerWorkspace* path = nullptr) const {
+    const bool far = startOnFar(start_branch);
     bool scalar = false;
     const Array p = pressures(gauge_pa, scalar);
     if (scalar && !out.is_none()) throw py::value_error("out= needs gauge_pa as a 1-D array");
@@ -109,8 +111,9 @@ class PyFingerModel {
       // The loop runs in C++ without the GIL. The model is const; each call has its own workspace, so calls from
       // several Python threads run at once.
       py::gil_scoped_release release;
-      pf::FingerWorkspace workspace(*model_);
-      model_->startBranch(workspace, start_branch == "far");  // the walls' branch the sequence starts from
+      std::optional<pf::FingerWorkspace> own;
+      pf::FingerWorkspace& workspace = path ? *path : own.emplace(*model_);
+      if (!path) model_->startBranch(workspace, far);  // the walls' branch the sequence starts from
       // The range rule of every interface (pressure_range.hpp); a copy only when some pressure is above the range.
       std::vector<double> in_range;
       const double* evaluated = p.data();
@@ -337,13 +340,35 @@ class PyFingerModel {
     return std::move(v);
   }
   double maxSuppliedVolumeM3() const { return max_volume_m3_; }
+  const pf::FingerModel& core() const { return *model_; }
+  static bool startOnFar(const std::string& branch) {
+    if (branch == "near" || branch == "far") return branch == "far";
+    throw py::value_error("start_branch = '" + branch + "' is not one of near, far");
+  }
   std::string solver() const { return pf::solverName(model_->options().solver); }
-
 
  private:
   std::unique_ptr<const pf::FingerModel> model_;
   pf::PressureRange range_;  // what evaluate() clamps to, as finger_node's ~max_gauge_pa
   double max_volume_m3_ = 0.0;  // what evaluate_volume() clamps to: the volume that makes range_.max_gauge_pa
+};
+
+// A path through the model's states (model.path()): its workspace, and so the walls' branch, carries over from one
+// evaluate() to the next, as finger_node's does from message to message. One path per thread.
+class PyFingerPath {
+ public:
+  PyFingerPath(const py::object& model, const std::string& start_branch)
+      : owner_(model), model_(model.cast<const PyFingerModel*>()),
+        workspace_(std::make_unique<pf::FingerWorkspace>(model_->core())) {
+    model_->core().startBranch(*workspace_, PyFingerModel::startOnFar(start_branch));
+  }
+  py::dict evaluate(const py::object& gauge_pa, const py::object& outputs, const py::object& out) {
+    return model_->evaluate(gauge_pa, outputs, out, "near", workspace_.get());
+  }
+ private:
+  py::object owner_;  // keeps the model alive as long as the path
+  const PyFingerModel* model_;
+  std::unique_ptr<pf::FingerWorkspace> workspace_;
 };
 
 }  // namespace
@@ -411,29 +436,27 @@ PYBIND11_MODULE(_core, m) {
   m.attr("STATUS") = py::tuple(py::cast(evaluationStatusNames()));
   m.attr("CONTACT_STATUS") = py::tuple(py::cast(std::vector<std::string>(kContactStatus.begin(), kContactStatus.end())));
   defineCalibrate(m);
-  m.def(
-      "range_check",
-      [](double gauge_pa, const py::object& max_gauge_pa) {
-        const pf::PressureRange range =
-            max_gauge_pa.is_none() ? pf::PressureRange() : pf::PressureRange::upTo(max_gauge_pa.cast<double>());
-        const pf::RangeCheck c = pf::checkGaugeRange(gauge_pa, range);
-        const std::string words = c.clamped         ? pf::clampedMessage(gauge_pa, range)
-                                  : gauge_pa < 0    ? pf::vacuumMessage(gauge_pa)
-                                  : c.above_validated ? pf::aboveValidatedMessage(gauge_pa, range)
-                                                      : std::string();
-        return py::make_tuple(c.gauge_pa, words);
-      },
-      py::arg("gauge_pa"), py::arg("max_gauge_pa") = py::none(),
-      "The model's range rule, as finger_node, finger_model and evaluate() apply it: (the pressure to evaluate, the "
-      "words to warn with, empty in range)");
+  defineRangeCheck(m);
+  py::class_<PyFingerPath>(m, "FingerPath",
+                           "The model along one path of pressures (FingerModel.path()): the walls' branch carries over")
+      .def("evaluate", &PyFingerPath::evaluate, py::arg("gauge_pa"), py::arg("outputs") = py::none(),
+           py::arg("out") = py::none(), "FingerModel.evaluate's outputs, from where the last call on this path left");
   py::class_<PyFingerModel> finger_model(m, "FingerModel");
   defineVolume(finger_model);
   defineContact(finger_model);
   finger_model
       .def(py::init<const std::string&, const py::dict&, const std::string&, const py::object&>(), py::arg("config"),
            py::arg("overrides") = py::dict(), py::arg("solver") = "robust", py::arg("max_gauge_pa") = py::none())
-      .def("evaluate", &PyFingerModel::evaluate, py::arg("gauge_pa"), py::arg("outputs") = py::none(),
-           py::arg("out") = py::none(), py::arg("start_branch") = "near",
+      .def("path", [](const py::object& self, const std::string& start_branch) { return PyFingerPath(self, start_branch); },
+           py::arg("start_branch") = "near",
+           "A FingerPath: evaluate() on it follows the pressures across calls, as finger_node does from message to "
+           "message (a Gent wall that snapped stays on its far branch until the pressure falls to its turning point); "
+           "model.evaluate() starts each call afresh from start_branch. One path per thread")
+      .def("evaluate",
+           [](const PyFingerModel& m, const py::object& p, const py::object& outputs, const py::object& out,
+              const std::string& start_branch) { return m.evaluate(p, outputs, out, start_branch); },
+           py::arg("gauge_pa"), py::arg("outputs") = py::none(), py::arg("out") = py::none(),
+           py::arg("start_branch") = "near",
            "The free finger at a gauge pressure (Pa) or a 1-D array of them: a dict of numpy arrays stretch, bulge_m, "
            "half_angle_rad, joint_angle_rad (P, N), backbone_m (P, N+2, 2), tip_angle_rad (P,) and status (P,) uint8 "
            "codes (STATUS names them; a scalar call gives one code). A pressure above max_gauge_pa is clamped to it "
