@@ -543,3 +543,17 @@ TEST(UrdfCli, MjcfCarriesTheSpringsOfItsPressure) {
   EXPECT_EQ(beyond.status, 2);
   EXPECT_NE(beyond.err.find("no free shape at 20000 Pa gauge"), std::string::npos) << beyond.err;
 }
+
+// Issue 47, defect 14: the help says what an option takes, one value per occurrence (it showed "--gauge-pa TEXT ...",
+// and a second value was refused); a second value after one occurrence is still refused, by name.
+TEST(Cli, TheHelpShowsOneValuePerOccurrence) {
+  const CliRun help = run("--help");
+  ASSERT_EQ(help.status, 0) << help.err;
+  EXPECT_NE(help.out.find("--gauge-pa PA "), std::string::npos) << help.out;
+  EXPECT_NE(help.out.find("--supplied-volume-m3 M3 "), std::string::npos) << help.out;
+  EXPECT_EQ(help.out.find("TEXT ..."), std::string::npos) << help.out;
+  const CliRun two = run("--gauge-pa 1000 2000");
+  EXPECT_EQ(two.status, 2);
+  EXPECT_NE(two.err.find("2000"), std::string::npos) << two.err;
+  EXPECT_EQ(lines(run("--gauge-pa 1000 --gauge-pa 2000").out).size(), 3u);
+}

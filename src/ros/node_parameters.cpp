@@ -47,7 +47,8 @@ const std::vector<NodeParameterSpec>& specs() {
              "top of the model's range (3 kg/cm^2): higher pressures are clamped to it; URDF joint upper limits, the "
              "inverse service's limit, the table"),
       numberParameter("validated_max_gauge_pa", input.validated_max_gauge_pa, 0, true, 1e7, "Pa",
-             "top of the validated range (the paper: 2 kg/cm^2); above it finger_state says so and diagnostics warn",
+             "top of the validated range: the highest pressure the calibration saw (finger_calibrate writes it into "
+             "the parameter file; without it the paper's 2 kg/cm^2); above it finger_state says so and diagnostics warn",
              "(0, max_gauge_pa]"),
       textParameter("description_param", node.description_param, "a ROS name",
            "parameter (resolved in the node's namespace) that receives the generated URDF"),

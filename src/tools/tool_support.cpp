@@ -39,6 +39,9 @@ std::string defaultParameterFile() { return packageShareDirectory() + "/config/f
 void ParameterOptions::addTo(CLI::App& app) {
   app.add_option("--config", config, "actuator parameter file (YAML); default: the package's config/finger.yaml");
   app.add_option("--set", assignments, "KEY=VALUE on top of the file (repeatable); `finger_model --parameters` lists keys")
+      ->type_name("KEY=VALUE")
+      ->expected(1)
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->allow_extra_args(false);
 }
 
