@@ -328,8 +328,7 @@ void benchMembraneVolume(benchmark::State& state) {
 }
 
 // Beside robust/validated: the package's paper-law finger with an incompressible drive, over the validated range
-// (issue 47: 2-3 us by bisection on the pressure before; now the closed form, the bulge from the volume and the
-// law's inverse).
+// (by bisection on the pressure before; now the closed form: the bulge from the volume and the law's inverse).
 void benchPaperVolume(benchmark::State& state) {
   const pf::FingerModel model(pf::FingerParameters::defaults());
   benchVolumeInput(state, model, pf::kValidatedMaxGaugePa,

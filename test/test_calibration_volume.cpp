@@ -233,7 +233,7 @@ TEST(CalibrationByVolume, ARunWithoutPressuresIsDrivenByVolume) {
             "line 1: no gauge_pa to drive the finger by pressure (drive it by volume, or give the column)");
 }
 
-// Issue 47, defect 14: a header that cannot be read says what it probably meant, and data given as columns name their
+// A header that cannot be read says what it probably meant, and data given as columns name their
 // rows as rows everywhere (before: "row 6" in one message, "line 1" in another).
 TEST(CalibrationData, RefusalsGiveTheLikelyCauseAndNameRowsOneWay) {
   EXPECT_EQ(refusal([] { pf::parseMeasurementSet("gauge_pa;tip_angle_rad\n1000;0.1\n", "m.csv", 1); }),

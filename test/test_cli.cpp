@@ -243,7 +243,7 @@ TEST(CalibrateCli, PrintsTableTwoAndWritesTheParameterFile) {
   EXPECT_EQ(readFile(out_file), readFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml"));
 }
 
-// Issue 47, defects 5 and 8: the calibrated file carries the range it was calibrated on, and every reader takes it;
+// The calibrated file carries the range it was calibrated on, and every reader takes it;
 // the node's own keys (volume_topic) in the same file are accepted by the tools. The reference is the data: its
 // highest pressure. Before: the validated range was the paper finger's 196133 Pa whatever the data, and a file with
 // volume_topic was refused as "unknown parameter".
@@ -440,7 +440,7 @@ TEST(Cli, VolumeInputAnswersThePressureAndPassesTheLimitPoint) {
   EXPECT_EQ(p[0], pf::formatExact(s.gauge_pa));
   EXPECT_LT(std::stod(p[0]), model.limitGaugePa()) << "past the limit point the pressure has fallen";
   EXPECT_EQ(p[10], pf::formatExact(s.joint_angle_rad[6]));
-  // Three times the limit point's volume curls this soft segment past a full turn (13.1 rad): said, once (issue 47).
+  // Three times the limit point's volume curls this soft segment past a full turn (13.1 rad): said, once.
   EXPECT_EQ(past.err.rfind("finger_model: warning: at " + pf::formatMessage(s.gauge_pa) +
                                " Pa gauge the finger meets itself (tip angle 13.1",
                            0),
@@ -458,8 +458,8 @@ TEST(Cli, VolumeInputRefusesWhatItCannotModel) {
   const CliRun plate = run("--supplied-volume-m3 1e-6 --blocked-tip-force");
   EXPECT_EQ(plate.status, 2);
   EXPECT_NE(plate.err.find("changes its volume, which is not modelled"), std::string::npos) << plate.err;
-  // Issue 47, defect 2: a volume above the one that makes max_gauge_pa is clamped there, with the pressure's words:
-  // the row is the finger at max_gauge_pa (before: 661 GPa for 1 m^3, exit 0, no warning).
+  // A volume above the one that makes max_gauge_pa is clamped there, with the pressure's words:
+  // the row is the finger at max_gauge_pa (before: an absurd pressure for 1 m^3, exit 0, no warning).
   const CliRun clamp = run("--supplied-volume-m3 1.0 --max-gauge-pa 1e5");
   ASSERT_EQ(clamp.status, 0) << clamp.err;
   EXPECT_NEAR(std::stod(fields(lines(clamp.out)[1])[0]), 1e5, 1e-4) << clamp.out;
@@ -522,7 +522,7 @@ TEST(UrdfCli, MjcfCarriesTheSpringsOfItsPressure) {
   const CliRun half = runShell(std::string(FINGER_URDF_EXE) + " --mjcf --gripper " + root + "/config/gripper.yaml");
   EXPECT_EQ(half.status, 2);
   EXPECT_NE(half.err.find("--mjcf with --gripper needs --robot"), std::string::npos) << half.err;
-  // Issue 47, defect 7: the range rule of every interface. 5e5 Pa writes the springs at max_gauge_pa, with the
+  // The range rule of every interface. 5e5 Pa writes the springs at max_gauge_pa, with the
   // node's and finger_model's words (before: springs for 500 kPa without a word); -1 Pa, the straight finger's.
   const auto body = [](const std::string& mjcf) { return mjcf.substr(mjcf.find("-->")); };  // past the header comment
   const CliRun over = runShell(std::string(FINGER_URDF_EXE) + " --mjcf --gauge-pa 5e5");
@@ -544,7 +544,7 @@ TEST(UrdfCli, MjcfCarriesTheSpringsOfItsPressure) {
   EXPECT_NE(beyond.err.find("no free shape at 20000 Pa gauge"), std::string::npos) << beyond.err;
 }
 
-// Issue 47, defect 14: the help says what an option takes, one value per occurrence (it showed "--gauge-pa TEXT ...",
+// The help says what an option takes, one value per occurrence (it showed "--gauge-pa TEXT ...",
 // and a second value was refused); a second value after one occurrence is still refused, by name.
 TEST(Cli, TheHelpShowsOneValuePerOccurrence) {
   const CliRun help = run("--help");

@@ -514,8 +514,8 @@ int runNode(const std::string& args, std::string& out) {
 }
 }  // namespace
 
-// Issue 47, defect 9: the physics cell sends its object at 50 Hz as it moves; the node says so once per change of id
-// or frame (before: every message, 1587 of 1768 lines of a run). The reference is the node's own log, read on /rosout.
+// The physics cell sends its object at 50 Hz as it moves; the node says so once per change of id
+// or frame (before: on every message, most of a run's log). The reference is the node's own log, read on /rosout.
 TEST_F(FingerNodeTest, AMovingGraspObjectIsLoggedOncePerChange) {
   std::mutex log_mutex;
   int said = 0;
@@ -549,7 +549,7 @@ TEST_F(FingerNodeTest, AMovingGraspObjectIsLoggedOncePerChange) {
   ros::Duration(0.2).sleep();
 }
 
-// Issue 47, defect 8: one parameter file serves every interface. The core's readers (finger_model, finger_calibrate,
+// One parameter file serves every interface. The core's readers (finger_model, finger_calibrate,
 // Python) skip finger_node's own keys and read the range keys; both lists are held here to the node's own table, so a
 // key added to the node is a key the tools accept. Before, volume_topic in a file made the tools fail.
 TEST(FingerNodeParameters, TheCoreKnowsEveryKeyOfTheNodeSoThatOneFileServesEveryInterface) {

@@ -179,7 +179,7 @@ TEST(FingerNodeLimitPoint, AGentWallSnapsThroughAndBackAndBothJumpsArePublished)
     const pf::FingerState& want = model.evaluate((step.gauge_pa + pf_test::kAtm) - pf_test::kAtm, ws);
     const pf::FingerModelState got = lastOf(gent_states);
     // On its far branch this finger curls past a full turn: the status says its backbone meets itself, over the
-    // snap, which snapped_through still carries (issue 47).
+    // snap, which snapped_through still carries.
     const bool meets = pf::backboneMeetsItself(want.backbone_m, want.joint_angle_rad.data());
     EXPECT_EQ(got.status, meets ? std::uint8_t{pf::FingerModelState::STATUS_MEETS_ITSELF} : step.status);
     EXPECT_EQ(static_cast<bool>(got.snapped_through[0]), step.status == snapped);
@@ -225,7 +225,7 @@ TEST(FingerNodeLimitPoint, DrivenByVolumeTheNeoHookeanWallIsFollowedPastItsLimit
     ros::WallDuration(0.05).sleep();
     const pf::FingerState& want = model.evaluateVolume(m.data, ws);
     const pf::FingerModelState got = lastOf(volume_states);
-    // Three times the limit point's volume curls it past a full turn: said (issue 47), the shape still published.
+    // Three times the limit point's volume curls it past a full turn: said, the shape still published.
     const bool meets = pf::backboneMeetsItself(want.backbone_m, want.joint_angle_rad.data());
     EXPECT_EQ(meets, share == 3.0);
     EXPECT_EQ(got.status, meets ? pf::FingerModelState::STATUS_MEETS_ITSELF : pf::FingerModelState::STATUS_OK);
@@ -247,7 +247,7 @@ TEST(FingerNodeLimitPoint, DrivenByVolumeTheNeoHookeanWallIsFollowedPastItsLimit
   ros::WallDuration(0.5).sleep();
   EXPECT_EQ(countOf(volume_joints), joints_before) << "a NaN volume is refused";
   EXPECT_EQ(countOf(volume_states), states_before);
-  // Issue 47, defect 3: a volume drawn out is the straight finger with STATUS_VACUUM and the gas's vacuum, as Python
+  // A volume drawn out is the straight finger with STATUS_VACUUM and the gas's vacuum, as Python
   // and finger_model give it (before: the last shape, with STATUS_BEYOND_LIMIT_POINT).
   std_msgs::Float64 drawn;
   drawn.data = -1e-6;

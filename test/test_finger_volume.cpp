@@ -301,7 +301,7 @@ TEST(FingerVolume, BadVolumesAreRefusedOrGiveTheRestShape) {
   const pf::FingerModel water(membraneFinger(0.0, 0.0));
   pf::FingerWorkspace ws_water(water);
   // An incompressible fluid is the gas's limit V_g -> 0 of P_o v/(V_g - v): absolute zero, where the liquid
-  // cavitates (issue 47: before, NaN here, and the node kept the last shape instead).
+  // cavitates (NaN here once, and the node kept the last shape instead).
   const pf::FingerState& drawn_water = water.evaluateVolume(-1e-6, ws_water);
   EXPECT_EQ(drawn_water.status, pf::EvaluationStatus::kVacuum);
   EXPECT_EQ(drawn_water.gauge_pa, -kAtmosphere);
@@ -411,9 +411,9 @@ TEST(FingerVolume, TheBatchByVolumeWritesEachRowAsEvaluateVolumeDoesAndNaNWhereI
   }
 }
 
-// Issue 47, defect 2: the volume input has the pressure's range. The top is the volume whose pressure is max_gauge_pa;
+// The volume input has the pressure's range. The top is the volume whose pressure is max_gauge_pa;
 // the reference is the model's own pressure at that volume (evaluateVolume's output), and on the paper law its forward
-// volume at max_gauge_pa. Before, 1 m^3 gave the paper finger 661 GPa with status ok.
+// volume at max_gauge_pa. Before, 1 m^3 gave the paper finger an absurd pressure with status ok.
 TEST(FingerVolume, AVolumeAboveTheOneThatMakesMaxGaugePaIsClampedToIt) {
   const pf::FingerModel paper(pf::FingerParameters::defaults());
   pf::FingerWorkspace ws(paper);

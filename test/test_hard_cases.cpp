@@ -223,7 +223,7 @@ TEST(HardCase, NonPhysicalGeometryIsRefusedNamingTheKey) {
   }
 }
 
-// Issue 47, defect 4: where the backbone meets itself. The reference is geometry drawn by hand: a square spiral that
+// Where the backbone meets itself. The reference is geometry drawn by hand: a square spiral that
 // crosses its first side, a C that turns by 270 degrees without closing, a chain whose end lands on its base.
 TEST(HardCase, TheBackboneMeetingItselfIsFoundAndOnlyThen) {
   const auto chain = [](std::vector<Eigen::Vector2d> points) {

@@ -113,7 +113,7 @@ def test_every_node_refuses_a_bad_parameter_by_name(master, node, params, messag
 
 
 def test_a_calibrated_file_with_round_values_loads_in_finger_launch(tmp_path):
-    # Issue 47, defect 1: finger_calibrate --output wrote 1e-05, a string to rosparam's YAML 1.1, and finger_node
+    # finger_calibrate --output wrote 1e-05, a string to rosparam's YAML 1.1, and finger_node
     # refused the file ("parameter 'chamber_gap_m' = '1e-05' is not a number"). Round values, written and launched.
     out = tmp_path / "round.yaml"
     fit = subprocess.run(["rosrun", "pneumatic_finger", "finger_calibrate", "--fit", "shear_modulus_pa",

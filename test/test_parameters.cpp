@@ -190,7 +190,7 @@ TEST(Parameters, EveryKeyRefusesEveryKindOfBadValueNamingTheKey) {
   }
 }
 
-// Issue 47, defect 1: a written file must read as numbers under YAML 1.1, which rosparam and PyYAML's safe_load use.
+// A written file must read as numbers under YAML 1.1, which rosparam and PyYAML's safe_load use.
 // The reference is YAML 1.1's own float and int patterns (yaml.org/type/float.html, /int.html, decimal forms):
 // "1e-05" matches neither, so rosparam read it as a string and finger_node refused the file.
 TEST(Parameters, WrittenNumbersAreYaml11NumbersThatReadBackExactly) {

@@ -336,7 +336,7 @@ def test_evaluate_volume_equals_the_cli_past_the_limit_point():
         for n in range(7):
             assert float(row[f"joint_{n + 1}_rad"]) == state["joint_angle_rad"][i, n]
         assert float(row["supplied_volume_m3"]) == state["supplied_volume_m3"][i] == volumes[i]
-    # Twice the limit point's volume curls this finger past a full turn: its backbone crosses itself (issue 47).
+    # Twice the limit point's volume curls this finger past a full turn: its backbone crosses itself.
     assert list(pf.STATUS[c] for c in state["status"]) == ["ok", "ok", "meets itself", "meets itself"]
     # Past the limit point the pressure falls while the finger keeps bending.
     assert state["gauge_pa"][3] < state["gauge_pa"][2] < model.limit_gauge_pa
@@ -370,7 +370,7 @@ def test_a_ramp_snaps_through_and_back_as_the_cli_prints_it():
     with pytest.warns(RuntimeWarning, match="the finger meets itself"):
         state = model.evaluate(numpy.array(ramp))
     # On the far branch this finger curls past a full turn (18.5 rad): its backbone crosses itself, which the status
-    # says over the snap (issue 47); the jump itself is below.
+    # says over the snap; the jump itself is below.
     assert [pf.STATUS[c] for c in state["status"]] == ["ok", "ok", "meets itself", "meets itself", "ok"]
     assert state["tip_angle_rad"][3] > state["tip_angle_rad"][1] + 0.5, "two shapes at one pressure"
     for i, row in enumerate(cli(*GENT_ARGS, *gauge_args(ramp))):
@@ -388,7 +388,7 @@ def test_a_ramp_snaps_through_and_back_as_the_cli_prints_it():
 
 
 def test_one_status_list_in_the_message_and_python():
-    # Issue 47, defect 6: pf.STATUS (indexed by code) and finger_state's STATUS_* constants are one list. The reference
+    # One status list: pf.STATUS (indexed by code) and finger_state's STATUS_* constants are one list. The reference
     # is the message file as a user reads it; before, 4 was "beyond limit point" in Python and 3 in the message.
     msg = pathlib.Path(__file__).resolve().parent.parent / "msg" / "FingerModelState.msg"
     constants = dict((m.group(1), int(m.group(2))) for m in
@@ -403,8 +403,8 @@ def test_one_status_list_in_the_message_and_python():
 
 
 def test_a_volume_has_the_pressures_range_and_python_refuses_what_is_not_a_number():
-    # Issue 47, defects 2 and 10: 1 m^3 was 'ok' with a 20.9 rad tip; None gave NaN and '100000' a pressure;
-    # supplied_volume(array) a raw pybind error.
+    # A volume has the pressure's range (1 m^3 was once 'ok', curled many turns); None once gave NaN and '100000' a
+    # pressure; supplied_volume(array) a raw pybind error.
     model = pf.FingerModel()
     top = model.max_supplied_volume_m3
     assert top == model.supplied_volume(294199.5)
@@ -422,7 +422,7 @@ def test_a_volume_has_the_pressures_range_and_python_refuses_what_is_not_a_numbe
 
 
 def test_calibrate_writes_the_file_every_interface_loads(tmp_path):
-    # Issue 47, defects 1, 5 and 10: Python writes the file finger_calibrate --output writes (the same keys, the
+    # Python writes the file finger_calibrate --output writes (the same keys, the
     # calibrated range), in YAML 1.1 numbers (PyYAML's safe_load reads as rosparam does: '1e-05' would be a string).
     import yaml
     out = tmp_path / "python.yaml"
@@ -441,7 +441,7 @@ def test_calibrate_writes_the_file_every_interface_loads(tmp_path):
 
 
 def test_a_finger_that_meets_itself_says_so_in_python_and_the_cli():
-    # Issue 47, defect 4: tip angles past a full turn were 'ok'. Where the backbone crosses itself, the status is
+    # Tip angles past a full turn were once 'ok'. Where the backbone crosses itself, the status is
     # 'meets itself' (finger_state's STATUS_MEETS_ITSELF), with the same words in Python and finger_model.
     model = pf.FingerModel(overrides={"shear_modulus_pa": 2e7})
     with pytest.warns(RuntimeWarning, match=r"the finger meets itself \(tip angle 6\.13\d* rad\)"):
@@ -454,7 +454,7 @@ def test_a_finger_that_meets_itself_says_so_in_python_and_the_cli():
 
 
 def test_the_interfaces_say_the_same_for_the_same_input():
-    # Issue 47: one contract at every edge. The same inputs through Python, finger_model and the MJCF writer give the
+    # One contract at every edge. The same inputs through Python, finger_model and the MJCF writer give the
     # same status, the same clamp in the same words, and the same numbers (finger_node says the core's same words:
     # pressure_range.hpp; its codes are held to the same list by static_asserts and test_one_status_list...).
     urdf_exe = os.path.join(os.path.dirname(FINGER_MODEL), "finger_urdf") if os.path.dirname(FINGER_MODEL) \
@@ -483,8 +483,8 @@ def test_the_interfaces_say_the_same_for_the_same_input():
 
 
 def test_a_path_follows_the_snap_across_calls_as_the_node_does():
-    # Issue 47, defect 10: evaluate(9000.) snapped, then evaluate(7000.) was back on the near branch, where the node
-    # stays on the far one. A FingerPath carries the branch from call to call; the reference is the one-call ramp.
+    # Separate model.evaluate calls start afresh (a snap, then a lower pressure, was back on the near branch), where the
+    # node stays on the far one. A FingerPath carries the branch from call to call; the reference is the one-call ramp.
     model = pf.FingerModel(overrides=GENT)
     limit, turning = model.limit_gauge_pa, model.far_turning_gauge_pa
     middle = 0.5 * (limit + turning)

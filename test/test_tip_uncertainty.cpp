@@ -36,7 +36,7 @@ TEST(TipUncertainty, LinearFromRestThroughTheCalibratedPressuresThenFlaggedAbove
   EXPECT_EQ(kBar.at(0.0).tip_angle_rad, 0.0);
   EXPECT_EQ(kBar.at(-5.0).tip_position_m, 0.0);
   EXPECT_FALSE(kBar.at(0.0).extrapolated);
-  // Below the first calibrated pressure (1e5 Pa): its bar, flagged (issue 47: it shrank to 0, unflagged).
+  // Below the first calibrated pressure (1e5 Pa): its bar, flagged (it once shrank to 0, unflagged).
   EXPECT_EQ(kBar.at(5e4).tip_angle_rad, kBar.tip_angle_rad[0]);
   EXPECT_EQ(kBar.at(1.0).tip_position_m, kBar.tip_position_m[0]);
   EXPECT_TRUE(kBar.at(5e4).extrapolated);
@@ -126,7 +126,7 @@ TEST(TipUncertainty, TheCalibrationsBarIsTheLargestOfFitLeaveOneOutAndTheFitsSca
   EXPECT_NEAR(hit.tip_angle_rad[0], std::sqrt(0.0008 / 3), 1e-15) << "the row the fit hits gets the scatter";
 }
 
-// Issue 47, defect 12: with 1 degree of noise on the measured tip angles, the bar read 0.22 degrees at a row the fit
+// With noise on the measured tip angles, the bar was once near 0 at a row the fit
 // happened to hit. The reference is the noise put in: tip angles of the package's finger with +1, -1 and 0 degrees
 // added in turn (RMS 0.82 degrees), which one fitted key cannot follow; the rows with none are hit, and their bar was
 // near 0. Every bar is now at least the noise's size, and the bar says where it is extrapolated.

@@ -20,6 +20,12 @@ PressureRange PressureRange::upTo(double max_gauge_pa) {
   return range;
 }
 
+PressureRange PressureRange::withTop(double max_gauge_pa) const {
+  PressureRange range = upTo(max_gauge_pa);
+  range.validated_max_gauge_pa = std::min(validated_max_gauge_pa, range.max_gauge_pa);
+  return range;
+}
+
 RangeCheck checkGaugeRange(double gauge_pa, const PressureRange& range) {
   RangeCheck c;
   c.gauge_pa = gauge_pa;

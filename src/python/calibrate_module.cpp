@@ -84,7 +84,8 @@ py::dict uncertaintyOf(const pf::CalibrationResult& fit) {
 py::dict calibrate(const py::object& path, const std::vector<std::string>& names,
                    const std::vector<std::vector<double>>& columns, const pf::CalibrationRequest& request,
                    const std::string& config, const py::dict& overrides) {
-  const pf::FingerParameters base = pf::calibrationBase(loadRaw(config, overrides), request.wall_law);
+  pf::PressureRange file_range;  // the base file's, which the calibrated range starts from
+  const pf::FingerParameters base = pf::calibrationBase(loadRaw(config, overrides, &file_range), request.wall_law);
   const pf::MeasurementSet data = measurements(path, names, columns, request.average_column);
   pf::CalibrationRun run;
   {
@@ -108,9 +109,6 @@ py::dict calibrate(const py::object& path, const std::vector<std::string>& names
   d["correlation"] = table(k, k, [&](std::size_t a, std::size_t b) { return best.fit.correlation[a * k + b]; });
   d["warnings"] = py::cast(run.warnings);
   // The file finger_calibrate --output writes (its keys; the Python wrapper adds the header): calibrate(output=).
-  pf::RawParameterMap raw;
-  pf::PressureRange file_range;
-  if (!config.empty()) pf::loadRawParametersFromYamlFile(config, raw, nullptr, &file_range);
   d["parameter_file"] = pf::calibratedParameterYaml(run, file_range);
   return d;
 }

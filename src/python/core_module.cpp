@@ -83,11 +83,7 @@ class PyFingerModel {
     // The file's range (max_gauge_pa, validated_max_gauge_pa), as every interface reads it; max_gauge_pa= on top.
     model_ = std::make_unique<pf::FingerModel>(pf::FingerParameters::fromRaw(loadRaw(config, overrides, &range_)),
                                                options);
-    if (!max_gauge_pa.is_none()) {
-      const double validated = range_.validated_max_gauge_pa;
-      range_ = pf::PressureRange::upTo(max_gauge_pa.cast<double>());
-      range_.validated_max_gauge_pa = std::min(validated, range_.max_gauge_pa);
-    }
+    if (!max_gauge_pa.is_none()) range_ = range_.withTop(max_gauge_pa.cast<double>());
     max_volume_m3_ = pf::maxSuppliedVolumeM3(*model_, range_);
   }
 

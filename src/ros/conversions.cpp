@@ -15,7 +15,7 @@ static_assert(FingerModelState::OBJECT_NONE == static_cast<int>(GraspObjectStatu
               "msg/FingerModelState.msg's OBJECT_* follow GraspObjectStatus");
 std::uint8_t toMessage(GraspObjectStatus status) { return static_cast<std::uint8_t>(status); }
 
-// finger_state's STATUS_* constants are the core's EvaluationStatus codes: one list (issue 47), with Python's pf.STATUS.
+// finger_state's STATUS_* constants are the core's EvaluationStatus codes: one list, with Python's pf.STATUS.
 static_assert(FingerModelState::STATUS_OK == static_cast<int>(EvaluationStatus::kOk) &&
                   FingerModelState::STATUS_VACUUM == static_cast<int>(EvaluationStatus::kVacuum) &&
                   FingerModelState::STATUS_CLAMPED == static_cast<int>(EvaluationStatus::kClamped) &&

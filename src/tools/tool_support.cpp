@@ -2,7 +2,6 @@
 
 #include <unistd.h>
 
-#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <fstream>
@@ -58,11 +57,7 @@ PressureRange ParameterOptions::loadRange(const std::string& max_gauge_text) con
   RawParameterMap raw;
   PressureRange range;
   loadRawParametersFromYamlFile(config.empty() ? defaultParameterFile() : config, raw, nullptr, &range);
-  if (max_gauge_text.empty()) return range;
-  const double validated = range.validated_max_gauge_pa;
-  range = PressureRange::upTo(parseFiniteOption("--max-gauge-pa", max_gauge_text));
-  range.validated_max_gauge_pa = std::min(validated, range.max_gauge_pa);
-  return range;
+  return max_gauge_text.empty() ? range : range.withTop(parseFiniteOption("--max-gauge-pa", max_gauge_text));
 }
 
 int runTool(const char* tool, CLI::App& app, int argc, char** argv, const std::function<int()>& body) {

@@ -25,6 +25,10 @@ struct PressureRange {
   /// The range up to @p max_gauge_pa (an interface's --max-gauge-pa or max_gauge_pa=), the validated range no higher.
   /// @throws ParameterError naming the value unless it is finite and > 0
   static PressureRange upTo(double max_gauge_pa);
+
+  /// This range with its top replaced by @p max_gauge_pa (a tool's --max-gauge-pa, Python's max_gauge_pa=): the
+  /// validated range kept, no higher than the new top. @throws ParameterError as upTo
+  PressureRange withTop(double max_gauge_pa) const;
 };
 
 /// One pressure against the range.
@@ -50,8 +54,8 @@ std::size_t clampToRange(const double* in, double* out, std::size_t count, const
 /// unless the model said otherwise at max_gauge_pa (beyond a membrane wall's limit point, a solver failure).
 void markClamped(const double* in, std::uint8_t* status, std::size_t count, const PressureRange& range);
 
-/// The same rule for the volume input (issue 47: "one input domain"): the most a supply may push in is the volume that
-/// makes max_gauge_pa along the inflation, and a larger volume gives the finger at that volume, status kClamped, with
+/// The same rule for the volume input (one input domain for pressure and volume): the most a supply may push in is
+/// the volume that makes max_gauge_pa along the inflation, and a larger volume gives the finger at that volume, status kClamped, with
 /// volumeClampedMessage's words. Below the pressure's limit point that is suppliedVolumeAt(max_gauge_pa); with the
 /// limit point within the range, the volume past it where the far branch's pressure climbs back to max_gauge_pa; +inf
 /// where the pressure never gets there (a Neo-Hookean balloon: volumeLimitM3() and the backbone's self-contact bound

@@ -20,7 +20,7 @@ namespace pneumatic_finger {
 ///         is not a number or a list of numbers, or an unknown key
 /// @param[in,out] range when given, the file's max_gauge_pa and validated_max_gauge_pa (rangeParameterSpecs) replace
 ///        its fields; the keys are checked whether it is given or not
-/// One file serves every interface (issue 47): the range keys are read by each (finger_node, finger_model, Python),
+/// One file serves every interface: the range keys are read by each (finger_node, finger_model, Python),
 /// and finger_node's own keys (nodeInterfaceKeys: topics, rates, frames) are left to the node by the others.
 void loadRawParametersFromYamlFile(const std::string& path, RawParameterMap& raw,
                                    TipUncertainty* tip_uncertainty = nullptr, PressureRange* range = nullptr);
