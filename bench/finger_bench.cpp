@@ -32,6 +32,19 @@ namespace pf = pneumatic_finger;
 
 namespace {
 
+// The timed loop of a finger evaluation: @p evaluate on each input in turn, its backbone kept from the optimiser.
+template <class Evaluate>
+void timeEvaluations(benchmark::State& state, const std::vector<double>& inputs, Evaluate evaluate) {
+  std::size_t i = 0;
+  for (auto _ : state) {
+    const pf::FingerState& s = evaluate(inputs[i]);
+    benchmark::DoNotOptimize(s.backbone_m.data());
+    benchmark::ClobberMemory();
+    if (++i == inputs.size()) i = 0;
+  }
+}
+
+
 const pf::FingerParameters kParams = pf::FingerParameters::defaults();
 
 // A whole-finger evaluator: pressure in, state out.
@@ -199,13 +212,7 @@ void benchVariant(benchmark::State& state, const std::string& name, bool hard) {
   const std::vector<double>& pressures = hard ? hardPressures() : validatedPressures();
   auto variant = makeVariant(name);
   const Errors err = cachedErrors(name, hard, *variant, pressures);
-  std::size_t i = 0;
-  for (auto _ : state) {
-    const pf::FingerState& s = variant->evaluate(pressures[i]);
-    benchmark::DoNotOptimize(s.backbone_m.data());
-    benchmark::ClobberMemory();
-    if (++i == pressures.size()) i = 0;
-  }
+  timeEvaluations(state, pressures, [&](double p) -> const pf::FingerState& { return variant->evaluate(p); });
   state.counters["max_theta_error_rad"] = err.theta;
   state.counters["max_tip_error_m"] = err.tip;
   state.counters["failures"] = err.failures;
@@ -246,13 +253,7 @@ void benchMembrane(benchmark::State& state, pf::WallLaw law, bool wall_inverse) 
     }
     state.counters["max_theta_error_rad"] = worst;
   }
-  std::size_t i = 0;
-  for (auto _ : state) {
-    const pf::FingerState& s = model.evaluate(pressures[i], ws);
-    benchmark::DoNotOptimize(s.backbone_m.data());
-    benchmark::ClobberMemory();
-    if (++i == pressures.size()) i = 0;
-  }
+  timeEvaluations(state, pressures, [&](double p) -> const pf::FingerState& { return model.evaluate(p, ws); });
   state.SetLabel(std::string(pf::wallLawName(law)) + " wall law, Gent, up to 0.99 of the limit point, " +
                  (wall_inverse ? "the wall's inverse" : "Newton steps"));
 }
@@ -307,13 +308,7 @@ void benchVolumeInput(benchmark::State& state, const pf::FingerModel& model, dou
     volumes.push_back(model.suppliedVolumeAt(p));
     worst = std::max(worst, std::fabs(model.evaluateVolume(volumes.back(), ws).gauge_pa - p) / p);
   }
-  std::size_t i = 0;
-  for (auto _ : state) {
-    const pf::FingerState& s = model.evaluateVolume(volumes[i], ws);
-    benchmark::DoNotOptimize(s.backbone_m.data());
-    benchmark::ClobberMemory();
-    if (++i == volumes.size()) i = 0;
-  }
+  timeEvaluations(state, volumes, [&](double v) -> const pf::FingerState& { return model.evaluateVolume(v, ws); });
   state.counters["max_gauge_relative_error"] = worst;
   state.SetLabel(label);
 }

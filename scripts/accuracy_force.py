@@ -50,7 +50,8 @@ def fit_bending(seg):
     data = str(ROOT / f"data/marchese2015_{seg['name']}_bending.csv")
     fits = []
     for law, spec in seg["laws"].items():
-        r = pf.calibrate(data=data, keys=spec["keys"], config=config, overrides=spec["start"], compare="tip_angle")
+        r = pf.calibrate(data=data, keys=spec["keys"], config=config, overrides=spec["start"], compare="tip_angle",
+                         leave_one_out=False)
         fits.append((r["objective_value"] * 180 / math.pi, law, {**spec["start"], **r["fitted"]}, r["warnings"]))
     error, law, overrides, warnings = min(fits, key=lambda f: f[0])
     return law, overrides, error, warnings, config

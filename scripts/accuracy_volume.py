@@ -86,9 +86,9 @@ def fits(name, even, law):
     the even rows is smaller, and both objectives' leave-one-out."""
     config, keys, start = str(ROOT / f"config/marchese2015_{name}.yaml"), LAWS[law]["keys"], start_of(name, law)
     by_pressure = {**start, **pf.calibrate(table(even), keys, "minimax", config, start, compare="tip_angle",
-                                           drive="pressure")["fitted"]}
+                                           drive="pressure", leave_one_out=False)["fitted"]}
     gas = pf.calibrate(table(even), ["dead_volume_m3"], "least_squares", config, by_pressure, compare="gauge_pa",
-                       drive="volume")["fitted"]
+                       drive="volume", leave_one_out=False)["fitted"]
     candidates = {objective: pf.calibrate(table(even), keys, objective, config, {**by_pressure, **gas},
                                           compare="tip_angle", drive="volume", leave_one_out=True)
                   for objective in ("minimax", "least_squares")}
@@ -96,7 +96,7 @@ def fits(name, even, law):
     chosen = min(loo, key=loo.get)
     by_volume = {**by_pressure, **candidates[chosen]["fitted"], **gas}
     both = pf.calibrate(table(even), BOTH_KEYS, "least_squares", config, by_volume, compare="tip_angle+gauge_pa",
-                        drive="volume")["fitted"]
+                        drive="volume", leave_one_out=False)["fitted"]
     ways = ({**by_pressure, **gas}, by_volume, {**by_volume, **both}, with_skin(config, even, by_volume))
     return config, ways, loo, chosen
 
@@ -108,7 +108,8 @@ def best_skin_share(config, even, start, keys, compare, report=None):
     best = None
     for ratio in SKIN_RATIOS:
         at = {**start, "chamber_growth_ratio": float(ratio)}
-        fit = pf.calibrate(table(even), keys, "least_squares", config, at, compare=compare, drive="volume")
+        fit = pf.calibrate(table(even), keys, "least_squares", config, at, compare=compare, drive="volume",
+                           leave_one_out=False)
         if report:
             report(ratio, fit["objective_value"])
         if best is None or fit["objective_value"] < best[0]:

@@ -13,3 +13,10 @@ def save(fig, path):
     """The figure, laid out, at the pages' resolution."""
     fig.tight_layout()
     fig.savefig(path, dpi=110)
+
+
+def finish_axes(ax, title, legend_size=8, legend_columns=1):
+    """One panel in the pages' style: a small title, a legend and a light grid."""
+    ax.set_title(title, fontsize=10)
+    ax.legend(fontsize=legend_size, ncol=legend_columns)
+    ax.grid(alpha=0.3)

@@ -12,6 +12,8 @@ import os
 import subprocess
 import sys
 
+from page_support import finish_axes
+
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
 
@@ -50,17 +52,14 @@ def main():
     ax.set_xlabel("gauge pressure (kPa)")
     ax.set_ylabel("joint angle (rad)")
     x, y, r = (float(v) * 1e3 for v in args.disk.split(","))
-    ax.set_title(f"Joint angles with a {r:g} mm disk at ({x:g}, {y:g}) mm (solid) and free (dashed)", fontsize=10)
-    ax.legend(ncol=2, fontsize=8)
-    ax.grid(alpha=0.3)
+    finish_axes(ax, f"Joint angles with a {r:g} mm disk at ({x:g}, {y:g}) mm (solid) and free (dashed)",
+                legend_columns=2)
     ax_volume.plot([v * 1e6 for v in free_volume], [x / 1e3 for x in p], "--", color="k", label="free")
     ax_volume.plot([v * 1e6 for v in held_volume], [x / 1e3 for x in p], "-", color="C3", linewidth=2,
                    label="on the disk: held walls take no more")
     ax_volume.set_xlabel("supplied volume (mL)")
     ax_volume.set_ylabel("gauge pressure (kPa)")
-    ax_volume.set_title("Driven by volume: the pressure it makes", fontsize=10)
-    ax_volume.legend(fontsize=8)
-    ax_volume.grid(alpha=0.3)
+    finish_axes(ax_volume, "Driven by volume: the pressure it makes")
     fig.tight_layout()
     fig.savefig(args.output, dpi=110)
     print(f"wrote {args.output}")

@@ -30,7 +30,7 @@ def main():
     keys = best_skin_share(config, even, base, PRESSURE_KEYS, "gauge_pa",
                            lambda ratio, value: print(f"- r_V = {ratio:g}: objective on the fitted half {value:.4g}"))
     keys.update(pf.calibrate(table(even), [GAP], "minimax", config, keys, compare="tip_angle",
-                             drive="volume")["fitted"])
+                             drive="volume", leave_one_out=False)["fitted"])
     model = pf.FingerModel(config, keys)
     print("- Marchese 2015 cylindrical segment, thick Gent wall bent by its inner face, keys fitted to the pressures "
           f"({len(even)} rows), then the gap to the bends: " +

@@ -1,11 +1,12 @@
 """A long run of the pick-and-place cell, measured: memory, CPU, latency and grasps, cycle by cycle.
 
-usage: python3 scripts/soak_cell.py CYCLES [--csv FILE] [--doc docs/SOAK.md] [--max-rss-growth-mb MB]
+usage: python3 scripts/soak_cell.py CYCLES [--cycle-time S] [--object-mass KG] [--csv FILE] [--doc docs/SOAK.md]
+                                   [--max-rss-growth-mb MB]
        (bash scripts/soak_cell.sh CYCLES runs it with the ROS environment; after scripts/build.sh)
 
-Starts the cell headless (launch/pick_and_place_cell.launch, rviz:=false) at the shortest cycle time its schedule
-accepts (2 s; the cell waits for the gripper where the fill outlasts the grasp phase), with a 3 g part (the 2 s lift's
-inertia leaves the grip too little for the 10 g one), for CYCLES cycles, and samples,
+Starts the cell headless (launch/pick_and_place_cell.launch, rviz:=false) at --cycle-time (default 2 s, the shortest
+its schedule accepts; the cell waits for the gripper where the fill outlasts the grasp phase) with an --object-mass
+part (default 3 g; the sequencer asks the grip that part and that lift need), for CYCLES cycles, and samples,
 at every completed cycle: every process's resident memory (VmRSS) and CPU time (/proc), the grasp's outcome
 (cell/events), the warnings and errors on /rosout, and the latency from the regulator's publish to finger A's
 joint_states at a subscriber (their stamps are the pressure's). Writes one CSV row per cycle; with --doc, the page
@@ -25,6 +26,8 @@ import subprocess
 import sys
 import threading
 import time
+
+from page_support import finish_axes
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 PROCESSES = ("nodelet manager", "cell_sequencer", "gripper_action_server", "robot_state_publisher", "rosmaster",
@@ -117,7 +120,7 @@ def percentile(values, q):
     return v[min(len(v) - 1, int(q * len(v)))]
 
 
-def run(cycles, csv_path):
+def run(cycles, csv_path, cycle_time_s, object_mass_kg):
     port = free_port()
     env = dict(os.environ, ROS_MASTER_URI=f"http://localhost:{port}")
     os.environ["ROS_MASTER_URI"] = env["ROS_MASTER_URI"]
@@ -130,13 +133,13 @@ def run(cycles, csv_path):
             break
         time.sleep(0.1)
     monitor = Monitor()
-    # A 2 s cycle lifts at 1.6 g: the grip holds 1.5 m (g + a) only for a part under 5 g (docs/SIMULATION.md).
     launch = subprocess.Popen(["roslaunch", "pneumatic_finger", "pick_and_place_cell.launch", "rviz:=false",
-                               "cycle_time:=2.0", "object_mass:=0.003", f"loop_count:={cycles}"], env=env, stdout=log,
+                               f"cycle_time:={cycle_time_s}", f"object_mass:={object_mass_kg}",
+                               f"loop_count:={cycles}"], env=env, stdout=log,
                               stderr=subprocess.STDOUT)
     processes, rows = {}, []
     outcome_of_cycle, done, pending, started = {}, 0, [], time.time()
-    deadline = started + 60 + 10 * cycles  # a cycle takes about 2.5 s; ten is a stall
+    deadline = started + 60 + 4 * (cycle_time_s + 0.5) * cycles  # four times the cycle is a stall
     with open(csv_path, "w", newline="") as f:
         writer = None
         ended = None  # the launch stops itself after the last cycle: its last messages still count, for 2 s
@@ -180,6 +183,16 @@ def run(cycles, csv_path):
     return rows, monitor.warning_texts, processes
 
 
+def quarters(rss_kb):
+    """The growth in each quarter of the run after warm-up, in words: whether a process's memory levels off (each
+    quarter adds less) or keeps climbing (each adds about the same). Empty for a run too short to cut in four."""
+    n = len(rss_kb)
+    if n < 8:
+        return ""
+    cuts = [rss_kb[(n - 1) * k // 4] for k in range(5)]
+    return " (by quarter: " + ", ".join(f"+{(b - a) / 1024:.2f}" for a, b in zip(cuts, cuts[1:])) + " MB)"
+
+
 def verdicts(rows, cycles, max_growth_mb, processes):
     """The run's figures and what failed (empty: nothing)."""
     failed, lines = [], []
@@ -200,7 +213,7 @@ def verdicts(rows, cycles, max_growth_mb, processes):
         span = rows[-1]["time_s"] - rows[0]["time_s"]
         share = 100 * (cpu[-1] - cpu[0]) / span if span > 0 and len(cpu) > 1 else math.nan
         lines.append(f"{name}: RSS {rss[0] / 1024:.1f} MB after warm-up (cycle {warm + 1}), largest {max(rss) / 1024:.1f}"
-                     f" MB: +{growth_mb:.2f} MB; CPU {share:.1f} % of one core")
+                     f" MB: +{growth_mb:.2f} MB{quarters(rss)}; CPU {share:.1f} % of one core")
         if growth_mb > max_growth_mb:
             failed.append(f"{name}'s RSS grew by {growth_mb:.2f} MB after warm-up (bound {max_growth_mb} MB)")
     return lines, failed
@@ -228,23 +241,19 @@ def plot(rows, processes, path):
         ax1.plot(cycles, rss, label=name)
     ax1.set_xlabel("cycle")
     ax1.set_ylabel("resident memory (MB)")
-    ax1.set_title("memory of every process, per cycle", fontsize=10)
-    ax1.legend(fontsize=7)
-    ax1.grid(alpha=0.3)
+    finish_axes(ax1, "memory of every process, per cycle", legend_size=7)
     blocks = latency_blocks(rows, max(1, min(100, len(rows) // 10)))
     ax2.plot([b[0] for b in blocks], [b[1] for b in blocks], "o-", label="p50")
     ax2.plot([b[0] for b in blocks], [b[2] for b in blocks], "s-", label="p99")
     ax2.set_xlabel("cycle (first of each block)")
     ax2.set_ylabel("regulator -> finger A joint_states (us)")
-    ax2.set_title("latency per block of cycles", fontsize=10)
-    ax2.legend(fontsize=8)
-    ax2.grid(alpha=0.3)
+    finish_axes(ax2, "latency per block of cycles")
     fig.tight_layout()
     fig.savefig(path, dpi=100)
 
 
-def write_doc(doc, rows, lines, failed, warnings, processes, cycles, command):
-    png = doc.with_name("soak.png")
+def write_doc(doc, rows, lines, failed, warnings, processes, command, setup):
+    png = doc.with_name(doc.stem.lower() + ".png")
     plot(rows, processes, png)
     blocks = latency_blocks(rows)
     p99 = [b[2] for b in blocks]
@@ -259,10 +268,10 @@ def write_doc(doc, rows, lines, failed, warnings, processes, cycles, command):
     model = re.search(r"Model name:\s*(.*)", cpu)
     text = [f"# A long run of the cell: {len(rows)} cycles", "",
             f"Measured by `{command}` on this machine ({os.cpu_count()} cores, {model.group(1) if model else 'unknown'}),"
-            f" {time.strftime('%Y-%m-%d')}: the cell headless at the shortest cycle time its schedule accepts (2 s; the"
-            " cell waits for the gripper where the fill outlasts the grasp phase). Every figure below is the script's;"
-            " the verdicts are computed by it, not typed.", "",
-            f"![memory of every process and latency per block of cycles](soak.png)", "", "```"]
+            f" {time.strftime('%Y-%m-%d')}: the cell headless at a {setup} (the cell waits for the gripper where the"
+            " fill outlasts the grasp phase; the sequencer asks the grip the part and the lift need). Every figure"
+            " below is the script's; the verdicts are computed by it, not typed.", "",
+            f"![memory of every process and latency per block of cycles]({png.name})", "", "```"]
     text += lines
     text += ["latency, regulator publish -> finger A joint_states at a subscriber, per 100 cycles "
              "(first cycle: median p50 / largest p99, us):"]
@@ -278,21 +287,32 @@ def write_doc(doc, rows, lines, failed, warnings, processes, cycles, command):
     doc.write_text("\n".join(text) + "\n")
 
 
+def doc_option(doc):
+    """The --doc option soak_cell.sh needs to write @p doc (none for its default, docs/SOAK.md)."""
+    rel = os.path.relpath(pathlib.Path(doc).resolve(), ROOT)
+    return "" if rel == "docs/SOAK.md" else f" --doc {rel}"
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("cycles", type=int)
     parser.add_argument("--csv", default=str(ROOT / "build" / "soak_cell.csv"))
     parser.add_argument("--doc", help="write this page (docs/SOAK.md) and its plot beside it")
     parser.add_argument("--max-rss-growth-mb", type=float, default=1.0)
+    parser.add_argument("--cycle-time", type=float, default=2.0, help="s (default 2, the shortest the schedule takes)")
+    parser.add_argument("--object-mass", type=float, default=0.003, help="kg (default 0.003)")
     args = parser.parse_args()
     if args.cycles < 1:
         sys.exit("soak_cell: CYCLES must be a whole number >= 1")
-    rows, warnings, processes = run(args.cycles, args.csv)
+    rows, warnings, processes = run(args.cycles, args.csv, args.cycle_time, args.object_mass)
     lines, failed = verdicts(rows, args.cycles, args.max_rss_growth_mb, processes)
     print("\n".join(lines))
     if args.doc:
-        write_doc(pathlib.Path(args.doc), rows, lines, failed, warnings, processes, args.cycles,
-                  f"bash scripts/soak_cell.sh {args.cycles}")
+        setup = f"{args.cycle_time:g} s cycle with a {1e3 * args.object_mass:g} g part"
+        extra = "" if (args.cycle_time, args.object_mass) == (2.0, 0.003) else \
+            f" --cycle-time {args.cycle_time:g} --object-mass {args.object_mass:g}"
+        write_doc(pathlib.Path(args.doc), rows, lines, failed, warnings, processes,
+                  f"bash scripts/soak_cell.sh {args.cycles}{extra}{doc_option(args.doc)}", setup)
     if failed:
         sys.exit("soak_cell: " + "; ".join(failed))
     print(f"soak_cell: {len(rows)} cycles, every check passed")

@@ -110,3 +110,33 @@ TEST(GraspHold, TheLiftsInertiaAddsToTheWeight) {
             std::string::npos) << lifted.message;
   EXPECT_EQ(still.message.find("inertia"), std::string::npos) << still.message;
 }
+
+// The grip the cell asks for is judgeHold's rule solved for the finger force: at it the grip holds, a hair under it,
+// not. Where the gripper's most falls short, the limits are the part judgeHold holds at that most (this lift) and the
+// cycle whose own schedule lifts gently enough (its lift phase rebuilt, not scaled).
+TEST(GraspHold, TheGripAskedIsTheOneThePartAndTheLiftNeed) {
+  const double needed = pf::requiredFingerForceN(3, 0.02, 1.0, 1.5, 1.0);
+  EXPECT_NEAR(needed, 1.5 * 0.02 * 10.80665 / 3.0, 1e-15);
+  EXPECT_TRUE(pf::judgeHold(3, needed * (1 + 1e-12), 0.02, 1.0, 1.5, 1.0).holds);
+  EXPECT_FALSE(pf::judgeHold(3, needed * (1 - 1e-9), 0.02, 1.0, 1.5, 1.0).holds);
+
+  const double rise_m = 0.1, cycle_s = 4.0;
+  auto lift_at = [&](double cycle) {
+    const pf::CellSchedule s(waypoints(), cycle);
+    return pf::smoothstepPeakAcceleration(rise_m, s.phaseDurationS(pf::CellPhase::kLift));
+  };
+  const double most_n = 0.06;
+  const pf::GripLimits short_of = pf::gripLimits(3, most_n, 0.01, 1.0, 1.5, lift_at(cycle_s), cycle_s);
+  EXPECT_FALSE(short_of.enough);
+  EXPECT_TRUE(pf::judgeHold(3, most_n, short_of.heaviest_part_kg * (1 - 1e-9), 1.0, 1.5, lift_at(cycle_s)).holds);
+  EXPECT_FALSE(pf::judgeHold(3, most_n, short_of.heaviest_part_kg * (1 + 1e-9), 1.0, 1.5, lift_at(cycle_s)).holds);
+  ASSERT_GT(short_of.shortest_cycle_s, cycle_s);
+  const double slowest_lift = lift_at(short_of.shortest_cycle_s);
+  EXPECT_NEAR(pf::requiredFingerForceN(3, 0.01, 1.0, 1.5, slowest_lift), most_n, 1e-12);
+  EXPECT_NE(short_of.message.find("a cycle of at least"), std::string::npos) << short_of.message;
+  EXPECT_TRUE(pf::gripLimits(3, 0.1, 0.01, 1.0, 1.5, lift_at(cycle_s), cycle_s).enough);
+  // Too heavy even at rest: no cycle.
+  const pf::GripLimits never = pf::gripLimits(3, 0.01, 0.01, 1.0, 1.5, lift_at(cycle_s), cycle_s);
+  EXPECT_TRUE(std::isinf(never.shortest_cycle_s));
+  EXPECT_NE(never.message.find("no cycle: even a slow lift"), std::string::npos) << never.message;
+}

@@ -46,6 +46,13 @@ CliRun runShell(const std::string& command) {
 
 CliRun run(const std::string& args) { return runShell(std::string(FINGER_MODEL_EXE) + " " + args); }
 
+// finger_model refuses @p args: exit 2, and its error names @p words.
+void expectRefused(const std::string& args, const std::string& words) {
+  const CliRun r = run(args);
+  EXPECT_EQ(r.status, 2) << "finger_model " << args;
+  EXPECT_NE(r.err.find(words), std::string::npos) << "finger_model " << args << ": " << r.err;
+}
+
 std::string readFile(const std::string& path) {
   std::ifstream in(path);
   std::stringstream ss;
@@ -168,12 +175,8 @@ TEST(Cli, AnObstacleDiskHoldsTheFingerWhereItTouches) {
   EXPECT_EQ(h[1], f[1]) << "not yet touching: the free finger";
   EXPECT_NE(h[2], f[2]) << "touching: held";
   EXPECT_LT(std::stod(fields(h[2])[10]), std::stod(fields(f[2])[10])) << "joint 7 held below its free angle";
-  const CliRun bad = run("--gauge-pa 1 --obstacle-disk 0.07,0.03,-1");
-  EXPECT_EQ(bad.status, 2);
-  EXPECT_NE(bad.err.find("radius"), std::string::npos) << bad.err;
-  const CliRun short_list = run("--gauge-pa 1 --obstacle-disk 0.07,0.03");
-  EXPECT_EQ(short_list.status, 2);
-  EXPECT_NE(short_list.err.find("X,Y,R"), std::string::npos) << short_list.err;
+  expectRefused("--gauge-pa 1 --obstacle-disk 0.07,0.03,-1", "radius");
+  expectRefused("--gauge-pa 1 --obstacle-disk 0.07,0.03", "X,Y,R");
 }
 
 // The time mode (eq 4): a constant flow fills the finger; the pressure of each row is P_o Q t / V_o with V_o the
@@ -449,15 +452,9 @@ TEST(Cli, VolumeInputAnswersThePressureAndPassesTheLimitPoint) {
 }
 
 TEST(Cli, VolumeInputRefusesWhatItCannotModel) {
-  const CliRun nan_volume = run("--supplied-volume-m3 nan");
-  EXPECT_EQ(nan_volume.status, 2);
-  EXPECT_NE(nan_volume.err.find("--supplied-volume-m3"), std::string::npos) << nan_volume.err;
-  const CliRun both = run("--supplied-volume-m3 1e-6 --gauge-pa 1000");
-  EXPECT_EQ(both.status, 2);
-  EXPECT_NE(both.err.find("give one input"), std::string::npos) << both.err;
-  const CliRun plate = run("--supplied-volume-m3 1e-6 --blocked-tip-force");
-  EXPECT_EQ(plate.status, 2);
-  EXPECT_NE(plate.err.find("changes its volume, which is not modelled"), std::string::npos) << plate.err;
+  expectRefused("--supplied-volume-m3 nan", "--supplied-volume-m3");
+  expectRefused("--supplied-volume-m3 1e-6 --gauge-pa 1000", "give one input");
+  expectRefused("--supplied-volume-m3 1e-6 --blocked-tip-force", "changes its volume, which is not modelled");
   // A volume above the one that makes max_gauge_pa is clamped there, with the pressure's words:
   // the row is the finger at max_gauge_pa (before: an absurd pressure for 1 m^3, exit 0, no warning).
   const CliRun clamp = run("--supplied-volume-m3 1.0 --max-gauge-pa 1e5");
@@ -552,8 +549,6 @@ TEST(Cli, TheHelpShowsOneValuePerOccurrence) {
   EXPECT_NE(help.out.find("--gauge-pa PA "), std::string::npos) << help.out;
   EXPECT_NE(help.out.find("--supplied-volume-m3 M3 "), std::string::npos) << help.out;
   EXPECT_EQ(help.out.find("TEXT ..."), std::string::npos) << help.out;
-  const CliRun two = run("--gauge-pa 1000 2000");
-  EXPECT_EQ(two.status, 2);
-  EXPECT_NE(two.err.find("2000"), std::string::npos) << two.err;
+  expectRefused("--gauge-pa 1000 2000", "2000");
   EXPECT_EQ(lines(run("--gauge-pa 1000 --gauge-pa 2000").out).size(), 3u);
 }

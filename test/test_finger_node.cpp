@@ -31,6 +31,7 @@
 #include "pneumatic_finger/ros/node_parameters.hpp"
 #include "pneumatic_finger/GraspObject.h"
 #include "pneumatic_finger/core/contact.hpp"
+#include "grasp_object_support.hpp"
 #include "ros_test_support.hpp"
 
 namespace pf = pneumatic_finger;
@@ -387,13 +388,8 @@ TEST_F(FingerNodeTest, GraspObjectConstrainsTheFingerAndOutOfReachChangesNothing
       Eigen::AngleAxisd(kMountRpy[2], Eigen::Vector3d::UnitZ()) * Eigen::AngleAxisd(kMountRpy[1], Eigen::Vector3d::UnitY()) *
       Eigen::AngleAxisd(kMountRpy[0], Eigen::Vector3d::UnitX());
   auto publishSphere = [&](const std::string& id, const Eigen::Vector3d& in_finger, double radius) {
-    pf::GraspObject o;
-    o.header.frame_id = "tool0";
-    o.id = id;
-    o.shape.type = shape_msgs::SolidPrimitive::SPHERE;
-    o.shape.dimensions = {radius};
     const Eigen::Vector3d c = parent_from_finger * in_finger;
-    o.pose.position.x = c.x(), o.pose.position.y = c.y(), o.pose.position.z = c.z();
+    pf::GraspObject o = pf_test::sphereObject("tool0", id, radius, c.x(), c.y(), c.z());
     const Eigen::Quaterniond q(parent_from_finger.rotation());
     o.pose.orientation.x = q.x(), o.pose.orientation.y = q.y(), o.pose.orientation.z = q.z(), o.pose.orientation.w = q.w();
     object_pub.publish(o);
@@ -528,12 +524,7 @@ TEST_F(FingerNodeTest, AMovingGraspObjectIsLoggedOncePerChange) {
   while ((object_pub.getNumSubscribers() == 0 || rosout.getNumPublishers() == 0) && ros::Time::now() < deadline) {
     ros::Duration(0.02).sleep();
   }
-  pf::GraspObject o;
-  o.header.frame_id = "tool0";
-  o.id = "logged_once";
-  o.shape.type = shape_msgs::SolidPrimitive::SPHERE;
-  o.shape.dimensions = {0.01};
-  o.pose.orientation.w = 1.0;
+  pf::GraspObject o = pf_test::sphereObject("tool0", "logged_once", 0.01, 0.5, 0.0);
   for (int k = 0; k < 10; ++k) {
     o.pose.position.x = 0.5 + 0.001 * k;  // it moves, as a carried part does
     object_pub.publish(o);

@@ -25,6 +25,7 @@
 #include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
+#include "grasp_object_support.hpp"
 #include "ros_test_support.hpp"
 
 namespace pf = pneumatic_finger;
@@ -66,6 +67,22 @@ ros::Subscriber collect(ros::NodeHandle& nh, const std::string& topic, std::vect
   return nh.subscribe<M>(topic, 100, append);
 }
 
+// A finger node's topics under @p ns: its joint_states and finger_state collected, its input advertised.
+template <class Input>
+struct FingerTopics {
+  ros::Subscriber joints, states;
+  ros::Publisher input;
+  FingerTopics(ros::NodeHandle& nh, const std::string& ns, const std::string& input_topic,
+               std::vector<sensor_msgs::JointState>& joint_log, std::vector<pf::FingerModelState>& state_log)
+      : joints(collect(nh, ns + "joint_states", joint_log)),
+        states(collect(nh, ns + "finger_state", state_log)),
+        input(nh.advertise<Input>(ns + input_topic, 10)) {}
+  /// The node listens to the input and publishes joint_states (within @p seconds).
+  bool connect(double seconds) const {
+    return waitFor([this] { return input.getNumSubscribers() > 0 && joints.getNumPublishers() > 0; }, seconds);
+  }
+};
+
 void onDiagnostics(const diagnostic_msgs::DiagnosticArray::ConstPtr& m) {
   std::lock_guard<std::mutex> lock(mutex);
   for (const auto& s : m->status) {
@@ -90,11 +107,10 @@ std::vector<pf::FingerModelState> gent_states;
 
 TEST(FingerNodeLimitPoint, NothingIsPublishedPastTheLimitPointAndTheShapeReturnsBelowIt) {
   ros::NodeHandle nh;
-  const ros::Subscriber sub_j = collect(nh, "joint_states", joints);
-  const ros::Subscriber sub_s = collect(nh, "finger_state", states);
+  const FingerTopics<sensor_msgs::FluidPressure> topics(nh, "", "pressure", joints, states);
   const ros::Subscriber sub_d = nh.subscribe("/diagnostics", 100, onDiagnostics);
-  ros::Publisher pub = nh.advertise<sensor_msgs::FluidPressure>("pressure", 10);
-  ASSERT_TRUE(waitFor([&] { return pub.getNumSubscribers() > 0 && sub_j.getNumPublishers() > 0; }, 30));
+  ASSERT_TRUE(topics.connect(30));
+  ros::Publisher pub = topics.input;
   const pf::FingerModel model = ribbedModel();
   const double limit = model.limitGaugePa();
   ASSERT_TRUE(std::isfinite(limit)) << "the ribbed segment's Neo-Hookean wall has a limit point";
@@ -149,10 +165,9 @@ TEST(FingerNodeLimitPoint, NothingIsPublishedPastTheLimitPointAndTheShapeReturns
 // same path (a workspace that saw the same pressures), with the jump up and the jump back both published.
 TEST(FingerNodeLimitPoint, AGentWallSnapsThroughAndBackAndBothJumpsArePublished) {
   ros::NodeHandle nh;
-  const ros::Subscriber sub_j = collect(nh, "gent/joint_states", gent_joints);
-  const ros::Subscriber sub_s = collect(nh, "gent/finger_state", gent_states);
-  ros::Publisher pub = nh.advertise<sensor_msgs::FluidPressure>("gent/pressure", 10);
-  ASSERT_TRUE(waitFor([&] { return pub.getNumSubscribers() > 0 && sub_j.getNumPublishers() > 0; }, 30));
+  const FingerTopics<sensor_msgs::FluidPressure> topics(nh, "gent/", "pressure", gent_joints, gent_states);
+  ASSERT_TRUE(topics.connect(30));
+  ros::Publisher pub = topics.input;
   const pf::FingerModel model = ribbedModel(50.0);
   const double limit = model.limitGaugePa(), turning = model.farTurningGaugePa();
   ASSERT_TRUE(std::isfinite(turning)) << "a Gent wall with J_m = 50 stiffens again past its limit";
@@ -203,10 +218,9 @@ std::vector<pf::FingerModelState> volume_states;
 // limit point too (where a pressure gets STATUS_BEYOND_LIMIT_POINT); a NaN volume is refused and nothing published.
 TEST(FingerNodeLimitPoint, DrivenByVolumeTheNeoHookeanWallIsFollowedPastItsLimitPoint) {
   ros::NodeHandle nh;
-  const ros::Subscriber sub_j = collect(nh, "volume/joint_states", volume_joints);
-  const ros::Subscriber sub_s = collect(nh, "volume/finger_state", volume_states);
-  ros::Publisher pub = nh.advertise<std_msgs::Float64>("volume/supplied_volume", 10);
-  ASSERT_TRUE(waitFor([&] { return pub.getNumSubscribers() > 0 && sub_j.getNumPublishers() > 0; }, 30));
+  const FingerTopics<std_msgs::Float64> topics(nh, "volume/", "supplied_volume", volume_joints, volume_states);
+  ASSERT_TRUE(topics.connect(30));
+  ros::Publisher pub = topics.input;
   pf::RawParameterMap raw;
   pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/marchese2015_ribbed.yaml", raw);
   raw["dead_volume_m3"] = {{1e-5}, false};
@@ -275,13 +289,7 @@ TEST(FingerNodeLimitPoint, DrivenByVolumeAFingerOnAnObjectTakesTheContactRulesVo
   ros::Publisher object_pub = nh.advertise<pf::GraspObject>("volume_object/grasp_object", 1, true);
   ASSERT_TRUE(waitFor([&] { return pub.getNumSubscribers() > 0 && sub_s.getNumPublishers() > 0; }, 30));
   ASSERT_TRUE(waitFor([&] { return object_pub.getNumSubscribers() > 0; }, 30));
-  pf::GraspObject o;
-  o.header.frame_id = pf::segmentLinkName("vobj_", 0);
-  o.id = "sphere";
-  o.shape.type = shape_msgs::SolidPrimitive::SPHERE;
-  o.shape.dimensions = {0.01};
-  o.pose.position.x = 0.075, o.pose.position.y = 0.035, o.pose.orientation.w = 1.0;
-  object_pub.publish(o);
+  object_pub.publish(pf_test::sphereObject(pf::segmentLinkName("vobj_", 0), "sphere", 0.01, 0.075, 0.035));
   pf::RawParameterMap raw;
   pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/finger.yaml", raw);
   raw["dead_volume_m3"] = {{2e-5}, false};

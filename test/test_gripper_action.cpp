@@ -13,6 +13,7 @@
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
+#include "grasp_object_support.hpp"
 #include "ros_test_support.hpp"
 
 namespace pf = pneumatic_finger;
@@ -66,15 +67,7 @@ TEST(GripperAction, ClosesStallsOnTheObjectAndAbortsWhatNoPressureReaches) {
   // A sphere whose section by the finger's plane is a 12 mm disk at (60, 30) mm in the finger's frame.
   ASSERT_EQ(send(client, 0.0), State::SUCCEEDED);
   ros::Publisher pub = nh.advertise<pf::GraspObject>("/grasp_object", 1, true);
-  pf::GraspObject object;
-  object.header.frame_id = "f_segment_0";
-  object.id = "ball";
-  object.shape.type = shape_msgs::SolidPrimitive::SPHERE;
-  object.shape.dimensions = {0.012};
-  object.pose.position.x = 0.06;
-  object.pose.position.y = 0.03;
-  object.pose.orientation.w = 1;
-  pub.publish(object);
+  pub.publish(pf_test::sphereObject("f_segment_0", "ball", 0.012, 0.06, 0.03));
   const pf::ContactState touch = pf::ContactSolver(finger).solve(294199.5, pf::Obstacle::disk(0.06, 0.03, 0.012));
   ASSERT_TRUE(std::isfinite(touch.first_touch_gauge_pa));
   ros::Duration(1.0).sleep();  // the node's object timer picks it up

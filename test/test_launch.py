@@ -63,6 +63,18 @@ def test_a_finished_cell_run_reads_clean_in_time_order():
     assert all(b >= a - 1e-3 for a, b in zip(stamps, stamps[1:])), out
 
 
+def test_a_part_the_gripper_cannot_lift_at_this_cycle_is_refused_at_start_with_what_would_work():
+    # A 150 g part at the 2 s cycle: its lift (16 m/s^2) needs about 2 N per finger, the gripper gives 0.91 N at the
+    # top of its range. The sequencer refuses before the first cycle and names the heaviest part at this cycle and
+    # the shortest cycle for this part (GraspHold.* checks the figures); nothing is grasped.
+    done = roslaunch("pick_and_place_cell.launch", "rviz:=false", "loop_count:=1", "cycle_time:=2.0",
+                     "object_mass:=0.15")
+    out = done.stdout + done.stderr
+    assert "cell_sequencer: the grip cannot hold a 0.15 kg part at a 2 s cycle" in out, out
+    assert re.search(r"At this cycle, a part of at most 0\.0\d+ kg; for this part, a cycle of at least 5\.\d+ s", out), out
+    assert "cycle 1: grasp" not in out, out
+
+
 @pytest.fixture(scope="module")
 def master():
     port = free_port()

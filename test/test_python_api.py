@@ -9,6 +9,7 @@ import math
 import os
 import pathlib
 import re
+import shutil
 import subprocess
 import warnings
 
@@ -219,7 +220,25 @@ def test_calibrate_reproduces_the_shipped_fit():
     assert fit["objective_value"] == worst
     with pytest.raises(ValueError, match="no_such_key"):
         pf.calibrate(keys=["no_such_key"])
-    assert fit["leave_one_out"] is None  # only when asked for
+    assert fit["leave_one_out"]["model_joint_rad"].shape == (4, 7)  # by default, as finger_calibrate
+    assert pf.calibrate(leave_one_out=False)["leave_one_out"] is None  # the quick fit alone
+
+
+def test_python_refuses_the_rows_the_cli_refuses(tmp_path):
+    # Three rows for two chamber keys: finger_calibrate refuses them (leave-one-out needs two more rows than chamber
+    # keys), and so does pf.calibrate by default, in the core's words. output= needs leave-one-out's error bar.
+    rows = {"gauge_pa": [49033.25, 98066.5, 147099.75], "tip_angle_rad": [0.5, 1.0, 1.5]}
+    words = "3 rows; fitting 2 chamber keys with leave-one-out needs at least 4"
+    with pytest.raises(ValueError, match=words):
+        pf.calibrate(rows, ["shear_modulus_pa", "chamber_gap_m"])
+    path = tmp_path / "three.csv"
+    path.write_text("gauge_pa,tip_angle_rad\n" + "".join(f"{p},{a}\n" for p, a in zip(*rows.values())))
+    tool = pathlib.Path(shutil.which(FINGER_MODEL) or FINGER_MODEL).parent / "finger_calibrate"
+    cli = subprocess.run([str(tool), "--data", str(path), "--fit", "shear_modulus_pa,chamber_gap_m"],
+                         capture_output=True, text=True)
+    assert cli.returncode == 2 and words in cli.stderr, cli.stderr
+    with pytest.raises(ValueError, match="output= writes finger_calibrate's file"):
+        pf.calibrate(leave_one_out=False, output=str(tmp_path / "f.yaml"))
 
 
 def test_leave_one_out_is_the_tools_own():
@@ -277,7 +296,8 @@ def test_calibration_driven_by_volume_finds_the_gap_past_the_limit_point():
     made = model.evaluate_volume(volume, outputs=["tip_angle_rad", "gauge_pa"])
     assert made["gauge_pa"][-1] < made["gauge_pa"].max()
     data = {"supplied_volume_m3": volume, "tip_angle_rad": made["tip_angle_rad"]}
-    fit = pf.calibrate(data, ["chamber_gap_m"], overrides={**truth, "chamber_gap_m": 0.0}, compare="tip_angle")
+    fit = pf.calibrate(data, ["chamber_gap_m"], overrides={**truth, "chamber_gap_m": 0.0}, compare="tip_angle",
+                       leave_one_out=False)
     assert fit["fitted"]["chamber_gap_m"] == pytest.approx(1e-3, rel=1e-6)
     assert fit["residuals"]["model_gauge_pa"] == pytest.approx(made["gauge_pa"], rel=1e-6)
     with pytest.raises(ValueError, match="no gauge_pa to drive the finger by pressure"):
@@ -287,7 +307,8 @@ def test_calibration_driven_by_volume_finds_the_gap_past_the_limit_point():
     # With the pressures beside the bends, the modulus is in the data again: both together give it back.
     both = {**data, "gauge_pa": made["gauge_pa"]}
     fit = pf.calibrate(both, ["shear_modulus_pa", "chamber_gap_m"], compare="tip_angle+gauge_pa", drive="volume",
-                       overrides={**truth, "shear_modulus_pa": 4e4, "chamber_gap_m": 0.0}, objective="least_squares")
+                       overrides={**truth, "shear_modulus_pa": 4e4, "chamber_gap_m": 0.0}, objective="least_squares",
+                       leave_one_out=False)
     assert fit["compared"] == "tip_angle+gauge_pa"
     assert fit["fitted"]["shear_modulus_pa"] == pytest.approx(2e4, rel=1e-6)
     assert fit["fitted"]["chamber_gap_m"] == pytest.approx(1e-3, rel=1e-6)

@@ -69,7 +69,7 @@ def _data(data):
 
 
 def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=None, average_column="",
-              compare=None, leave_one_out=False, wall_law=None, drive=None, output=None):
+              compare=None, leave_one_out=True, wall_law=None, drive=None, output=None):
     """finger_calibrate from Python: the same defaults, data check, fit and leave-one-out.
 
     data: a CSV path, or a mapping of column names to arrays: gauge_pa and/or supplied_volume_m3, and any of
@@ -84,11 +84,15 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
     per measurement: gauge_pa (R,), supplied_volume_m3, measured_/model_gauge_pa (R,), measured_/model_joint_rad (R, N), measured_/model_avg_rad, _joint1_rad,
     _tip_angle_rad (R,), measured_/model_tip_m (R, 2); NaN where nothing was measured), model_evaluations,
     uncertainty (key -> one standard deviation), correlation (keys x keys array), warnings (columns not read, keys
-    that trade off or sit on their search range's end), and leave_one_out: with leave_one_out=True (or
-    wall_law="auto") the residuals of each row predicted by a fit to the others, else None; parameter_file: the text
-    of the calibrated parameter file. output: a path to write that file to, as `finger_calibrate --output` does (the
+    that trade off or sit on their search range's end), and leave_one_out: the residuals of each row predicted by a
+    fit to the others, as the CLI reports them (so the data need the CLI's rows: two more than the chamber keys);
+    leave_one_out=False is the quick fit alone (no leave-one-out, no error bar, None here, and no output=);
+    parameter_file: the text of the calibrated parameter file. output: a path to write that file to, as `finger_calibrate --output` does (the
     fitted keys, the calibrated range validated_max_gauge_pa, the error bar), which finger_node, finger_model and
     FingerModel(config=) load alike."""
+    if output is not None and not leave_one_out:
+        raise ValueError("output= writes finger_calibrate's file, whose error bar needs leave-one-out: drop "
+                         "leave_one_out=False")
     path, names, columns = _data(data)
     result = _calibrate(path, names, columns, _keys(keys), objective,
                         config if config is not None else default_config(), dict(overrides or {}), average_column,

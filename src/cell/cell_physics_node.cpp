@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "pneumatic_finger/GraspObject.h"
+#include "pneumatic_finger/ros/node_main.hpp"
 #include "pneumatic_finger/cell/side_grasp.hpp"
 #include "pneumatic_finger/ros/parameter_reader.hpp"
 #include "pneumatic_finger/sim/cell_physics.hpp"
@@ -269,19 +270,5 @@ void CellPhysicsNode::onPublish(const ros::TimerEvent&) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  // `cell_physics --parameters`: the node's own parameters as Markdown, for docs/ (no ROS master needed).
-  if (pf::printParametersIfAsked(argc, argv, physicsParameterSpecs())) return 0;
-  ros::init(argc, argv, "cell_physics");
-  ros::NodeHandle nh, pnh("~");
-  try {
-    CellPhysicsNode node(nh, pnh);
-    ros::AsyncSpinner spinner(2);
-    spinner.start();
-    ros::waitForShutdown();
-  } catch (const pf::ParameterError& e) {
-    ROS_FATAL("cell_physics: %s", e.what());
-    return 2;
-  }
-  return 0;
+  return pf::runNode<CellPhysicsNode>(argc, argv, "cell_physics", physicsParameterSpecs(), 2);
 }

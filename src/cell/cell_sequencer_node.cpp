@@ -182,7 +182,11 @@ class CellSequencer {
                arm.toolPose(settings.waypoints.place) * heldOffset(settings)),
         handle_(settings, scene_.pickSpot()),
         gripper_("gripper/gripper_action", true),
-        lift_acceleration_mps2_(arm.liftPeakAccelerationMps2(settings.waypoints, schedule_)) {
+        lift_acceleration_mps2_(arm.liftPeakAccelerationMps2(settings.waypoints, schedule_)),
+        limits_(pf::gripLimits(settings.finger_count, settings.most_finger_force_n, settings.object_mass_kg,
+                               settings.friction_coefficient, settings.hold_margin, lift_acceleration_mps2_,
+                               settings.cycle_time_s)),
+        grip_n_(settings.grasp_force_n > 0 ? settings.grasp_force_n : limits_.needed_n) {
     object_.in_base = scene_.pickSpot();
     joints_pub_ = nh.advertise<sensor_msgs::JointState>("joint_states", 10);
     phase_pub_ = nh.advertise<std_msgs::String>("cell/phase", 10, true);
@@ -198,6 +202,27 @@ class CellSequencer {
     if (gripper_.waitForServer(ros::Duration(30.0))) return true;
     ROS_FATAL("cell_sequencer: no gripper action server at '%s'", nh.resolveName("gripper/gripper_action").c_str());
     return false;
+  }
+
+  /// Whether the gripper can give the grip it will be asked for; false (with the reason logged) when the part at
+  /// this cycle needs more than the gripper's most (grasp_force_n 0), or a grasp_force_n is set above that most.
+  bool checkGrip() const {
+    if (settings_.grasp_force_n <= 0 && !limits_.enough) {
+      ROS_FATAL("cell_sequencer: %s", limits_.message.c_str());
+      return false;
+    }
+    if (!(grip_n_ <= settings_.most_finger_force_n)) {
+      ROS_FATAL("cell_sequencer: grasp_force_n %g N is more than the weakest finger gives, %.3g N at the top of its "
+                "range", grip_n_, settings_.most_finger_force_n);
+      return false;
+    }
+    if (grip_n_ < limits_.needed_n) {
+      ROS_WARN("cell_sequencer: grasp_force_n %g N is less than this part and lift need, %.3g N per finger: its "
+               "grasps will slip", grip_n_, limits_.needed_n);
+    }
+    ROS_INFO("cell_sequencer: each finger grips with %.3g N (the part and the lift need %.3g N; the gripper gives up "
+             "to %.3g N)", grip_n_, limits_.needed_n, settings_.most_finger_force_n);
+    return true;
   }
 
   /// Runs the cycles until ROS stops or loop_count cycles are done.
@@ -291,7 +316,7 @@ class CellSequencer {
     } else if (step.phase == pf::CellPhase::kGrasp) {
       pf::GripperCommandGoal goal;
       goal.position = settings_.grasp_position_rad;
-      goal.max_effort = settings_.grasp_force_n;
+      goal.max_effort = grip_n_;
       gripper_.sendGoal(goal);
     } else if (step.phase == pf::CellPhase::kLift) {
       if (judgeGrasp(step.cycle + 1, tool)) show_handle = 0;
@@ -372,6 +397,8 @@ class CellSequencer {
   ObjectHandle handle_;
   actionlib::SimpleActionClient<pf::GripperCommandAction> gripper_;
   double lift_acceleration_mps2_;  // the lift's peak upward acceleration (m/s^2)
+  pf::GripLimits limits_;          // what this part at this lift needs, against the gripper's most
+  double grip_n_;                  // the grip each finger is asked for (N): grasp_force_n, or what the part needs
   ros::Publisher joints_pub_, phase_pub_, events_pub_, cycles_pub_;
   sensor_msgs::JointState js_;
   std::mutex object_mutex_;  // the object is moved by the ticks and by the drag handle's callback
@@ -421,7 +448,7 @@ int main(int argc, char** argv) {
   ros::AsyncSpinner spinner(1);  // the action client's and the interactive marker's callbacks
   spinner.start();
   CellSequencer sequencer(nh, settings, *arm);
-  if (!sequencer.waitForGripper(nh)) return 2;
+  if (!sequencer.checkGrip() || !sequencer.waitForGripper(nh)) return 2;
   sequencer.run();
   if (ros::ok()) endLaunch();
   return 0;

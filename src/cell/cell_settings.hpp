@@ -7,6 +7,8 @@
 
 #include <Eigen/Geometry>
 
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,7 @@ struct Settings {
   pf::CellWaypoints waypoints;
   double cycle_time_s = 0, grasp_position_rad = 0, grasp_force_n = 0, object_offset_m = 0, object_radius_m = 0,
          object_height_m = 0, publish_rate_hz = 0, object_mass_kg = 0, friction_coefficient = 0, hold_margin = 0;
+  double most_finger_force_n = 0;  // the weakest finger's normal force on the object at the top of the fingers' range
   int finger_count = 0;
   int loop_count = 0;
   bool physics = false;  // the object is moved by physics (cell_physics), not carried by the rule
@@ -46,7 +49,8 @@ inline const std::vector<pf::NodeParameterSpec>& parameterSpecs() {
                           "the grasp goal's closing angle: beyond the object, so that the object stops the fingers"),
       pf::numberParameter("grasp_force_n", 0.0, 0, false, 100, "N",
                           "the grasp goal's grip force (max_effort): each finger's total normal force on the object; "
-                          "0: the touch plus the gripper action's squeeze margin"),
+                          "0: the grip this part and this cycle's lift need, hold_margin x m (g + a) / (friction x "
+                          "fingers); the cell refuses to start when the gripper cannot give it"),
       pf::textParameter("object_id", "cylinder", "not empty", "the object's name (grasp_object, markers)"),
       pf::textParameter("gripper_file", "", "a gripper file (YAML)",
                         "the gripper's fingers (mounts and actuators): where the object is held is computed from them "
@@ -65,6 +69,18 @@ inline const std::vector<pf::NodeParameterSpec>& parameterSpecs() {
                         "expects"),
   };
   return table;
+}
+
+// The most the weakest finger presses on the held cylinder (N): the twin's normal force at the top of the fingers'
+// range (the lowest finger's max_gauge_pa; the force does not fall as the pressure rises).
+inline double mostFingerForceN(const std::vector<pf::GripperFinger>& fingers, double radius_m, double height_m,
+                               double centre_depth_m) {
+  double top_pa = INFINITY;
+  for (const pf::GripperFinger& f : fingers) top_pa = std::min(top_pa, f.mount.max_gauge_pa);
+  const pf::SideGraspForces at_top = pf::sideGraspForces(fingers, radius_m, height_m, centre_depth_m, top_pa);
+  double weakest_n = INFINITY;
+  for (double f : at_top.normal_force_n) weakest_n = std::min(weakest_n, f);
+  return weakest_n;
 }
 
 /// @p refuse_unknown_keys: false where another node reads the cell's file beside its own parameters (cell_physics).
@@ -93,6 +109,7 @@ inline Settings readSettings(const ros::NodeHandle& pnh, bool refuse_unknown_key
   s.finger_count = static_cast<int>(fingers.size());
   const pf::SideGrasp side = pf::sideGraspDepth(fingers, s.object_radius_m, s.object_height_m);
   s.object_offset_m = side.centre_depth_m;
+  s.most_finger_force_n = mostFingerForceN(fingers, s.object_radius_m, s.object_height_m, s.object_offset_m);
   ROS_INFO("%s: the object is held with its centre %.1f mm along tool z, where every finger meets its side "
            "(%.1f mm or more from a rim)", ros::this_node::getName().c_str(), 1e3 * side.centre_depth_m, 1e3 * side.rim_margin_m);
   s.publish_rate_hz = in.number("publish_rate_hz");

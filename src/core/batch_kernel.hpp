@@ -232,16 +232,24 @@ __attribute__((always_inline)) inline void uniformPack(const UniformRobustSpec& 
                py);
 }
 
-/// The whole batch in packs of T, the last pack partly filled.
-template <class T>
-inline void uniformRobustBatch(const UniformRobustSpec& spec, const double* gauge_pa, std::size_t count,
-                               const BatchOutputs& out) {
+/// A whole batch in packs of T, the last pack partly filled, each pack's walls from @p wall_of (a wall law's pack
+/// solver; every law shares the rest of the pipeline, uniformPack).
+template <class T, class WallOf>
+__attribute__((always_inline)) inline void uniformBatch(const UniformRobustSpec& finger, const double* gauge_pa,
+                                                        std::size_t count, const BatchOutputs& out, WallOf wall_of) {
   constexpr std::size_t kLanes = static_cast<std::size_t>(lanesOf<T>());
   for (std::size_t row = 0; row < count; row += kLanes) {
     const std::size_t left = count - row;
-    uniformPack<T>(spec, gauge_pa + row, static_cast<int>(left < kLanes ? left : kLanes), row, out,
-                   [&spec](T p) __attribute__((always_inline)) { return wallPack(spec, p); });
+    uniformPack<T>(finger, gauge_pa + row, static_cast<int>(left < kLanes ? left : kLanes), row, out, wall_of);
   }
+}
+
+/// The paper law's whole batch.
+template <class T>
+inline void uniformRobustBatch(const UniformRobustSpec& spec, const double* gauge_pa, std::size_t count,
+                               const BatchOutputs& out) {
+  uniformBatch<T>(spec, gauge_pa, count, out,
+                  [&spec](T p) __attribute__((always_inline)) { return wallPack(spec, p); });
 }
 
 }  // namespace

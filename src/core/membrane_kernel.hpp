@@ -156,12 +156,8 @@ __attribute__((always_inline)) inline WallPack<T> membraneWallPack(const Uniform
 template <class T>
 inline void uniformMembraneBatch(const UniformMembraneSpec& spec, const double* gauge_pa, std::size_t count,
                                  const BatchOutputs& out) {
-  constexpr std::size_t kLanes = static_cast<std::size_t>(lanesOf<T>());
-  for (std::size_t row = 0; row < count; row += kLanes) {
-    const std::size_t left = count - row;
-    uniformPack<T>(spec.finger, gauge_pa + row, static_cast<int>(left < kLanes ? left : kLanes), row, out,
-                   [&spec](T p) __attribute__((always_inline)) { return membraneWallPack(spec, p); });
-  }
+  uniformBatch<T>(spec.finger, gauge_pa, count, out,
+                  [&spec](T p) __attribute__((always_inline)) { return membraneWallPack(spec, p); });
 }
 
 }  // namespace

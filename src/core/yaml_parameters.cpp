@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <fstream>
 #include <sstream>
+#include <stdexcept>
 
 #include "yaml_node.hpp"
 
@@ -95,6 +96,13 @@ const std::vector<ParameterSpec>& rangeParameterSpecs() {
        "top of the validated range (written by finger_calibrate: the highest pressure it calibrated on); above it "
        "the twin extrapolates and says so"}};
   return specs;
+}
+
+const ParameterSpec& rangeParameterSpec(const std::string& key) {
+  for (const ParameterSpec& spec : rangeParameterSpecs()) {
+    if (key == spec.key) return spec;
+  }
+  throw std::out_of_range("'" + key + "' is not a range key");
 }
 
 const std::vector<std::string>& nodeInterfaceKeys() {

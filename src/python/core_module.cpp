@@ -369,13 +369,17 @@ class PyFingerPath {
 
 }  // namespace
 
-// Volume as the input (docs/MODEL.md, Volume): FingerModel's evaluate_volume, supplied_volume and volume_limit_m3.
 // The finger closing on a disk, by pressure or by volume (docs/GRASP.md; docs/MODEL.md, Volume).
 void defineContact(py::class_<PyFingerModel>& c) {
+  // One method body for both inputs: @p by_volume says which the first argument is.
+  auto contact_by = [](bool by_volume) {
+    return [by_volume](const PyFingerModel& m, const py::object& input, const py::object& disk,
+                       const py::object& outputs, const py::object& out) {
+      return m.contact(input, disk, outputs, out, by_volume);
+    };
+  };
   c.def(
-          "contact",
-          [](const PyFingerModel& m, const py::object& p, const py::object& disk, const py::object& outputs,
-             const py::object& out) { return m.contact(p, disk, outputs, out, false); },
+          "contact", contact_by(false),
           py::arg("gauge_pa"), py::arg("disk"), py::arg("outputs") = py::none(), py::arg("out") = py::none(),
           "The finger closing on a disk (x_m, y_m, radius_m) of its plane, or one disk per pressure (P, 3): "
           "joint_angle_rad (P, N), backbone_m (P, N+2, 2), held (P, N) bool, first_touch_gauge_pa (P,), status (P,) "
@@ -384,9 +388,7 @@ void defineContact(py::class_<PyFingerModel>& c) {
           "supplied_volume_m3 (P,): the volume the finger on the disk has taken (the held walls keep theirs), and "
           "gauge_pa (P,); outputs and out as for evaluate")
       .def(
-          "contact_volume",
-          [](const PyFingerModel& m, const py::object& v, const py::object& disk, const py::object& outputs,
-             const py::object& out) { return m.contact(v, disk, outputs, out, true); },
+          "contact_volume", contact_by(true),
           py::arg("supplied_volume_m3"), py::arg("disk"), py::arg("outputs") = py::none(), py::arg("out") = py::none(),
           "contact() driven by volume: the finger closing on the disk at each supplied volume (m^3), gauge_pa the "
           "pressure it makes there (up to max_gauge_pa and the limit point; ValueError naming a volume it cannot "

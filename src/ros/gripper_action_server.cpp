@@ -22,6 +22,7 @@
 #include "pneumatic_finger/PressureForTipAngle.h"
 #include "pneumatic_finger/core/grasp_plan.hpp"
 #include "pneumatic_finger/core/units.hpp"
+#include "pneumatic_finger/ros/node_main.hpp"
 #include "pneumatic_finger/ros/parameter_reader.hpp"
 
 namespace pf = pneumatic_finger;
@@ -201,9 +202,13 @@ class GripperActionServer {
       }
       if (srv.response.gauge_pa >= needed) needed = srv.response.gauge_pa, by = ns;
     }
+    // The goal settles within settle_tolerance_pa of the command, from below as the regulator fills: commanding that
+    // much more (up to the range) leaves a settled grip no weaker than the force asked.
+    const double command = std::min(needed + settle_tolerance_pa_, max_gauge_pa_);
     std::ostringstream s;
-    s << "grasp with " << force_n << " N per finger: commanding " << needed << " Pa (" << by << " needs the most)";
-    plan.gauge_pa = needed;
+    s << "grasp with " << force_n << " N per finger: commanding " << command << " Pa (" << by << " needs the most, "
+      << needed << " Pa; the settle tolerance above it)";
+    plan.gauge_pa = command;
     plan.message = s.str();
     return true;
   }
@@ -324,17 +329,5 @@ class GripperActionServer {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // Line by line even into a pipe or a file, so that the nodes' lines of one cell interleave in time order.
-  std::setvbuf(stdout, nullptr, _IOLBF, 0);
-  if (pf::printParametersIfAsked(argc, argv, parameterSpecs())) return 0;
-  ros::init(argc, argv, "gripper_action_server");
-  ros::NodeHandle nh, pnh("~");
-  try {
-    GripperActionServer server(nh, pnh);
-    ros::spin();
-  } catch (const std::exception& e) {
-    ROS_FATAL("gripper_action_server: %s", e.what());
-    return 2;
-  }
-  return 0;
+  return pf::runNode<GripperActionServer>(argc, argv, "gripper_action_server", parameterSpecs());
 }

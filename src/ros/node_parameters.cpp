@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "pneumatic_finger/core/units.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pneumatic_finger {
 
@@ -43,13 +44,10 @@ const std::vector<NodeParameterSpec>& specs() {
       numberParameter("time_jump_s", input.time_jump_s, 0, true, 3600, "s",
              "a stamp older than the last by more than this starts a new timeline (a looping bag); smaller steps back "
              "are refused as out of order"),
-      numberParameter("max_gauge_pa", urdf.max_gauge_pa, 0, true, 1e7, "Pa",
-             "top of the model's range (3 kg/cm^2): higher pressures are clamped to it; URDF joint upper limits, the "
-             "inverse service's limit, the table"),
-      numberParameter("validated_max_gauge_pa", input.validated_max_gauge_pa, 0, true, 1e7, "Pa",
-             "top of the validated range: the highest pressure the calibration saw (finger_calibrate writes it into "
-             "the parameter file; without it the paper's 2 kg/cm^2); above it finger_state says so and diagnostics warn",
-             "(0, max_gauge_pa]"),
+      coreNumberParameter(rangeParameterSpec("max_gauge_pa"),
+             "also the URDF's joint upper limits, the inverse services' limit and the table's (default 3 kg/cm^2)"),
+      coreNumberParameter(rangeParameterSpec("validated_max_gauge_pa"),
+             "the node's in_validated_range and diagnostics (default: the paper's 2 kg/cm^2)", "(0, max_gauge_pa]"),
       textParameter("description_param", node.description_param, "a ROS name",
            "parameter (resolved in the node's namespace) that receives the generated URDF"),
       textParameter("pressure_topic", node.pressure_topic, "a ROS name", "subscribed sensor_msgs/FluidPressure"),

@@ -62,6 +62,14 @@ NodeParameterSpec numberParameter(const char* key, double def, double lo, bool l
           allowed ? allowed : rangeText(lo, lo_open, hi, false), description};
 }
 
+NodeParameterSpec coreNumberParameter(const ParameterSpec& core, const char* node_use, const char* allowed) {
+  const std::string description = std::string(core.description) + "; " + node_use;
+  NodeParameterSpec spec = numberParameter(core.key, core.default_value, core.min_value, !core.min_inclusive,
+                                           core.max_value, core.unit, "", allowed);
+  spec.description = description;
+  return spec;
+}
+
 NodeParameterSpec integerParameter(const char* key, int def, int lo, int hi, const char* description) {
   return {key, "int", std::to_string(def), double(def), double(lo), false, double(hi), "-", rangeText(lo, false, hi, true),
           description};

@@ -295,13 +295,9 @@ struct VolumeOptions {
   std::string sweep, start_branch = "near";
 
   void addTo(CLI::App& app) {
-    app.add_option("--supplied-volume-m3", volumes,
-                   "volume as the input: the volume V (m^3) a supply has pushed in (chambers' growth plus the dead "
-                   "gas's compression); repeat for several rows, which gauge_pa then answers")
-        ->type_name("M3")
-        ->expected(1)
-        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-        ->allow_extra_args(false);
+    pf::addRepeatedOption(app, "--supplied-volume-m3", volumes,
+                          "volume as the input: the volume V (m^3) a supply has pushed in (chambers' growth plus the "
+                          "dead gas's compression); repeat for several rows, which gauge_pa then answers", "M3");
     app.add_option("--sweep-volume-m3", sweep, "FROM:TO:COUNT, evenly spaced supplied volumes (m^3)");
     app.add_option("--start-branch", start_branch,
                    "near (default) or far: the walls' branch the first row starts from (membrane law, a Gent wall "
@@ -361,11 +357,7 @@ int main(int argc, char** argv) {
   app.add_option("--solver", solver, "robust (default), paper or table");
   // Kept as text: NaN and inf are refused by our own parser, with the option's name.
   // One value per occurrence, repeated for several rows: the help shows "--gauge-pa PA", not "TEXT ...".
-  app.add_option("--gauge-pa", gauges, "gauge pressure P (Pa); repeat for several rows")
-      ->type_name("PA")
-      ->expected(1)
-      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
-      ->allow_extra_args(false);
+  pf::addRepeatedOption(app, "--gauge-pa", gauges, "gauge pressure P (Pa); repeat for several rows", "PA");
   app.add_option("--sweep-pa", sweep, "FROM:TO:COUNT, evenly spaced gauge pressures (Pa)");
   volume.addTo(app);
   app.add_flag("--parameters", parameter_table, "print the parameter table (Markdown) and exit");

@@ -35,13 +35,19 @@ std::string packageShareDirectory() {
 
 std::string defaultParameterFile() { return packageShareDirectory() + "/config/finger.yaml"; }
 
-void ParameterOptions::addTo(CLI::App& app) {
-  app.add_option("--config", config, "actuator parameter file (YAML); default: the package's config/finger.yaml");
-  app.add_option("--set", assignments, "KEY=VALUE on top of the file (repeatable); `finger_model --parameters` lists keys")
-      ->type_name("KEY=VALUE")
+CLI::Option* addRepeatedOption(CLI::App& app, const std::string& name, std::vector<std::string>& values,
+                               const std::string& description, const std::string& value_name) {
+  return app.add_option(name, values, description)
+      ->type_name(value_name)
       ->expected(1)
       ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll)
       ->allow_extra_args(false);
+}
+
+void ParameterOptions::addTo(CLI::App& app) {
+  app.add_option("--config", config, "actuator parameter file (YAML); default: the package's config/finger.yaml");
+  addRepeatedOption(app, "--set", assignments,
+                    "KEY=VALUE on top of the file (repeatable); `finger_model --parameters` lists keys", "KEY=VALUE");
 }
 
 RawParameterMap ParameterOptions::loadRaw() const {

@@ -32,6 +32,8 @@ void loadRawParametersFromYamlText(const std::string& text, const std::string& o
 /// The parameter file's range keys: max_gauge_pa (the top of the model's range) and validated_max_gauge_pa (the top
 /// of the pressures its calibration saw: finger_calibrate writes it). Every interface reads them from the file.
 const std::vector<ParameterSpec>& rangeParameterSpecs();
+/// One of rangeParameterSpecs by its key. @throws std::out_of_range for another key.
+const ParameterSpec& rangeParameterSpec(const std::string& key);
 
 /// finger_node's keys that a parameter file may carry (volume_topic, frame_prefix, ...): the other interfaces accept
 /// and ignore them. test_finger_node holds this list to the node's own parameter table.

@@ -33,6 +33,9 @@ struct NodeParameterSpec {
 /// Table rows: a number in a range, a whole number, text, a flag, three numbers |x| <= limit, and a required list.
 NodeParameterSpec numberParameter(const char* key, double def, double lo, bool lo_open, double hi, const char* unit,
                                   const char* description, const char* allowed = nullptr);
+/// A number the core defines (a key of the parameter file that the node also reads): its default, unit and range
+/// are the core's; @p node_use adds what the node does with it to the core's description.
+NodeParameterSpec coreNumberParameter(const ParameterSpec& core, const char* node_use, const char* allowed = nullptr);
 NodeParameterSpec integerParameter(const char* key, int def, int lo, int hi, const char* description);
 NodeParameterSpec textParameter(const char* key, const std::string& def, const char* allowed, const char* description);
 NodeParameterSpec flagParameter(const char* key, bool def, const char* description);

@@ -20,6 +20,11 @@ std::string packageShareDirectory();
 /// The package's default parameter file, packageShareDirectory() + "/config/finger.yaml".
 std::string defaultParameterFile();
 
+/// An option that takes one value per occurrence and is repeated for several (--gauge-pa 1 --gauge-pa 2): the help
+/// shows "--NAME @p value_name", and a second value after one occurrence is refused.
+CLI::Option* addRepeatedOption(CLI::App& app, const std::string& name, std::vector<std::string>& values,
+                               const std::string& description, const std::string& value_name);
+
 /// The actuator options every tool takes: --config FILE.yaml and repeated --set KEY=VALUE.
 struct ParameterOptions {
   std::string config;
