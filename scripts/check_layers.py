@@ -1,6 +1,7 @@
-"""Checks that each layer includes only what its folder allows: the core, the description, the sim layer and the tools never see a
-ROS header. On Debian the ROS headers live in /usr/include beside every other library's, so the compiler cannot
-enforce this; this script does, from the #include lines.
+"""Checks that each layer includes only what its folder allows: the core, the calibration room, the description, the sim
+layer and the tools never see a ROS header, and only the calibration room sees the solver (Ceres). On Debian the ROS
+headers live in /usr/include beside every other library's, so the compiler cannot enforce this; this script does, from
+the #include lines.
 
 usage: python3 scripts/check_layers.py [ROOT]      exit 1 and one line per violation
        python3 scripts/check_layers.py --self-test  shows that a ROS include in the core is caught
@@ -19,8 +20,9 @@ ALLOWED = {
                     r"urdf_world/", r"tinyxml\.h"],
     "sim": [r"pneumatic_finger/(core|description|sim)/", r"Eigen/", r"yaml-cpp/", r"urdf_model/", r"urdf_parser/",
             r"urdf_world/", r"mujoco/"],
-    "tools": [r"pneumatic_finger/(core|description|sim|tools)/", r"Eigen/", r"CLI/", r"unistd\.h"],
-    "python": [r"pneumatic_finger/core/", r"Eigen/", r"pybind11/"],
+    "calibration": [r"pneumatic_finger/(core|calibration)/", r"Eigen/", r"ceres/"],
+    "tools": [r"pneumatic_finger/(core|calibration|description|sim|tools)/", r"Eigen/", r"CLI/", r"unistd\.h"],
+    "python": [r"pneumatic_finger/(core|calibration)/", r"Eigen/", r"pybind11/"],
 }
 # What a ROS layer may not include: the layers above it. The cell is built over src/ros (its regulator, sequencer and
 # nodelets), so src/ros never includes the cell.
@@ -86,5 +88,5 @@ if __name__ == "__main__":
     bad = violations(root)
     for b in bad:
         print(b)
-    print(f"check_layers: {len(bad)} violation(s) in core, description, sim, tools, python and ros")
+    print(f"check_layers: {len(bad)} violation(s) in core, calibration, description, sim, tools, python and ros")
     sys.exit(1 if bad else 0)

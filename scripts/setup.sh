@@ -20,6 +20,8 @@ PACKAGES=("$@"
   libvisualization-msgs-dev ros-visualization-msgs python3-visualization-msgs rviz xvfb imagemagick
   # the tools' argument parser (package.xml: cli11)
   libcli11-dev
+  # the calibration room's solver (package.xml: libceres-dev)
+  libceres-dev
   # the cell sequencer's forward kinematics (package.xml: kdl_parser)
   libkdl-parser-dev liborocos-kdl-dev
   # nodelets (package.xml: nodelet, pluginlib)

@@ -521,3 +521,27 @@ def test_a_path_follows_the_snap_across_calls_as_the_node_does():
     assert model.evaluate(middle)["tip_angle_rad"] < tips[2] - 0.5, "separate calls on the model start afresh"
     with pytest.raises(ValueError, match="start_branch = 'up' is not one of near, far"):
         model.path("up")
+
+
+def test_fit_coupon_is_the_tools_own_and_refuses_alike(tmp_path):
+    # The package's coupon through Python and through finger_calibrate --coupon: the same keys to the digit the CLI
+    # prints; the file written loads; a coupon in MPa, or the paper law as the base, refused in the same words.
+    coupon = pathlib.Path(pf.default_config()).parent.parent / "data" / "epfl_ecoflex30_uniaxial.csv"
+    base = {"wall_law": "thick"}
+    fit = pf.fit_coupon(str(coupon), overrides=base, output=str(tmp_path / "ecoflex.yaml"))
+    assert fit["model_stress_pa"].shape == fit["nominal_stress_pa"].shape == (311,)
+    tool = pathlib.Path(shutil.which(FINGER_MODEL) or FINGER_MODEL).parent / "finger_calibrate"
+    cli = subprocess.run([str(tool), "--coupon", str(coupon), "--set", "wall_law=thick"], capture_output=True,
+                         text=True)
+    assert cli.returncode == 0, cli.stderr
+    assert cli.stdout == fit["report"]
+    model = pf.FingerModel(config=str(tmp_path / "ecoflex.yaml"))
+    assert numpy.ravel(model.parameters["shear_modulus_pa"])[0] == fit["shear_modulus_pa"]
+    assert model.parameters["wall_locking_jm"] == fit["wall_locking_jm"]
+    table = numpy.loadtxt(coupon, delimiter=",", comments="#", skiprows=9)
+    with pytest.raises(ValueError, match=r"is the stress in kPa or MPa \(N/mm\^2\)\? Give it in Pa"):
+        pf.fit_coupon({"engineering_strain": table[:, 0], "nominal_stress_pa": table[:, 1] * 1e-6}, overrides=base)
+    with pytest.raises(ValueError, match="the paper law's shear_modulus_pa is an effective stiffness"):
+        pf.fit_coupon(str(coupon))
+    paper = subprocess.run([str(tool), "--coupon", str(coupon)], capture_output=True, text=True)
+    assert paper.returncode == 2 and "the paper law's shear_modulus_pa is an effective stiffness" in paper.stderr

@@ -19,9 +19,10 @@ import os
 from pneumatic_finger._core import CONTACT_STATUS, STATUS
 from pneumatic_finger._core import FingerModel as _FingerModel
 from pneumatic_finger._core import calibrate as _calibrate
+from pneumatic_finger._core import fit_coupon as _fit_coupon
 from pneumatic_finger._core import range_check
 
-__all__ = ["FingerModel", "calibrate", "default_config", "default_data", "range_check", "STATUS", "CONTACT_STATUS"]
+__all__ = ["FingerModel", "calibrate", "fit_coupon", "default_config", "default_data", "range_check", "STATUS", "CONTACT_STATUS"]
 
 
 def _share(*parts):
@@ -103,6 +104,49 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
                     "with the\n# fitted keys replaced (docs/CALIBRATE.md). Load it with finger.launch config:=FILE.\n"
                     + result["parameter_file"])
     return result
+
+
+def fit_coupon(data, law="gent", config=None, overrides=None, output=None):
+    """finger_calibrate --coupon from Python: the elastomer's shear_modulus_pa and wall_locking_jm fitted to a uniaxial
+    coupon test (Ceres Solver; least squares on the relative stress error), with the same checks and words.
+
+    data: a CSV path (engineering_strain, nominal_stress_pa columns) or a mapping with those two keys (arrays; the
+    strain a ratio, the stress in Pa). law: "gent" or "neo-hookean". config and overrides: the base parameter file
+    (membrane or thick law; None: the package's, which the paper law refuses) into which the material goes.
+
+    Returns a dict: shear_modulus_pa, wall_locking_jm (0: no locking), preload_strain (the test's zero taken
+    stretched), uncertainty (key -> one standard deviation), rms_relative_error, max_relative_error,
+    engineering_strain, nominal_stress_pa and model_stress_pa (arrays, a row per coupon row), report (text) and
+    parameter_file (the text output= writes, as `finger_calibrate --coupon --output`)."""
+    if isinstance(data, (str, os.PathLike)):
+        path, strain, stress = os.fspath(data), [], []
+    elif hasattr(data, "keys"):
+        missing = [k for k in ("engineering_strain", "nominal_stress_pa") if k not in data]
+        if missing:
+            raise ValueError("data needs the columns engineering_strain and nominal_stress_pa; missing: "
+                             + ", ".join(missing))
+        path = None
+        strain, stress = (_finite_list(data[k], k) for k in ("engineering_strain", "nominal_stress_pa"))
+    else:
+        raise ValueError("data must be a coupon CSV path or a mapping with engineering_strain and nominal_stress_pa, "
+                         "got %s" % type(data).__name__)
+    result = _fit_coupon(path, strain, stress, law, config if config is not None else default_config(),
+                         dict(overrides or {}))
+    if output is not None:
+        with open(output, "w") as f:
+            f.write("# An elastomer from its coupon test, written by pneumatic_finger.core.fit_coupon(output=): the "
+                    "base parameters\n# with the wall law's material replaced (docs/CALIBRATE.md); nothing is fitted "
+                    "to an actuator.\n" + result["report"] + "\n" + result["parameter_file"])
+    return result
+
+
+def _finite_list(values, name):
+    """A 1-D sequence of numbers as a list of floats, or ValueError naming the column."""
+    import numpy
+    array = numpy.asarray(values)
+    if array.ndim != 1 or not numpy.issubdtype(array.dtype, numpy.number):
+        raise ValueError(f"{name} must be a 1-D sequence of numbers, got {array.dtype} of shape {array.shape}")
+    return array.astype(float).tolist()
 
 
 class FingerModel(_FingerModel):

@@ -2,6 +2,7 @@
 // (calibration.hpp, Measurement), refused with the file, the line and the column named when malformed.
 #include "pneumatic_finger/core/calibration.hpp"
 
+#include "pneumatic_finger/core/csv_fields.hpp"
 #include "pneumatic_finger/core/units.hpp"
 
 #include <algorithm>
@@ -22,19 +23,6 @@ double Measurement::averageOuterJoints() const {
 }
 
 namespace {
-
-std::vector<std::string> splitCsv(const std::string& line) {
-  std::vector<std::string> out;
-  std::stringstream s(line);
-  std::string field;
-  while (std::getline(s, field, ',')) {
-    const auto a = field.find_first_not_of(" \t\r");
-    const auto b = field.find_last_not_of(" \t\r");
-    out.push_back(a == std::string::npos ? "" : field.substr(a, b - a + 1));
-  }
-  if (!line.empty() && line.back() == ',') out.push_back("");
-  return out;
-}
 
 std::string where(const std::string& origin, int line) { return origin + ":" + std::to_string(line) + ": "; }
 

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/calibration/coupon.hpp"
 #include "pneumatic_finger/core/calibration_run.hpp"
 #include "python_parameters.hpp"
 
@@ -113,9 +114,42 @@ py::dict calibrate(const py::object& path, const std::vector<std::string>& names
   return d;
 }
 
+// finger_calibrate --coupon: the coupon from a file (@p path) or columns, the fit, and the file's text.
+py::dict fitCoupon(const py::object& path, const std::vector<double>& strain, const std::vector<double>& stress,
+                   const std::string& law, const std::string& config, const py::dict& overrides) {
+  const bool gent = pf::parseCouponLaw(law);
+  pf::PressureRange file_range;
+  const pf::RawParameterMap raw = loadRaw(config, overrides, &file_range);
+  const pf::CouponTest test =
+      path.is_none() ? pf::couponFromColumns(strain, stress, "data") : pf::loadCouponCsv(py::cast<std::string>(path));
+  pf::CouponFit fit;
+  {
+    py::gil_scoped_release release;
+    fit = pf::fitCoupon(test, gent);
+  }
+  const std::string report = pf::couponFitReport(fit, test);
+  py::dict d, sd;
+  d["shear_modulus_pa"] = fit.shear_modulus_pa, sd["shear_modulus_pa"] = fit.shear_modulus_sd_pa;
+  d["wall_locking_jm"] = fit.wall_locking_jm, sd["wall_locking_jm"] = fit.wall_locking_jm_sd;
+  d["preload_strain"] = fit.preload_strain, sd["preload_strain"] = fit.preload_strain_sd;
+  d["uncertainty"] = sd;
+  d["rms_relative_error"] = fit.rms_relative_error;
+  d["max_relative_error"] = fit.max_relative_error;
+  const std::size_t r = test.rows.size();
+  d["engineering_strain"] = column(r, [&](std::size_t i) { return test.rows[i].engineering_strain; });
+  d["nominal_stress_pa"] = column(r, [&](std::size_t i) { return test.rows[i].nominal_stress_pa; });
+  d["model_stress_pa"] = column(r, [&](std::size_t i) { return fit.model_stress_pa[i]; });
+  d["report"] = report;
+  d["parameter_file"] = pf::couponParameterYaml(raw, fit, file_range);
+  return d;
+}
+
 }  // namespace
 
 void defineCalibrate(py::module_& m) {
+  m.def("fit_coupon", &fitCoupon, py::arg("path"), py::arg("strain"), py::arg("stress"), py::arg("law"),
+        py::arg("config"), py::arg("overrides"),
+        "finger_calibrate --coupon (use pneumatic_finger.core.fit_coupon): a CSV path, or strain and stress");
   m.def(
       "calibrate",
       [](const py::object& path, const std::vector<std::string>& names, const std::vector<std::vector<double>>& columns,

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/calibration/coupon.hpp"
 #include "pneumatic_finger/core/calibration_run.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
 #include "pneumatic_finger/core/units.hpp"
@@ -217,74 +218,121 @@ std::string lawComparison(const pf::CalibrationRun& run) {
   return t.str() + "#\n";
 }
 
-}  // namespace
+// The options of a fit to an actuator's measurements (--data and the rest).
+struct DataOptions {
+  std::string data_path, objective_name = "minimax", average_column, fit_keys, compare, wall_law, drive;
+};
 
-int main(int argc, char** argv) {
-  CLI::App app(kDescription, "finger_calibrate");
-  pf::ParameterOptions parameters;
-  parameters.addTo(app);
-  std::string data_path, output, objective_name = "minimax", average_column, fit_keys, compare, wall_law, drive;
-  app.add_option("--data", data_path,
+void addDataOptions(CLI::App& app, DataOptions& o) {
+  app.add_option("--data", o.data_path,
                  "measured CSV: gauge_pa and/or supplied_volume_m3, and any of joint_1_rad..joint_N_rad, "
                  "tip_angle_rad, tip_x_m,tip_y_m (the tip in the finger's frame); default: the package's "
                  "data/sierra2022_table1.csv");
-  app.add_option("--drive", drive,
+  app.add_option("--drive", o.drive,
                  "what set each row: pressure (gauge_pa) or volume (supplied_volume_m3: a syringe pump or a "
                  "displacement-controlled cylinder; the model's pressure is then compared with gauge_pa by "
                  "--compare gauge_pa, and dead_volume_m3 can be fitted); default: pressure where the file has "
                  "gauge_pa, else volume");
-  app.add_option("--compare", compare,
+  app.add_option("--compare", o.compare,
                  "what the fit compares: joints (with base_wall_share: the chamber keys to the joints 2..N average, "
                  "then base_wall_share to joint 1), average (of joints 2..N, the paper's measure), joint_1, tip_angle, "
                  "tip_position, gauge_pa (the pressure at each row's volume, with --drive volume) or "
                  "tip_angle+gauge_pa (both, with --drive volume: the tip angle's error in rad and the pressure's "
                  "relative error, 1 deg of bend weighing as 1.75 % of the pressure); default: joints if the file has "
                  "them, else tip_position, else tip_angle");
-  app.add_option("--fit", fit_keys,
+  app.add_option("--fit", o.fit_keys,
                  "one to three parameter keys to fit, comma-separated; default: shear_modulus_pa,chamber_gap_m and, "
                  "when every joint is compared, base_wall_share (joint_1: base_wall_share alone)");
-  app.add_option("--objective", objective_name, "minimax or least_squares")->capture_default_str();
-  app.add_option("--output", output, "write the calibrated parameter file (YAML) here");
-  app.add_option("--average-column", average_column,
+  app.add_option("--objective", o.objective_name, "minimax or least_squares")->capture_default_str();
+  app.add_option("--average-column", o.average_column,
                  "take the joints 2..N average from this column (e.g. paper_avg_rad) instead of the joints; implies "
                  "--compare average");
-  app.add_option("--wall-law", wall_law,
+  app.add_option("--wall-law", o.wall_law,
                  "auto (fit the paper, the membrane and the thick-wall law, keep the one with the smallest "
                  "leave-one-out error and write it), paper, membrane or thick; default: the parameter file's "
                  "wall_law. Without --fit each law takes its own keys (membrane: "
                  "shear_modulus_pa,chamber_gap_m,wall_locking_jm; thick: shear_modulus_pa,chamber_gap_m)");
+}
+
+std::ofstream openOutput(const std::string& output) {
+  std::ofstream out(output);
+  if (!out) throw pf::ParameterError("cannot write '" + output + "'");
+  return out;
+}
+
+// The fit to an actuator's measurements: the report, and the calibrated file when @p output is given.
+int calibrateOnData(const pf::ParameterOptions& parameters, DataOptions o, const std::string& output) {
+  const bool default_data = o.data_path.empty();
+  if (default_data) o.data_path = pf::packageShareDirectory() + "/data/sierra2022_table1.csv";
+  pf::CalibrationRequest request;
+  request.wall_law = o.wall_law;
+  request.keys = pf::splitFields(o.fit_keys);
+  request.objective = o.objective_name;
+  request.compare = o.compare;
+  request.average_column = o.average_column;
+  request.drive = o.drive;
+  const pf::FingerParameters base = pf::calibrationBase(parameters.loadRaw(), o.wall_law);
+  const pf::MeasurementSet data = pf::readMeasurementSet(o.data_path, 1, o.average_column);
+  pf::CalibrationRun run;
+  try {
+    run = pf::runCalibration(base, data, request);
+  } catch (const pf::ParameterError& e) {
+    throw pf::ParameterError(o.data_path + ": " + e.what());
+  }
+  const std::string table = (run.fits.size() > 1 ? lawComparison(run) : std::string()) +
+                            report(default_data ? "the package's data/sierra2022_table1.csv" : o.data_path,
+                                   default_data, data.rows.size(), o.average_column, run, base.chamber_count);
+  std::cout << table;
+  if (output.empty()) return 0;
+  // What this file is, and nothing it is not: the base parameters with the fitted keys replaced, and the fit's
+  // report as comments (docs/CALIBRATE.md reads it line by line).
+  openOutput(output) << "# A calibrated actuator, written by `finger_calibrate --output`: the base parameters with the fitted\n"
+                     << "# keys replaced, and the fit's report (docs/CALIBRATE.md). Load it with finger.launch config:=FILE.\n"
+                     << table << "\n"
+                     << pf::calibratedParameterYaml(run, parameters.loadRange());
+  return 0;
+}
+
+// --coupon: the wall law's material (shear_modulus_pa, wall_locking_jm) from a coupon test of the elastomer, nothing
+// fitted to an actuator; the file written is the base file with those two keys replaced.
+int fitElastomer(const pf::ParameterOptions& parameters, const std::string& coupon_path, const std::string& law,
+                 const std::string& output) {
+  const bool gent = pf::parseCouponLaw(law);
+  const pf::RawParameterMap raw = parameters.loadRaw();
+  const pf::CouponTest test = pf::loadCouponCsv(coupon_path);
+  const pf::CouponFit fit = pf::fitCoupon(test, gent);
+  const std::string text = pf::couponFitReport(fit, test);
+  const std::string file = pf::couponParameterYaml(raw, fit, parameters.loadRange());  // refuses the paper law
+  std::cout << text;
+  if (output.empty()) return 0;
+  openOutput(output) << "# An elastomer from its coupon test, written by `finger_calibrate --coupon --output`: the base\n"
+                     << "# parameters with the wall law's material replaced (docs/CALIBRATE.md); nothing is fitted to an\n"
+                     << "# actuator.\n" << text << "\n" << file;
+  return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app(kDescription, "finger_calibrate");
+  pf::ParameterOptions parameters;
+  parameters.addTo(app);
+  DataOptions data;
+  addDataOptions(app, data);
+  std::string output, coupon, coupon_law = "gent";
+  app.add_option("--output", output, "write the calibrated parameter file (YAML) here");
+  app.add_option("--coupon", coupon,
+                 "instead of an actuator's data: a uniaxial coupon test of the elastomer (CSV: engineering_strain, "
+                 "nominal_stress_pa in Pa); fits the wall law's shear_modulus_pa and wall_locking_jm, with their "
+                 "uncertainty, into the base file (membrane or thick law)");
+  app.add_option("--coupon-law", coupon_law, "the elastomer's law for --coupon: gent or neo-hookean")
+      ->capture_default_str();
   return pf::runTool("finger_calibrate", app, argc, argv, [&] {
-    const bool default_data = data_path.empty();
-    if (default_data) data_path = pf::packageShareDirectory() + "/data/sierra2022_table1.csv";
-    pf::CalibrationRequest request;
-    request.wall_law = wall_law;
-    request.keys = pf::splitFields(fit_keys);
-    request.objective = objective_name;
-    request.compare = compare;
-    request.average_column = average_column;
-    request.drive = drive;
-    const pf::FingerParameters base = pf::calibrationBase(parameters.loadRaw(), wall_law);
-    const pf::MeasurementSet data = pf::readMeasurementSet(data_path, 1, average_column);
-    pf::CalibrationRun run;
-    try {
-      run = pf::runCalibration(base, data, request);
-    } catch (const pf::ParameterError& e) {
-      throw pf::ParameterError(data_path + ": " + e.what());
+    if (coupon.empty()) return calibrateOnData(parameters, data, output);
+    if (!data.data_path.empty()) {
+      throw pf::ParameterError("give --coupon or --data, not both: the coupon fits the elastomer alone; calibrate "
+                               "the actuator on the file --coupon --output writes");
     }
-    const std::string table = (run.fits.size() > 1 ? lawComparison(run) : std::string()) +
-                              report(default_data ? "the package's data/sierra2022_table1.csv" : data_path,
-                                     default_data, data.rows.size(), average_column, run, base.chamber_count);
-    std::cout << table;
-    if (!output.empty()) {
-      std::ofstream out(output);
-      if (!out) throw pf::ParameterError("cannot write '" + output + "'");
-      // What this file is, and nothing it is not: the base parameters with the fitted keys replaced, and the fit's
-      // report as comments (docs/CALIBRATE.md reads it line by line).
-      out << "# A calibrated actuator, written by `finger_calibrate --output`: the base parameters with the fitted\n"
-          << "# keys replaced, and the fit's report (docs/CALIBRATE.md). Load it with finger.launch config:=FILE.\n"
-          << table << "\n"
-          << pf::calibratedParameterYaml(run, parameters.loadRange());
-    }
-    return 0;
+    return fitElastomer(parameters, coupon, coupon_law, output);
   });
 }
