@@ -74,6 +74,26 @@ TEST(Description, EverySegmentHasCollisionAndTheInertialOfItsWalls) {
   EXPECT_EQ(m.getLink(m.getRoot()->name)->inertial, nullptr) << "no inertial on the root (robot_state_publisher warns)";
 }
 
+// A drawn actuator's links are its body (docs/DRAWING.md): each block as tall as the body's top above the layer and
+// as wide as drawn, its mass the block less the drawn cavity. The EPFL actuator: 2 + 7 mm pitch, 8 + 7 mm tall,
+// 8 + 2 x 7 mm wide; a cavity 2 x 8 x 8 mm.
+TEST(Description, ADrawnActuatorsLinksAreItsBody) {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlText("wall_law: thick\ndrawing: {chamber_count: 7, cavity_height_m: 0.008, "
+                                    "cavity_width_m: 0.008, cavity_length_m: 0.002, wall_thickness_m: 0.007}\n",
+                                    "epfl", raw);
+  const pf::FingerParameters p = pf::FingerParameters::fromRaw(raw);
+  const urdf::ModelInterface m = pf::fingerUrdfModel(p, pf::FingerUrdfOptions());
+  const auto link = m.getLink(pf::segmentLinkName("finger_", 3));
+  ASSERT_TRUE(link && link->visual && link->inertial);
+  const auto* box = dynamic_cast<const urdf::Box*>(link->visual->geometry.get());
+  ASSERT_NE(box, nullptr);
+  EXPECT_NEAR(box->dim.x, 0.009, 1e-17);
+  EXPECT_NEAR(box->dim.y, 0.015, 1e-17);
+  EXPECT_NEAR(box->dim.z, 0.022, 1e-17);
+  EXPECT_NEAR(link->inertial->mass, 1070 * (0.009 * 0.015 * 0.022 - 0.002 * 0.008 * 0.008), 1e-15);
+}
+
 TEST(Description, TheModelIsAWiredTreeLikeAParsedOne) {
   const urdf::ModelInterface m = pf::fingerUrdfModel(pf::FingerParameters::defaults(), pf::FingerUrdfOptions());
   ASSERT_TRUE(m.getRoot());

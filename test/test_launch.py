@@ -4,12 +4,15 @@ node's own message and exit, never a crash inside roslaunch or roscpp.
 Run by `make run_tests` (pytest, in the devel space's environment).
 """
 import os
+import pathlib
 import re
 import socket
 import subprocess
 import time
 
 import pytest
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
 
 
 def free_port():
@@ -142,3 +145,24 @@ def test_a_calibrated_file_with_round_values_loads_in_finger_launch(tmp_path):
     assert "/finger_node: 7 chambers" in log, log  # the node read the file and started
     assert "is not a number" not in log and "exit code" not in log, log
     assert done.returncode == 124, log  # still running when the timeout ended it
+
+
+def test_finger_launch_reads_a_drawing_and_refuses_one_a_key_contradicts(tmp_path):
+    # The EPFL drawing with its chamber count changed (a sibling): the node draws 5 chambers. The same drawing with a
+    # chamber_height_m that says otherwise: refused by the node, in the core's words.
+    text = (ROOT / "config" / "epfl_ecoflex30_c7_coupon.yaml").read_text()
+    assert "\n  chamber_count: 7\n" in text
+    sibling = tmp_path / "five.yaml"
+    sibling.write_text(text.replace("\n  chamber_count: 7\n", "\n  chamber_count: 5\n"))
+    port = free_port()
+    env = dict(os.environ, ROS_MASTER_URI=f"http://localhost:{port}", ROS_HOSTNAME="localhost")
+    done = subprocess.run(["timeout", "20", "roslaunch", "-p", str(port), "pneumatic_finger", "finger.launch",
+                           f"config:={sibling}", "rviz:=false"], capture_output=True, text=True, env=env)
+    log = done.stdout + done.stderr
+    assert "/finger_node: 5 chambers" in log and done.returncode == 124, log
+    contradicting = tmp_path / "contradicting.yaml"
+    contradicting.write_text(text + "chamber_height_m: 0.01\n")
+    done = roslaunch("finger.launch", f"config:={contradicting}", "rviz:=false")
+    log = done.stdout + done.stderr
+    assert "parameter 'chamber_height_m' = 0.01 contradicts the drawing, which makes it 0.008" in log, log
+    assert "exit code 2" in log, log

@@ -545,3 +545,29 @@ def test_fit_coupon_is_the_tools_own_and_refuses_alike(tmp_path):
         pf.fit_coupon(str(coupon))
     paper = subprocess.run([str(tool), "--coupon", str(coupon)], capture_output=True, text=True)
     assert paper.returncode == 2 and "the paper law's shear_modulus_pa is an effective stiffness" in paper.stderr
+
+
+def test_the_shipped_coupon_file_is_the_commands_and_python_reads_its_drawing(tmp_path):
+    # config/epfl_ecoflex30_c7_coupon.yaml is what DRAWING.md's command writes, byte for byte; Python's model of it
+    # has the drawing under parameters["drawing"], the rule's keys beside it, and a sibling drawn by an override.
+    root = pathlib.Path(pf.default_config()).parent.parent
+    tool = pathlib.Path(shutil.which(FINGER_MODEL) or FINGER_MODEL).parent / "finger_calibrate"
+    out = tmp_path / "coupon.yaml"
+    done = subprocess.run([str(tool), "--coupon", str(root / "data" / "epfl_ecoflex30_uniaxial.csv"), "--config",
+                           str(root / "config" / "epfl_ecoflex30_c7_drawing.yaml"), "--output", str(out)],
+                          capture_output=True, text=True, cwd=root)
+    assert done.returncode == 0, done.stderr
+    shipped = (root / "config" / "epfl_ecoflex30_c7_coupon.yaml").read_text()
+    assert out.read_text().replace(str(root) + "/", "") == shipped
+    model = pf.FingerModel(config=str(root / "config" / "epfl_ecoflex30_c7_coupon.yaml"))
+    p = model.parameters
+    assert p["drawing"]["chamber_count"] == 7 and p["chamber_count"] == 7
+    assert p["segment_length_m"] == pytest.approx(0.009, abs=1e-17)
+    sibling = pf.FingerModel(config=str(root / "config" / "epfl_ecoflex30_c7_coupon.yaml"),
+                             overrides={"drawing/chamber_count": 5, "drawing/wall_thickness_m": 0.005})
+    q = sibling.parameters
+    assert q["chamber_count"] == 5 and q["wall_thickness_m"] == 0.005
+    assert q["base_segment_length_m"] + 5 * q["segment_length_m"] == pytest.approx(5 * 0.002 + 6 * 0.005, abs=1e-16)
+    with pytest.raises(ValueError, match="parameter 'chamber_height_m' = 0.01 contradicts the drawing"):
+        pf.FingerModel(config=str(root / "config" / "epfl_ecoflex30_c7_coupon.yaml"),
+                       overrides={"chamber_height_m": 0.01})

@@ -1,5 +1,6 @@
 // sweepDesigns: one model per design, each evaluated once. The raw map of the base is built once and only the swept
 // keys change in it, so a design costs the loader's validation, the model's construction and one evaluation.
+#include "pneumatic_finger/core/drawing.hpp"
 #include "pneumatic_finger/core/design_sweep.hpp"
 
 #include <limits>
@@ -23,7 +24,8 @@ std::vector<DesignRefusal> sweepDesigns(const FingerParameters& base, const Mode
                                         const std::vector<std::string>& keys, const double* values,
                                         std::size_t designs, double gauge_pa, const DesignOutputs& out) {
   for (const std::string& key : keys) {
-    if (findParameterSpec(key) == nullptr) throw ParameterError("unknown parameter '" + key + "'");
+    const bool drawn = key.rfind(kDrawingPrefix, 0) == 0;  // a drawing's key, checked when the design is built
+    if (!drawn && findParameterSpec(key) == nullptr) throw ParameterError("unknown parameter '" + key + "'");
   }
   RawParameterMap raw = base.toRaw();
   ModelOptions design_options = options;

@@ -1,5 +1,7 @@
 #include "pneumatic_finger/core/parameters.hpp"
 
+#include "pneumatic_finger/core/drawing.hpp"
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -220,8 +222,14 @@ std::string describeRange(const ParameterSpec& spec) {
 
 FingerParameters FingerParameters::defaults() { return fromRaw({}); }
 
-FingerParameters FingerParameters::fromRaw(const RawParameterMap& raw) {
+FingerParameters FingerParameters::fromRaw(const RawParameterMap& given) {
+  const RawParameterMap raw = resolveDrawing(given);  // a drawing's model keys, put in (docs/DRAWING.md)
+  FingerParameters p;
   for (const auto& entry : raw) {
+    if (entry.first.rfind(kDrawingPrefix, 0) == 0) {
+      p.drawing[entry.first] = entry.second;
+      continue;
+    }
     if (findParameterSpec(entry.first) == nullptr) {
       throw ParameterError("unknown parameter '" + entry.first + "'");
     }
@@ -229,7 +237,6 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& raw) {
       throw ParameterError("parameter '" + entry.first + "' has no value");
     }
   }
-  FingerParameters p;
   p.chamber_count = static_cast<int>(scalar(spec("chamber_count"), raw));
   const int n = p.chamber_count;
   p.chamber_height_m = perChamber(spec("chamber_height_m"), raw, n);
@@ -289,6 +296,12 @@ RawParameterMap FingerParameters::toRaw() const {
   raw["wall_flexion_face"] = {{static_cast<double>(wall_flexion_face)}, false};
   raw["dead_volume_m3"] = {{dead_volume_m3}, false};
   raw["chamber_growth_ratio"] = {{chamber_growth_ratio}, false};
+  // Drawn, the drawing is what re-creates it: its entries, not the model keys it makes (so that a changed drawing
+  // key draws the actuator anew); resolveDrawing(toRaw()) has both.
+  if (!drawing.empty()) {
+    for (const std::string& key : drawnModelKeys()) raw.erase(key);
+    for (const auto& entry : drawing) raw[entry.first] = entry.second;
+  }
   return raw;
 }
 
@@ -322,7 +335,8 @@ void parseParameterAssignment(const std::string& assignment, RawParameterMap& ra
   }
   const std::string key = trim(assignment.substr(0, eq));
   const std::string value = trim(assignment.substr(eq + 1));
-  if (findParameterSpec(key) == nullptr) throw ParameterError("unknown parameter '" + key + "'");
+  const bool drawn = key.rfind(kDrawingPrefix, 0) == 0;  // a drawing's key: one number, checked when drawn
+  if (!drawn && findParameterSpec(key) == nullptr) throw ParameterError("unknown parameter '" + key + "'");
   RawParameterValue parsed;
   if (!value.empty() && value.front() == '[') {
     if (value.back() != ']') throw ParameterError("parameter '" + key + "': list '" + value + "' lacks ']'");
@@ -331,7 +345,7 @@ void parseParameterAssignment(const std::string& assignment, RawParameterMap& ra
     std::string item;
     while (std::getline(items, item, ',')) parsed.values.push_back(parseNumber(trim(item), key));
   } else {
-    parsed.values.push_back(parseParameterText(*findParameterSpec(key), value));
+    parsed.values.push_back(drawn ? parseNumber(value, key) : parseParameterText(*findParameterSpec(key), value));
   }
   if (parsed.values.empty()) throw ParameterError("parameter '" + key + "' has no value");
   raw[key] = parsed;

@@ -7,6 +7,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "pneumatic_finger/core/drawing.hpp"
 #include "yaml_node.hpp"
 
 namespace pneumatic_finger {
@@ -66,12 +67,45 @@ void rangeFromNode(const YAML::Node& root, const std::string& origin, PressureRa
   }
 }
 
+// The drawing's mapping (docs/DRAWING.md), each key with its meaning; empty without a drawing.
+std::string drawingToYaml(const RawParameterMap& drawing) {
+  if (drawing.empty()) return "";
+  std::ostringstream out;
+  out << "# the actuator as drawn (docs/DRAWING.md): the model keys above marked (from the drawing) follow from it\n"
+      << "drawing:\n";
+  for (const ParameterSpec& spec : drawingParameterSpecs()) {
+    const auto it = drawing.find(kDrawingPrefix + std::string(spec.key));
+    if (it == drawing.end()) continue;
+    out << "  # " << spec.description << " (" << spec.unit << ")\n"
+        << "  " << spec.key << ": " << formatYamlNumber(it->second.values[0]) << "\n";
+  }
+  return out.str();
+}
+
+// The file's drawing mapping into @p raw as "drawing/KEY" entries.
+void drawingFromNode(const YAML::Node& node, const std::string& origin, RawParameterMap& raw) {
+  if (!node.IsMap()) throw ParameterError(origin + ": 'drawing' must be a mapping of the drawing's keys to numbers");
+  for (const auto& item : node) {
+    const std::string key = kDrawingPrefix + item.first.as<std::string>();
+    if (!item.second.IsScalar()) throw ParameterError(origin + ": parameter '" + key + "' must be a number");
+    try {
+      raw[key] = {{item.second.as<double>()}, false};
+    } catch (const YAML::Exception&) {
+      throw ParameterError(origin + ": parameter '" + key + "' = '" + item.second.Scalar() + "' is not a number");
+    }
+  }
+}
+
 void fromNode(const YAML::Node& root, const std::string& origin, RawParameterMap& raw) {
   if (root.IsNull()) return;  // an empty file: all defaults
   if (!root.IsMap()) throw ParameterError(origin + ": expected a mapping of parameter keys to values");
   for (const auto& item : root) {
     const std::string key = item.first.as<std::string>();
     if (key == kTipUncertaintyKey) continue;  // not the actuator: the calibration's error bar (tip_uncertainty.hpp)
+    if (key == "drawing") {
+      drawingFromNode(item.second, origin, raw);
+      continue;
+    }
     if (findRangeSpec(key) != nullptr || isNodeInterfaceKey(key)) continue;  // the range's, and the node's own
     if (findParameterSpec(key) == nullptr) throw ParameterError(origin + ": unknown parameter '" + key + "'");
     RawParameterValue value;
@@ -152,12 +186,15 @@ void loadRawParametersFromYamlFile(const std::string& path, RawParameterMap& raw
 
 std::string parametersToYaml(const FingerParameters& parameters) {
   std::ostringstream out;
-  const RawParameterMap raw = parameters.toRaw();
+  const RawParameterMap raw = resolveDrawing(parameters.toRaw());
+  const std::vector<std::string>& drawn = drawnModelKeys();
   for (const ParameterSpec& spec : parameterSpecs()) {
     const RawParameterValue& v = raw.at(spec.key);
     out << "# " << spec.description << " (" << spec.symbol << ", " << spec.unit << ", allowed "
-        << describeRange(spec) << ")\n"
-        << spec.key << ": ";
+        << describeRange(spec) << ")\n";
+    // A drawn key is the drawing's: written as a comment, so that the file keeps one definition of it.
+    const bool from_drawing = !parameters.drawing.empty() && std::find(drawn.begin(), drawn.end(), spec.key) != drawn.end();
+    out << (from_drawing ? "# (from the drawing) " : "") << spec.key << ": ";
     if (v.is_list) {
       out << "[";
       for (std::size_t i = 0; i < v.values.size(); ++i) out << (i ? ", " : "") << formatYamlNumber(v.values[i]);
@@ -167,7 +204,7 @@ std::string parametersToYaml(const FingerParameters& parameters) {
     }
     out << "\n";
   }
-  return out.str();
+  return out.str() + drawingToYaml(parameters.drawing);
 }
 
 }  // namespace pneumatic_finger

@@ -10,9 +10,11 @@
 #include <fstream>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <sstream>
 
+#include "pneumatic_finger/core/drawing.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 
@@ -69,15 +71,31 @@ urdf::Vector3 boxInertia(double m, double x, double y, double z) {
   return urdf::Vector3(m * (y * y + z * z) / 12, m * (x * x + z * z) / 12, m * (x * x + y * y) / 12);
 }
 
-// A segment drawn as what it is: a block of elastomer, length along x, the chamber height toward -y (the
-// extensible side; the backbone runs along the strain-limited base layer at y = 0), the width along z. The
-// collision shape is the same box (simple shapes, no meshes). The inertial: the block minus its chamber, a cavity of
-// thickness @p cavity_length along x (0 for the passive base segment) spanning the block's height and width, centred
-// in it; the model's geometry gives the walls no thickness of their own across the finger, so the mass is that of
-// the walls between chambers. Inertia: the block's minus the cavity's, both about the common centre (exact for that
-// shape).
-urdf::LinkSharedPtr segmentLink(const std::string& name, double length, double height, double width,
-                                double cavity_length, double density, const urdf::MaterialSharedPtr& material) {
+// A segment's block and its cavity (m): the block's height (from the backbone) and width; the cavity's height and
+// width. From the model's keys the block is the chamber (L x e) and the cavity spans it, the walls having no thickness
+// across the finger; from a drawing (docs/DRAWING.md) the block is the body, up to its top and as wide as drawn, and
+// the cavity the drawn one inside it.
+struct BlockSize {
+  double height = 0, width = 0, cavity_height = 0, cavity_width = 0;
+};
+
+BlockSize blockSize(const FingerParameters& p, std::size_t k) {
+  BlockSize b{p.chamber_height_m[k], p.chamber_width_m[k], p.chamber_height_m[k], p.chamber_width_m[k]};
+  const std::optional<ActuatorDrawing> d = drawingFromRaw(p.drawing);
+  if (!d) return b;
+  b.height = std::max(d->floor_height_m + d->cavity_height_m + d->roof_thickness_m, d->cavity_height_m);
+  b.width = d->body_width_m;
+  return b;
+}
+
+// A segment drawn as what it is: a block of elastomer, length along x, its height toward -y (the extensible side;
+// the backbone runs along the strain-limited base layer at y = 0), the width along z. The collision shape is the
+// same box (simple shapes, no meshes). The inertial: the block minus its cavity, of @p cavity_length along x (0 for
+// the passive base segment), centred in it. Inertia: the block's minus the cavity's, both about the common centre
+// (exact for that shape).
+urdf::LinkSharedPtr segmentLink(const std::string& name, double length, const BlockSize& size, double cavity_length,
+                                double density, const urdf::MaterialSharedPtr& material) {
+  const double height = size.height, width = size.width;
   auto link = std::make_shared<urdf::Link>();
   link->name = name;
   auto box = std::make_shared<urdf::Box>();
@@ -96,9 +114,9 @@ urdf::LinkSharedPtr segmentLink(const std::string& name, double length, double h
   link->collision = collision;
   link->collision_array.push_back(collision);
   const double block_mass = density * length * height * width;
-  const double cavity_mass = density * cavity_length * height * width;
+  const double cavity_mass = density * cavity_length * size.cavity_height * size.cavity_width;
   const urdf::Vector3 block = boxInertia(block_mass, length, height, width);
-  const urdf::Vector3 cavity = boxInertia(cavity_mass, cavity_length, height, width);
+  const urdf::Vector3 cavity = boxInertia(cavity_mass, cavity_length, size.cavity_height, size.cavity_width);
   auto inertial = std::make_shared<urdf::Inertial>();
   inertial->origin = centre;
   inertial->mass = block_mass - cavity_mass;
@@ -169,9 +187,8 @@ urdf::ModelInterface fingerUrdfModel(const FingerParameters& p, const FingerUrdf
   auto root = std::make_shared<urdf::Link>();
   root->name = o.parent_frame;
   m.links_[root->name] = root;
-  const double height0 = p.chamber_height_m[0], width0 = p.chamber_width_m[0];
-  m.links_[segmentLinkName(o.prefix, 0)] = segmentLink(segmentLinkName(o.prefix, 0), p.base_segment_length_m, height0,
-                                                       width0, 0.0, p.elastomer_density_kg_m3, passive);
+  m.links_[segmentLinkName(o.prefix, 0)] = segmentLink(segmentLinkName(o.prefix, 0), p.base_segment_length_m,
+                                                       blockSize(p, 0), 0.0, p.elastomer_density_kg_m3, passive);
   m.joints_[o.prefix + "mount"] =
       joint(o.prefix + "mount", urdf::Joint::FIXED, o.parent_frame, segmentLinkName(o.prefix, 0),
             poseXyzRpy(o.mount_xyz_m[0], o.mount_xyz_m[1], o.mount_xyz_m[2], o.mount_rpy_rad[0], o.mount_rpy_rad[1],
@@ -179,7 +196,7 @@ urdf::ModelInterface fingerUrdfModel(const FingerParameters& p, const FingerUrdf
   for (int i = 1; i <= n; ++i) {
     const auto k = static_cast<std::size_t>(i - 1);
     const std::string child = segmentLinkName(o.prefix, i);
-    m.links_[child] = segmentLink(child, p.segment_length_m[k], p.chamber_height_m[k], p.chamber_width_m[k],
+    m.links_[child] = segmentLink(child, p.segment_length_m[k], blockSize(p, k),
                                   std::min(p.chamber_thickness_m[k], p.segment_length_m[k]), p.elastomer_density_kg_m3,
                                   material);
     const double proximal = i == 1 ? p.base_segment_length_m : p.segment_length_m[k - 1];

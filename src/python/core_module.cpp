@@ -281,20 +281,7 @@ class PyFingerModel {
     return arrays.result(scalar);
   }
 
-  py::dict parameters() const {
-    py::dict d;
-    for (const auto& kv : model_->parameters().toRaw()) {
-      const pf::ParameterSpec& spec = *pf::findParameterSpec(kv.first);
-      if (kv.second.is_list) {
-        d[py::str(kv.first)] = py::cast(kv.second.values);
-      } else if (spec.shape == pf::ParameterShape::kChoice) {
-        d[py::str(kv.first)] = py::str(pf::formatParameterValue(spec, kv.second.values[0]));
-      } else {
-        d[py::str(kv.first)] = py::float_(kv.second.values[0]);
-      }
-    }
-    return d;
-  }
+  py::dict parameters() const { return parametersDict(model_->parameters()); }
 
   int chamberCount() const { return model_->chamberCount(); }
 

@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "pneumatic_finger/core/drawing.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 
@@ -45,6 +46,29 @@ inline pf::RawParameterMap loadRaw(const std::string& config, const py::dict& ov
     raw[key] = rawValue(key, item.second);
   }
   return raw;
+}
+
+/// The actuator's keys as Python values: numbers, lists per chamber, choices by name; a drawn actuator's drawing as a
+/// dict under "drawing" (docs/DRAWING.md).
+inline py::dict parametersDict(const pf::FingerParameters& parameters) {
+  py::dict d;
+  py::dict drawing;
+  for (const auto& kv : pf::resolveDrawing(parameters.toRaw())) {
+    if (kv.first.rfind(pf::kDrawingPrefix, 0) == 0) {  // the drawing's sizes, under "drawing"
+      drawing[py::str(kv.first.substr(std::string(pf::kDrawingPrefix).size()))] = py::float_(kv.second.values[0]);
+      continue;
+    }
+    const pf::ParameterSpec& spec = *pf::findParameterSpec(kv.first);
+    if (kv.second.is_list) {
+      d[py::str(kv.first)] = py::cast(kv.second.values);
+    } else if (spec.shape == pf::ParameterShape::kChoice) {
+      d[py::str(kv.first)] = py::str(pf::formatParameterValue(spec, kv.second.values[0]));
+    } else {
+      d[py::str(kv.first)] = py::float_(kv.second.values[0]);
+    }
+  }
+  if (!drawing.empty()) d["drawing"] = drawing;
+  return d;
 }
 
 }  // namespace pneumatic_finger_python

@@ -9,6 +9,7 @@
 #include <stdexcept>
 
 #include "pneumatic_finger/core/units.hpp"
+#include "pneumatic_finger/core/drawing.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pneumatic_finger {
@@ -107,6 +108,17 @@ RawParameterMap readActuatorKeys(const ros::NodeHandle& nh) {
       }
     }
     raw[spec.key] = value;
+  }
+  // The actuator as drawn: the parameter file's drawing mapping, which rosparam loads as ~drawing/KEY.
+  for (const ParameterSpec& spec : drawingParameterSpecs()) {
+    const std::string key = kDrawingPrefix + std::string(spec.key);
+    XmlRpc::XmlRpcValue v;
+    if (!nh.getParam(key, v)) continue;
+    double number = 0;
+    if (!asParameterNumber(v, number)) {
+      throw ParameterError("parameter '" + key + "' = " + describeParameterValue(v) + " is not a number");
+    }
+    raw[key] = {{number}, false};
   }
   return raw;
 }
@@ -242,7 +254,9 @@ void refuseUnknownKeys(const NodeParameterReader& in) {
     }
   }
   in.refuseUnknownKeys(
-      [](const std::string& key) { return findParameterSpec(key) != nullptr || key == "diagnostic_period"; });
+      [](const std::string& key) {
+        return findParameterSpec(key) != nullptr || key == "diagnostic_period" || isDrawingKey(key);
+      });
 }
 
 }  // namespace

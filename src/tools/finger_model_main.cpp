@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/core/drawing.hpp"
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/pressure_range.hpp"
@@ -60,6 +61,22 @@ void printParameterTable() {
               << " | " << pf::describeRange(s) << " | "
               << (s.shape == pf::ParameterShape::kPerChamber ? "scalar or list of N" : "scalar") << " | "
               << s.description << " |\n";
+  }
+}
+
+// A drawing key's default: a number, "required", or "from another key" where its meaning says which (NaN default).
+std::string defaultText(const pf::ParameterSpec& s) {
+  if (!std::isnan(s.default_value)) return pf::formatExact(s.default_value);
+  return std::string(s.description).find("(default:") == std::string::npos ? "required" : "from another key";
+}
+
+// The drawing's keys (docs/DRAWING.md), from their one definition.
+void printDrawingTable() {
+  std::cout << "| key (under `drawing:`) | unit | default | allowed | meaning |\n|---|---|---|---|---|\n";
+  for (const auto& s : pf::drawingParameterSpecs()) {
+    std::cout << "| `" << s.key << "` | " << s.unit << " | "
+              << defaultText(s) << " | "
+              << pf::describeRange(s) << " | " << s.description << " |\n";
   }
 }
 
@@ -361,6 +378,8 @@ int main(int argc, char** argv) {
   app.add_option("--sweep-pa", sweep, "FROM:TO:COUNT, evenly spaced gauge pressures (Pa)");
   volume.addTo(app);
   app.add_flag("--parameters", parameter_table, "print the parameter table (Markdown) and exit");
+  bool drawing_table = false;
+  app.add_flag("--drawing-parameters", drawing_table, "print the drawing's keys (Markdown, docs/DRAWING.md) and exit");
   CsvColumns columns;
   std::string max_gauge;
   app.add_option("--max-gauge-pa", max_gauge,
@@ -378,8 +397,8 @@ int main(int argc, char** argv) {
                  "X,Y,R: a disk in the finger's plane (m; x along the unbent finger from the mount, y toward the "
                  "strain-limited side); the finger closes on it instead of passing through");
   return pf::runTool("finger_model", app, argc, argv, [&] {
-    if (parameter_table) {
-      printParameterTable();
+    if (parameter_table || drawing_table) {
+      parameter_table ? printParameterTable() : printDrawingTable();
       return 0;
     }
     std::vector<double> pressures;

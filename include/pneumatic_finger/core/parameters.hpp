@@ -99,6 +99,7 @@ struct FingerParameters {
   FlexionFace wall_flexion_face = FlexionFace::kOuter;  ///< the thick wall's face whose bulge bends the finger
   double dead_volume_m3 = 0.0;                   ///< V_g: gas at rest in the drive (0: incompressible fluid)
   double chamber_growth_ratio = 1.0;             ///< r_V: a chamber's volume growth over its walls' (1: theirs alone)
+  RawParameterMap drawing;  ///< the drawing it was made from, as "drawing/KEY" entries (drawing.hpp); empty: none
 
   /// The defaults of parameterSpecs() (the calibrated paper actuator).
   static FingerParameters defaults();
@@ -108,7 +109,8 @@ struct FingerParameters {
   ///         a list of the wrong length, a non-finite or out-of-range value, or inconsistent geometry (b > L).
   static FingerParameters fromRaw(const RawParameterMap& raw);
 
-  /// The same actuator as a raw map (lists collapsed to scalars where all entries are equal).
+  /// The same actuator as a raw map (lists collapsed to scalars where all entries are equal). A drawn actuator gives
+  /// its drawing's entries instead of the model keys the drawing makes (resolveDrawing(toRaw()) has both).
   RawParameterMap toRaw() const;
 
   /// The finger's length along its straight backbone, mount to tip: Z0 + sum of Z_n (m).
