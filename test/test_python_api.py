@@ -192,6 +192,21 @@ def test_finger_design_two_keys_make_a_grid_and_draw_it(tmp_path):
     assert png.stat().st_size > 10000
 
 
+def test_finger_design_sweeps_a_drawing():
+    # The EPFL drawing, its chamber count varied: each row is the model drawn with that count (docs/DRAWING.md).
+    config = str(pathlib.Path(pf.default_config()).parent / "epfl_ecoflex30_c7_coupon.yaml")
+    out = subprocess.run(DESIGN + ["--config", config, "--vary", "drawing/chamber_count=3:9:4", "--quantity",
+                                   "tip_angle_rad@15000"], check=True, capture_output=True, text=True).stdout
+    rows = list(csv.DictReader(io.StringIO(out)))
+    assert [r["drawing/chamber_count"] for r in rows] == ["3.0", "5.0", "7.0", "9.0"]
+    for row in rows:
+        model = pf.FingerModel(config, {"drawing/chamber_count": int(float(row["drawing/chamber_count"]))})
+        # The sweep solves each wall afresh (no wall inverse for one pressure), evaluate through the inverse: the
+        # same value to the model's 1e-12.
+        assert float(row["tip_angle_rad@15000"]) == pytest.approx(float(model.evaluate(15000.0)["tip_angle_rad"]),
+                                                                  rel=1e-12)
+
+
 @pytest.mark.parametrize("args, message", [
     (["--vary", "no_such_key=1:2:3", "--quantity", "contact_gauge_pa"], "unknown parameter 'no_such_key'"),
     (["--vary", "chamber_gap_m=1:2", "--quantity", "contact_gauge_pa"], "KEY=FROM:TO:COUNT"),
