@@ -1,9 +1,12 @@
 // Calibration: recovers known parameters, reaches the accuracy target on the paper's data, refuses bad files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "pneumatic_finger/core/calibration.hpp"
+#include "pneumatic_finger/core/calibration_run.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -297,4 +300,36 @@ TEST(CalibrationUncertainty, AWellDeterminedKeyHasASmallBarAndNoWarning) {
                     pf::CalibrationQuantity::kOuterAverage);
   EXPECT_TRUE(fit.warnings.empty()) << fit.warnings[0];
   EXPECT_LT(fit.uncertainty[0], 1e-6 * fit.values[0]);
+}
+
+// A long calibration says where it is: every step it reports names the law, the leave-one-out row and the model
+// evaluations so far; the fit is the same with or without someone listening. The printer stays quiet for its first
+// seconds, then writes a line per step at most that often.
+TEST(Calibration, ALongCalibrationReportsItsProgress) {
+  pf::MeasurementSet data;
+  data.rows = pf::readMeasurementsCsv(kTable1, 1);
+  pf::CalibrationRequest request;
+  request.wall_law = "paper";  // with leave-one-out (the default): the fit, then a fit per row
+  std::vector<std::string> steps;
+  request.progress = [&steps](const std::string& step) { steps.push_back(step); };
+  const pf::FingerParameters base = pf::calibrationBase(pf::FingerParameters::defaults().toRaw(), "paper");
+  const pf::CalibrationRun heard = pf::runCalibration(base, data, request);
+  request.progress = nullptr;
+  const pf::CalibrationRun quiet = pf::runCalibration(base, data, request);
+  EXPECT_EQ(heard.best().fit.values, quiet.best().fit.values);
+  ASSERT_FALSE(steps.empty());
+  auto heard_of = [&steps](const std::string& part) {
+    return std::any_of(steps.begin(), steps.end(), [&](const std::string& s) { return s.find(part) != std::string::npos; });
+  };
+  EXPECT_TRUE(heard_of("paper law: the fit: ")) << steps.front();
+  EXPECT_TRUE(heard_of("paper law: leave-one-out, row 4 of 4: ")) << steps.back();
+  EXPECT_TRUE(heard_of(" model evaluations")) << steps.back();
+
+  std::ostringstream loud, silent;
+  pf::CalibrationProgressPrinter now(loud, "finger_calibrate", 0.0), later(silent, "finger_calibrate", 1e9);
+  now("paper law: the fit: 64 model evaluations");
+  later("paper law: the fit: 64 model evaluations");
+  EXPECT_NE(loud.str().find("finger_calibrate: 0.0 s: paper law: the fit: 64 model evaluations\n"), std::string::npos)
+      << loud.str();
+  EXPECT_EQ(silent.str(), "");
 }

@@ -317,14 +317,16 @@ void refuseWhatTheDataCannotTell(const std::vector<std::string>& keys, std::size
 // Every joint with base_wall_share and chamber keys: each key to the joints it moves. The chamber keys to the joints
 // 2..N average, then base_wall_share to joint 1.
 CalibrationResult calibrateEveryJointInTwoSteps(const FingerParameters& base, const std::vector<std::string>& keys,
-                                                const std::vector<Measurement>& data, CalibrationObjective objective) {
+                                                const std::vector<Measurement>& data, CalibrationObjective objective,
+                                                const CalibrationProgress& progress) {
   std::vector<std::string> chamber;
   for (const auto& k : keys) {
     if (k != "base_wall_share") chamber.push_back(k);
   }
-  const CalibrationResult outer = calibrate(base, chamber, data, objective, CalibrationQuantity::kOuterAverage);
+  const CalibrationResult outer =
+      calibrate(base, chamber, data, objective, CalibrationQuantity::kOuterAverage, progress);
   CalibrationResult both = calibrate(outer.parameters, {"base_wall_share"}, data, objective,
-                                     CalibrationQuantity::kFirstJoint);
+                                     CalibrationQuantity::kFirstJoint, progress);
   both.model_evaluations += outer.model_evaluations;
   both.keys = keys;
   both.values.clear();
@@ -342,7 +344,7 @@ CalibrationResult calibrateEveryJointInTwoSteps(const FingerParameters& base, co
 // so for fixed other keys the largest |error| is quasi-convex in log mu and the inner search is exact.
 CalibrationResult searchKeys(const FingerParameters& base, const std::vector<std::string>& keys,
                              const std::vector<Measurement>& data, CalibrationObjective objective,
-                             CalibrationQuantity quantity) {
+                             CalibrationQuantity quantity, const CalibrationProgress& progress) {
   std::vector<SearchAxis> axes;
   for (const auto& k : keys) axes.push_back(axisFor(k, base));
   std::stable_sort(axes.begin(), axes.end(), [](const SearchAxis& a, const SearchAxis& b) {
@@ -350,6 +352,7 @@ CalibrationResult searchKeys(const FingerParameters& base, const std::vector<std
   });
   CalibrationResult result;
   FingerParameters trial = base;
+  long points = 0;
   auto objectiveAt = [&](const std::vector<double>& x) {
     for (std::size_t i = 0; i < axes.size(); ++i) setKey(trial, axes[i].key, axes[i].toValue(x[i]));
     for (int i = 0; i < trial.chamber_count && trial.wall_law == WallLaw::kPaper; ++i) {
@@ -357,6 +360,8 @@ CalibrationResult searchKeys(const FingerParameters& base, const std::vector<std
       if (trial.wall_critical_height_m[k] > trial.chamber_height_m[k]) return std::numeric_limits<double>::infinity();
     }
     result.model_evaluations += static_cast<long>(data.size());
+    // Every 64th point: the report's words cost more than a small data set's residuals.
+    if (progress && ++points % 64 == 0) progress(std::to_string(result.model_evaluations) + " model evaluations");
     return objectiveOver(residuals(trial, data), quantity, objective);
   };
   // Axis `level` is searched with the outer ones fixed in x[0..level-1], each trial point of it solved for the inner
@@ -392,13 +397,13 @@ CalibrationResult searchKeys(const FingerParameters& base, const std::vector<std
 
 CalibrationResult calibrate(const FingerParameters& base, const std::vector<std::string>& keys,
                             const std::vector<Measurement>& data, CalibrationObjective objective,
-                            CalibrationQuantity quantity) {
+                            CalibrationQuantity quantity, const CalibrationProgress& progress) {
   checkKeysAndData(base, keys, data, quantity);
   refuseWhatTheDataCannotTell(keys, data.size(), quantity);
   const bool share = std::count(keys.begin(), keys.end(), "base_wall_share") > 0;
   CalibrationResult result = share && keys.size() > 1 && quantity == CalibrationQuantity::kEveryJoint
-                                 ? calibrateEveryJointInTwoSteps(base, keys, data, objective)
-                                 : searchKeys(base, keys, data, objective, quantity);
+                                 ? calibrateEveryJointInTwoSteps(base, keys, data, objective, progress)
+                                 : searchKeys(base, keys, data, objective, quantity, progress);
   calibrationUncertainty(base, data, quantity, result);
   return result;
 }
@@ -461,7 +466,8 @@ TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vecto
 
 std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vector<std::string>& keys,
                                   const std::vector<Measurement>& data, CalibrationObjective objective,
-                                  CalibrationQuantity quantity) {
+                                  CalibrationQuantity quantity, const CalibrationProgress& progress,
+                                  const std::string& step) {
   const std::size_t chamber_keys =
       keys.size() - static_cast<std::size_t>(std::count(keys.begin(), keys.end(), std::string("base_wall_share")));
   if (data.size() < chamber_keys + 2) {
@@ -470,9 +476,12 @@ std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vecto
   }
   std::vector<Residual> predicted;
   for (std::size_t i = 0; i < data.size(); ++i) {
+    const std::string row = step + ", row " + std::to_string(i + 1) + " of " + std::to_string(data.size()) + ": ";
     std::vector<Measurement> others = data;
     others.erase(others.begin() + static_cast<long>(i));
-    const CalibrationResult without = calibrate(base, keys, others, objective, quantity);
+    const CalibrationResult without = calibrate(base, keys, others, objective, quantity,
+                                                progress ? CalibrationProgress([&](const std::string& s) { progress(row + s); })
+                                                         : CalibrationProgress());
     predicted.push_back(residuals(without.parameters, {data[i]})[0]);
   }
   return predicted;

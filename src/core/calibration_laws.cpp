@@ -19,7 +19,8 @@ std::vector<WallLaw> parseWallLawChoice(const std::string& name) {
 
 std::vector<WallLawFit> calibrateWallLaws(const FingerParameters& base, const std::vector<WallLaw>& laws,
                                           const std::vector<std::string>& keys, const std::vector<Measurement>& data,
-                                          CalibrationObjective objective, CalibrationQuantity quantity) {
+                                          CalibrationObjective objective, CalibrationQuantity quantity,
+                                          const CalibrationProgress& progress) {
   std::vector<WallLawFit> fits;
   for (WallLaw law : laws) {
     FingerParameters start = base;
@@ -36,9 +37,12 @@ std::vector<WallLawFit> calibrateWallLaws(const FingerParameters& base, const st
     WallLawFit f;
     f.law = law;
     f.note = note;
+    const std::string name = std::string(wallLawName(law)) + " law";
     try {
-      f.fit = calibrate(start, law_keys, data, objective, quantity);
-      f.leave_one_out = leaveOneOut(start, law_keys, data, objective, quantity);
+      f.fit = calibrate(start, law_keys, data, objective, quantity,
+                        progress ? CalibrationProgress([&](const std::string& s) { progress(name + ": the fit: " + s); })
+                                 : CalibrationProgress());
+      f.leave_one_out = leaveOneOut(start, law_keys, data, objective, quantity, progress, name + ": leave-one-out");
     } catch (const ParameterError& e) {
       throw ParameterError(std::string("wall law '") + wallLawName(law) + "': " + e.what());
     }

@@ -3,6 +3,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <utility>
 
 #include <string>
 #include <vector>
@@ -35,11 +37,13 @@ CalibrationQuantity quantityFor(const CalibrationRequest& request, const std::ve
 
 // One law without leave-one-out: the fit alone (Python's quick fit).
 WallLawFit fitOnly(const FingerParameters& base, const std::vector<std::string>& keys, const MeasurementSet& data,
-                   CalibrationObjective objective, CalibrationQuantity quantity) {
+                   CalibrationObjective objective, CalibrationQuantity quantity, const CalibrationProgress& progress) {
   WallLawFit f;
   f.law = base.wall_law;
   f.fit = calibrate(base, keys.empty() ? defaultFitKeys(quantity, base.wall_law) : keys, data.rows, objective,
-                    quantity);
+                    quantity,
+                    progress ? CalibrationProgress([&](const std::string& s) { progress("the fit: " + s); })
+                             : CalibrationProgress());
   return f;
 }
 
@@ -60,9 +64,9 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
   if (laws.size() == 1 && !request.leave_one_out) {
     FingerParameters one = base;
     one.wall_law = laws[0];
-    run.fits.push_back(fitOnly(one, request.keys, driven, run.objective, run.quantity));
+    run.fits.push_back(fitOnly(one, request.keys, driven, run.objective, run.quantity, request.progress));
   } else {
-    run.fits = calibrateWallLaws(base, laws, request.keys, driven.rows, run.objective, run.quantity);
+    run.fits = calibrateWallLaws(base, laws, request.keys, driven.rows, run.objective, run.quantity, request.progress);
     run.chosen = chosenWallLaw(run.fits);
     run.tip_uncertainty =
         tipUncertainty(run.best().fit.residuals, run.best().leave_one_out, run.best().fit.keys.size());
@@ -70,6 +74,20 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
   run.warnings = data.notes;
   for (const std::string& w : run.best().fit.warnings) run.warnings.push_back(w);
   return run;
+}
+
+CalibrationProgressPrinter::CalibrationProgressPrinter(std::ostream& out, std::string who, double quiet_s)
+    : out_(&out), who_(std::move(who)), quiet_s_(quiet_s), start_(std::chrono::steady_clock::now()), last_(start_) {}
+
+void CalibrationProgressPrinter::operator()(const std::string& step) {
+  const auto now = std::chrono::steady_clock::now();
+  const double since_start = std::chrono::duration<double>(now - start_).count();
+  const double since_last = std::chrono::duration<double>(now - last_).count();
+  if (since_start < quiet_s_ || (last_ != start_ && since_last < quiet_s_)) return;
+  last_ = now;
+  char seconds[32];
+  std::snprintf(seconds, sizeof seconds, "%.1f", since_start);
+  *out_ << who_ << ": " << seconds << " s: " << step << std::endl;
 }
 
 PressureRange calibratedRange(const CalibrationRun& run, const PressureRange& file_range) {

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include <cmath>
+#include <iostream>
 #include <string>
 #include <vector>
 
@@ -164,6 +165,7 @@ void defineCalibrate(py::module_& m) {
         request.wall_law = wall_law;
         request.leave_one_out = leave_one_out;
         request.drive = drive;
+        request.progress = pf::CalibrationProgressPrinter(std::cerr, "pf.calibrate");  // quiet for the first 2 s
         return calibrate(path, names, columns, request, config, overrides);
       },
       py::arg("path"), py::arg("names"), py::arg("columns"), py::arg("keys"), py::arg("objective"),

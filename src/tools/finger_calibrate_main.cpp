@@ -271,6 +271,7 @@ int calibrateOnData(const pf::ParameterOptions& parameters, DataOptions o, const
   request.compare = o.compare;
   request.average_column = o.average_column;
   request.drive = o.drive;
+  request.progress = pf::CalibrationProgressPrinter(std::cerr, "finger_calibrate");  // quiet for the first 2 s
   const pf::FingerParameters base = pf::calibrationBase(parameters.loadRaw(), o.wall_law);
   const pf::MeasurementSet data = pf::readMeasurementSet(o.data_path, 1, o.average_column);
   pf::CalibrationRun run;

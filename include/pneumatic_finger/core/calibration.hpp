@@ -8,6 +8,7 @@
 #pragma once
 
 #include <cmath>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -185,6 +186,10 @@ void calibrationUncertainty(const FingerParameters& base, const std::vector<Meas
 /// Residuals of @p parameters against @p data.
 std::vector<Residual> residuals(const FingerParameters& parameters, const std::vector<Measurement>& data);
 
+/// Hears where a long calibration is, step by step ("thick law: leave-one-out, row 5 of 15: 1200 model evaluations");
+/// empty: nobody.
+using CalibrationProgress = std::function<void(const std::string& step)>;
+
 /// Fits @p keys (one to three of isFittableKey) of @p base to @p data over @p quantity.
 /// Every joint with base_wall_share and chamber keys is fitted in two stages, each key to the joints it moves: the
 /// chamber keys to the joints 2..N average (in the model those joints are all 2 theta, so their average is what the
@@ -200,14 +205,17 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
 ///         angle cannot tell the base face's share from the chambers')
 CalibrationResult calibrate(const FingerParameters& base, const std::vector<std::string>& keys,
                             const std::vector<Measurement>& data, CalibrationObjective objective,
-                            CalibrationQuantity quantity = CalibrationQuantity::kOuterAverage);
+                            CalibrationQuantity quantity = CalibrationQuantity::kOuterAverage,
+                            const CalibrationProgress& progress = {});
 
 /// Leave-one-out: each row predicted by calibrate() on the others (the same keys, objective and quantity), as its
-/// residual. The data needs two rows more than the chamber keys (calibrate()'s rule, one row up).
+/// residual. The data needs two rows more than the chamber keys (calibrate()'s rule, one row up). @p progress hears
+/// each row's fit begin, named after @p step.
 /// @throws ParameterError naming the rows there are and the rows needed
 std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vector<std::string>& keys,
                                   const std::vector<Measurement>& data, CalibrationObjective objective,
-                                  CalibrationQuantity quantity);
+                                  CalibrationQuantity quantity, const CalibrationProgress& progress = {},
+                                  const std::string& step = "leave-one-out");
 
 /// The objective over leave-one-out residuals, as a fit's objective_value over its own: the largest |error| (minimax)
 /// or the sum of squared errors (least squares) of what @p quantity compares; +inf where a row has no shape.
@@ -231,7 +239,8 @@ struct WallLawFit {
 /// @throws ParameterError as calibrate() and leaveOneOut() do, naming the law
 std::vector<WallLawFit> calibrateWallLaws(const FingerParameters& base, const std::vector<WallLaw>& laws,
                                           const std::vector<std::string>& keys, const std::vector<Measurement>& data,
-                                          CalibrationObjective objective, CalibrationQuantity quantity);
+                                          CalibrationObjective objective, CalibrationQuantity quantity,
+                                          const CalibrationProgress& progress = {});
 
 /// The index in @p fits of the smallest leave-one-out objective (the first on a tie).
 std::size_t chosenWallLaw(const std::vector<WallLawFit>& fits);

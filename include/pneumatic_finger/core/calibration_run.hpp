@@ -3,6 +3,8 @@
 // cannot answer one data set differently.
 #pragma once
 
+#include <chrono>
+#include <ostream>
 #include <string>
 #include <vector>
 
@@ -23,6 +25,22 @@ struct CalibrationRequest {
   std::string drive;           ///< what set each row: "pressure" (gauge_pa) or "volume" (supplied_volume_m3); empty:
                                ///< pressure where the data has gauge_pa, else volume
   bool leave_one_out = true;   ///< predict each row by a fit to the others (always, when laws are compared)
+  CalibrationProgress progress;  ///< hears each step of a long run (CalibrationProgressPrinter); empty: nobody
+};
+
+/// Prints a calibration's progress for a person waiting on it: nothing for the first @p quiet_s seconds (a short
+/// calibration says nothing), then one line per step at most every @p quiet_s seconds, "WHO: 12.4 s: thick law:
+/// leave-one-out, row 5 of 15", to @p out (the tools' and Python's stderr).
+class CalibrationProgressPrinter {
+ public:
+  CalibrationProgressPrinter(std::ostream& out, std::string who, double quiet_s = 2.0);
+  void operator()(const std::string& step);
+
+ private:
+  std::ostream* out_;
+  std::string who_;
+  double quiet_s_;
+  std::chrono::steady_clock::time_point start_, last_;
 };
 
 /// A calibration's answer: each law's fit (one unless wall_law is "auto"), the chosen one, and what the data said.
