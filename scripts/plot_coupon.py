@@ -7,7 +7,7 @@
 import argparse
 import os
 
-from page_support import finish_axes
+from page_support import finish_axes, save
 
 ROOT = os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 
@@ -39,8 +39,7 @@ def main():
     ax_error.set_xlabel("engineering strain")
     ax_error.set_ylabel("fit - test (%)")
     ax_error.grid(alpha=0.3)
-    fig.tight_layout()
-    fig.savefig(args.output, dpi=110)
+    save(fig, args.output)
     print(f"wrote {args.output}")
 
 

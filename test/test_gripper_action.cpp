@@ -92,8 +92,11 @@ TEST(GripperAction, ClosesStallsOnTheObjectAndAbortsWhatNoPressureReaches) {
   ASSERT_EQ(send(client, 3.0, want_n), State::SUCCEEDED) << client.getState().getText();
   r = client.getResult();
   EXPECT_TRUE(r->stalled);
-  EXPECT_NEAR(r->gauge_pa, want_pa, kSettleTolerancePa);
+  // Commanded the force's pressure plus the settle tolerance, the fill settles from below no weaker than asked.
+  EXPECT_GE(r->gauge_pa, want_pa);
+  EXPECT_LE(r->gauge_pa, want_pa + 2 * kSettleTolerancePa);
   EXPECT_NEAR(r->effort, force_at(r->gauge_pa), 1e-6 * r->effort);
+  EXPECT_GE(r->effort, want_n * (1 - 1e-6)) << "the grip asked for";
   EXPECT_NEAR(r->effort, want_n, 0.01 * want_n) << "within the settling tolerance's share of the force";
 
   // More than the finger gives anywhere in its range: aborted before anything is commanded, with the most it gives.

@@ -1,7 +1,8 @@
 // sweepDesigns: one model per design, each evaluated once. The raw map of the base is built once and only the swept
 // keys change in it, so a design costs the loader's validation, the model's construction and one evaluation.
-#include "pneumatic_finger/core/drawing.hpp"
 #include "pneumatic_finger/core/design_sweep.hpp"
+
+#include "pneumatic_finger/core/drawing.hpp"
 
 #include <limits>
 #include <optional>
@@ -24,8 +25,9 @@ std::vector<DesignRefusal> sweepDesigns(const FingerParameters& base, const Mode
                                         const std::vector<std::string>& keys, const double* values,
                                         std::size_t designs, double gauge_pa, const DesignOutputs& out) {
   for (const std::string& key : keys) {
-    const bool drawn = key.rfind(kDrawingPrefix, 0) == 0;  // a drawing's key, checked when the design is built
-    if (!drawn && findParameterSpec(key) == nullptr) throw ParameterError("unknown parameter '" + key + "'");
+    if (!isDrawingKey(key) && findParameterSpec(key) == nullptr) {
+      throw ParameterError("unknown parameter '" + key + "'");
+    }
   }
   RawParameterMap raw = base.toRaw();
   ModelOptions design_options = options;

@@ -223,7 +223,11 @@ std::string describeRange(const ParameterSpec& spec) {
 FingerParameters FingerParameters::defaults() { return fromRaw({}); }
 
 FingerParameters FingerParameters::fromRaw(const RawParameterMap& given) {
-  const RawParameterMap raw = resolveDrawing(given);  // a drawing's model keys, put in (docs/DRAWING.md)
+  // A drawing's model keys, put in (docs/DRAWING.md). Its "drawing/" keys sort together: without one, no copy.
+  const auto first_drawn = given.lower_bound(kDrawingPrefix);
+  const bool drawn = first_drawn != given.end() && first_drawn->first.rfind(kDrawingPrefix, 0) == 0;
+  const RawParameterMap resolved = drawn ? resolveDrawing(given) : RawParameterMap();
+  const RawParameterMap& raw = drawn ? resolved : given;
   FingerParameters p;
   for (const auto& entry : raw) {
     if (entry.first.rfind(kDrawingPrefix, 0) == 0) {
@@ -335,7 +339,7 @@ void parseParameterAssignment(const std::string& assignment, RawParameterMap& ra
   }
   const std::string key = trim(assignment.substr(0, eq));
   const std::string value = trim(assignment.substr(eq + 1));
-  const bool drawn = key.rfind(kDrawingPrefix, 0) == 0;  // a drawing's key: one number, checked when drawn
+  const bool drawn = isDrawingKey(key);  // a drawing's key: one number, checked when drawn
   if (!drawn && findParameterSpec(key) == nullptr) throw ParameterError("unknown parameter '" + key + "'");
   RawParameterValue parsed;
   if (!value.empty() && value.front() == '[') {
