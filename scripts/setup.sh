@@ -22,6 +22,8 @@ PACKAGES=("$@"
   libcli11-dev
   # the calibration room's solver (package.xml: libceres-dev)
   libceres-dev
+  # its minimax solver (package.xml: libnlopt-cxx-dev)
+  libnlopt-cxx-dev
   # the cell sequencer's forward kinematics (package.xml: kdl_parser)
   libkdl-parser-dev liborocos-kdl-dev
   # nodelets (package.xml: nodelet, pluginlib)

@@ -32,7 +32,7 @@ from accuracy_volume import ROOT, SETS, SKIN_RATIOS, column, gas_uptake_m3, rows
 
 DEG = 180 / math.pi
 TOLERANCE = 0.10  # the pressure's relative error allowed: the accuracy target of the volume input
-FLOOR_PA = 1e4  # the calibration's smallest shear_modulus_pa for the membrane laws (calibration_axes.hpp)
+FLOOR_PA = 1e4  # the calibration's smallest shear_modulus_pa for the membrane laws (src/calibration/fit_space.hpp)
 # Each law's geometry: the overrides that make its chain (the paper law's critical height as in accuracy_laws.py).
 LAWS = {"membrane": {"wall_law": "membrane"},
         "thick, outer face": {"wall_law": "thick", "wall_flexion_face": "outer"},

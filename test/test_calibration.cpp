@@ -5,8 +5,8 @@
 #include <cmath>
 #include <sstream>
 
-#include "pneumatic_finger/core/calibration.hpp"
-#include "pneumatic_finger/core/calibration_run.hpp"
+#include "pneumatic_finger/calibration/calibration.hpp"
+#include "pneumatic_finger/calibration/calibration_run.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -244,8 +244,7 @@ TEST(Calibration, RefusesKeysTheDataCannotDetermine) {
   EXPECT_NE(message({"shear_modulus_pa"}, tips, Q::kTipPosition).find("no measurement for 'tip_position'"),
             std::string::npos);
   EXPECT_NE(message({"shear_modulus_pa"}, tips, Q::kEveryJoint).find("no measurement for 'joints'"), std::string::npos);
-  EXPECT_NE(message({"shear_modulus_pa", "chamber_gap_m", "base_wall_share", "chamber_height_m"}, joints,
-                    Q::kEveryJoint).find("one to three"), std::string::npos);
+  EXPECT_NE(message({}, joints, Q::kEveryJoint).find("at least one parameter"), std::string::npos);
   // What the file's header lacks or half-gives is refused when it is read, naming the line.
   EXPECT_NE(refusal("gauge_pa,tip_x_m\n1e5,0.01\n", 1).find("m.csv:1: header has tip_x_m without tip_y_m"),
             std::string::npos);

@@ -9,8 +9,8 @@
 #include <string>
 #include <vector>
 
-#include "pneumatic_finger/core/calibration.hpp"
-#include "pneumatic_finger/core/calibration_run.hpp"
+#include "pneumatic_finger/calibration/calibration.hpp"
+#include "pneumatic_finger/calibration/calibration_run.hpp"
 #include "test_support.hpp"
 
 namespace pf = pneumatic_finger;

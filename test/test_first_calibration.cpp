@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "pneumatic_finger/core/calibration_run.hpp"
+#include "pneumatic_finger/calibration/calibration_run.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 
 namespace pf = pneumatic_finger;

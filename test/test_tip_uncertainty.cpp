@@ -6,9 +6,9 @@
 #include <string>
 #include <vector>
 
-#include "pneumatic_finger/core/calibration.hpp"
+#include "pneumatic_finger/calibration/calibration.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
-#include "pneumatic_finger/core/calibration_run.hpp"
+#include "pneumatic_finger/calibration/calibration_run.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 #include "pneumatic_finger/core/units.hpp"

@@ -250,6 +250,14 @@ FingerState restState(const FingerParameters& parameters) {
   return s;
 }
 
+Eigen::Vector2d tipOfJoints(const FingerParameters& parameters, const std::vector<double>& joint_rad) {
+  double x = parameters.base_segment_length_m, y = 0.0, dir_c = 1.0, dir_s = 0.0;
+  for (std::size_t k = 0; k < joint_rad.size() && k < parameters.segment_length_m.size(); ++k) {
+    advanceBackbone(std::cos(joint_rad[k]), std::sin(joint_rad[k]), parameters.segment_length_m[k], dir_c, dir_s, x, y);
+  }
+  return {x, y};
+}
+
 void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half, FingerState& out) {
   const int n = parameters.chamber_count;
   // theta_0: the passive base segment's face turns by a share of chamber 1's half angle (0 for an inert face).

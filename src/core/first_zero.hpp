@@ -5,7 +5,7 @@
 #include <cmath>
 #include <limits>
 
-#include "golden_section.hpp"
+#include "pneumatic_finger/core/golden_section.hpp"
 
 namespace pneumatic_finger {
 

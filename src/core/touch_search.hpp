@@ -19,7 +19,7 @@
 #include <array>
 #include <cmath>
 
-#include "golden_section.hpp"
+#include "pneumatic_finger/core/golden_section.hpp"
 
 namespace pneumatic_finger {
 

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "pneumatic_finger/calibration/coupon.hpp"
-#include "pneumatic_finger/core/calibration_run.hpp"
+#include "pneumatic_finger/calibration/calibration_run.hpp"
 #include "python_parameters.hpp"
 
 namespace pneumatic_finger_python {

@@ -1,4 +1,4 @@
-// pf.calibrate: the calibration finger_calibrate runs (core/calibration_run.hpp), on a CSV path or on columns of
+// pf.calibrate: the calibration finger_calibrate runs (calibration/calibration_run.hpp), on a CSV path or on columns of
 // numbers. Internal header of the Python module (src/python).
 #pragma once
 

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "pneumatic_finger/core/calibration.hpp"
+#include "pneumatic_finger/calibration/calibration.hpp"
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/design_sweep.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"

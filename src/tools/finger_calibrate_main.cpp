@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "pneumatic_finger/calibration/coupon.hpp"
-#include "pneumatic_finger/core/calibration_run.hpp"
+#include "pneumatic_finger/calibration/calibration_run.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
 #include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"

@@ -76,6 +76,10 @@ struct FingerState {
 /// backbone costs no trigonometric call.
 void jointsAndBackbone(const FingerParameters& parameters, const HalfAngle* half_angles, FingerState& out);
 
+/// Eq 38 for joint angles given from outside (measured ones): the tip O_{N+1} of the backbone along @p parameters'
+/// segments, joints beyond @p joint_rad's size or the chamber count left out.
+Eigen::Vector2d tipOfJoints(const FingerParameters& parameters, const std::vector<double>& joint_rad);
+
 /// A FingerState sized for @p parameters, at rest (the straight finger).
 FingerState restState(const FingerParameters& parameters);
 

@@ -1,6 +1,6 @@
 // What was measured, read from a CSV: a gauge_pa column and any of the joint angles, a tip angle or a tip position
 // (calibration.hpp, Measurement), refused with the file, the line and the column named when malformed.
-#include "pneumatic_finger/core/calibration.hpp"
+#include "pneumatic_finger/calibration/calibration.hpp"
 
 #include "pneumatic_finger/core/csv_fields.hpp"
 #include "pneumatic_finger/core/units.hpp"

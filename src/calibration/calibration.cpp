@@ -1,4 +1,4 @@
-#include "pneumatic_finger/core/calibration.hpp"
+#include "pneumatic_finger/calibration/calibration.hpp"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <limits>
 #include <sstream>
 
-#include "calibration_axes.hpp"
-#include "golden_section.hpp"
-#include "joint_chain.hpp"
+#include "fit_problem.hpp"
+#include "fit_space.hpp"
+#include "solver.hpp"
 
 namespace pneumatic_finger {
 
@@ -83,38 +83,6 @@ std::vector<double> Residual::terms(CalibrationQuantity quantity) const {
   return {};
 }
 
-namespace {
-
-// Scan, then golden-section on the bracket around the best scan point.
-template <typename F>
-double minimize1d(F&& f, double lo, double hi, double& best_value) {
-  constexpr int kScan = 41;
-  double best_x = lo;
-  best_value = std::numeric_limits<double>::infinity();
-  int best_i = 0;
-  for (int i = 0; i < kScan; ++i) {
-    const double x = lo + (hi - lo) * i / (kScan - 1);
-    const double v = f(x);
-    if (v < best_value) {
-      best_value = v;
-      best_x = x;
-      best_i = i;
-    }
-  }
-  const double a = lo + (hi - lo) * std::max(best_i - 1, 0) / (kScan - 1);
-  const double b = lo + (hi - lo) * std::min(best_i + 1, kScan - 1) / (kScan - 1);
-  const GoldenMinimum m = goldenSection(f, a, b, 80, [](double a_, double b_, double, double) {
-    return b_ - a_ > 1e-13 * (std::fabs(a_) + std::fabs(b_) + 1e-300);
-  });
-  if (m.value < best_value) {
-    best_value = m.value;
-    best_x = m.x;
-  }
-  return best_x;
-}
-
-}  // namespace
-
 bool isFittableKey(const std::string& key) {
   return std::find(std::begin(kFittable), std::end(kFittable), key) != std::end(kFittable);
 }
@@ -131,15 +99,14 @@ void measuredInto(const FingerParameters& parameters, const Measurement& m, Resi
     r.measured_joint_rad = m.joint_rad;
     r.measured_avg_rad = m.averageOuterJoints();
     r.measured_joint1_rad = m.joint_rad[0];
-    double angle = 0.0, x = parameters.base_segment_length_m, y = 0.0, dir_c = 1.0, dir_s = 0.0;
+    double angle = 0.0;
     for (std::size_t k = 0; k < m.joint_rad.size() && k < parameters.segment_length_m.size(); ++k) {
       angle += m.joint_rad[k];
-      advanceBackbone(std::cos(m.joint_rad[k]), std::sin(m.joint_rad[k]), parameters.segment_length_m[k], dir_c, dir_s,
-                      x, y);
     }
+    const Eigen::Vector2d tip = tipOfJoints(parameters, m.joint_rad);
     r.measured_tip_angle_rad = angle;
-    r.measured_tip_x_m = x;
-    r.measured_tip_y_m = y;
+    r.measured_tip_x_m = tip.x();
+    r.measured_tip_y_m = tip.y();
   }
   if (m.hasTipAngle()) r.measured_tip_angle_rad = m.tip_angle_rad;
   if (m.hasTipPosition()) {
@@ -246,12 +213,7 @@ void checkTheDrive(const FingerParameters& base, const std::vector<std::string>&
 // The keys are fittable, each once, and the data has what @p quantity compares. @throws ParameterError naming it.
 void checkKeysAndData(const FingerParameters& base, const std::vector<std::string>& keys,
                       const std::vector<Measurement>& data, CalibrationQuantity quantity) {
-  if (keys.empty() || keys.size() > 3) {
-    std::string given;
-    for (const std::string& k : keys) given += (given.empty() ? "" : ", ") + k;
-    throw ParameterError("calibration fits one to three parameters, got " + std::to_string(keys.size()) +
-                         (given.empty() ? "" : " (" + given + ")"));
-  }
+  if (keys.empty()) throw ParameterError("calibration fits at least one parameter, got none");
   for (const auto& k : keys) {
     if (!isFittableKey(k)) {
       std::string fittable;
@@ -340,56 +302,19 @@ CalibrationResult calibrateEveryJointInTwoSteps(const FingerParameters& base, co
   return both;
 }
 
-// The fit itself: nested one-dimensional searches, one per key. mu goes innermost: every residual is monotone in mu,
-// so for fixed other keys the largest |error| is quasi-convex in log mu and the inner search is exact.
+// The fit itself: the solver's best point over the keys' search box (solver.hpp), reported in the caller's key order.
 CalibrationResult searchKeys(const FingerParameters& base, const std::vector<std::string>& keys,
                              const std::vector<Measurement>& data, CalibrationObjective objective,
                              CalibrationQuantity quantity, const CalibrationProgress& progress) {
-  std::vector<SearchAxis> axes;
-  for (const auto& k : keys) axes.push_back(axisFor(k, base));
-  std::stable_sort(axes.begin(), axes.end(), [](const SearchAxis& a, const SearchAxis& b) {
-    return (a.key != "shear_modulus_pa") && (b.key == "shear_modulus_pa");
-  });
+  const FitProblem problem(base, keys, data, quantity, progress);
+  const FitSolution best = solveFit(problem, objective);
   CalibrationResult result;
-  FingerParameters trial = base;
-  long points = 0;
-  auto objectiveAt = [&](const std::vector<double>& x) {
-    for (std::size_t i = 0; i < axes.size(); ++i) setKey(trial, axes[i].key, axes[i].toValue(x[i]));
-    for (int i = 0; i < trial.chamber_count && trial.wall_law == WallLaw::kPaper; ++i) {
-      const auto k = static_cast<std::size_t>(i);
-      if (trial.wall_critical_height_m[k] > trial.chamber_height_m[k]) return std::numeric_limits<double>::infinity();
-    }
-    result.model_evaluations += static_cast<long>(data.size());
-    // Every 64th point: the report's words cost more than a small data set's residuals.
-    if (progress && ++points % 64 == 0) progress(std::to_string(result.model_evaluations) + " model evaluations");
-    return objectiveOver(residuals(trial, data), quantity, objective);
-  };
-  // Axis `level` is searched with the outer ones fixed in x[0..level-1], each trial point of it solved for the inner
-  // axes first. Returns the best objective value, leaving the best inner point in x.
-  std::vector<double> x(axes.size());
-  std::function<double(std::size_t)> searchFrom = [&](std::size_t level) -> double {
-    double best_here = 0.0;
-    const double at = minimize1d(
-        [&](double v) {
-          x[level] = v;
-          return level + 1 == axes.size() ? objectiveAt(x) : searchFrom(level + 1);
-        },
-        axes[level].lo, axes[level].hi, best_here);
-    x[level] = at;
-    if (level + 1 < axes.size()) best_here = searchFrom(level + 1);  // the inner axes at the chosen point
-    return best_here;
-  };
-  result.objective_value = searchFrom(0);
-  for (std::size_t i = 0; i < axes.size(); ++i) setKey(trial, axes[i].key, axes[i].toValue(x[i]));
-  // Report in the caller's key order.
-  result.parameters = trial;
+  result.parameters = problem.parametersAt(best.u);
   result.keys = keys;
-  for (const auto& k : keys) {
-    for (std::size_t i = 0; i < axes.size(); ++i) {
-      if (axes[i].key == k) result.values.push_back(axes[i].toValue(x[i]));
-    }
-  }
-  result.residuals = residuals(trial, data);
+  result.values = problem.valuesAt(best.u);
+  result.objective_value = best.objective;
+  result.model_evaluations = problem.evaluations();
+  result.residuals = residuals(result.parameters, data);
   return result;
 }
 

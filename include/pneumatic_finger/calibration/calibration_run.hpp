@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "pneumatic_finger/core/calibration.hpp"
+#include "pneumatic_finger/calibration/calibration.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"

@@ -1,5 +1,5 @@
-// Golden-section search for a minimum, written once for the contact rule's grazing touches (touch_search.hpp) and the
-// calibration's one-dimensional fits (calibration.cpp). Internal header of src/core.
+// Golden-section search for a minimum, written once for the contact rule's grazing touches (src/core/touch_search.hpp)
+// and the calibration's profile of the shear modulus (src/calibration/solver.cpp).
 #pragma once
 
 namespace pneumatic_finger {

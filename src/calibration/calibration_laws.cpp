@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "pneumatic_finger/core/calibration.hpp"
+#include "pneumatic_finger/calibration/calibration.hpp"
 
 namespace pneumatic_finger {
 

@@ -1,4 +1,4 @@
-// The calibration's search axes (calibration.cpp) and its uncertainty (calibration_uncertainty.cpp) share: which keys
+// The calibration's search space (solver.cpp) and its uncertainty (calibration_uncertainty.cpp) share: which keys
 // may be fitted, over which bracket each is searched, and how a value is set. Internal header of src/core.
 #pragma once
 

@@ -1,5 +1,5 @@
 // One calibration, as finger_calibrate and pf.calibrate run it (calibration_run.hpp).
-#include "pneumatic_finger/core/calibration_run.hpp"
+#include "pneumatic_finger/calibration/calibration_run.hpp"
 
 #include <algorithm>
 #include <cmath>

@@ -8,8 +8,8 @@
 #include <string>
 #include <vector>
 
-#include "calibration_axes.hpp"
-#include "pneumatic_finger/core/calibration.hpp"
+#include "fit_space.hpp"
+#include "pneumatic_finger/calibration/calibration.hpp"
 
 namespace pneumatic_finger {
 

@@ -1,0 +1,95 @@
+#include "fit_problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <utility>
+
+namespace pneumatic_finger {
+
+FitProblem::FitProblem(const FingerParameters& base, const std::vector<std::string>& keys,
+                       const std::vector<Measurement>& data, CalibrationQuantity quantity, CalibrationProgress progress)
+    : base_(base), data_(&data), quantity_(quantity), progress_(std::move(progress)) {
+  for (const std::string& k : keys) axes_.push_back(axisFor(k, base));
+  // A row's terms are as many at every point: count them at the base, shaped or not.
+  for (const Residual& r : residuals(base, data)) term_count_ += r.terms(quantity).size();
+  square_count_ = quantity == CalibrationQuantity::kTipPosition ? 2 * term_count_ : term_count_;
+}
+
+FingerParameters FitProblem::parametersAt(const Eigen::VectorXd& u) const {
+  FingerParameters p = base_;
+  for (std::size_t k = 0; k < axes_.size(); ++k) {
+    const SearchAxis& a = axes_[k];
+    setKey(p, a.key, a.toValue(a.lo + u[static_cast<Eigen::Index>(k)] * (a.hi - a.lo)));
+  }
+  return p;
+}
+
+std::vector<double> FitProblem::valuesAt(const Eigen::VectorXd& u) const {
+  std::vector<double> values;
+  for (std::size_t k = 0; k < axes_.size(); ++k) {
+    const SearchAxis& a = axes_[k];
+    values.push_back(a.toValue(a.lo + u[static_cast<Eigen::Index>(k)] * (a.hi - a.lo)));
+  }
+  return values;
+}
+
+Eigen::VectorXd FitProblem::pointOf(const std::vector<double>& values) const {
+  Eigen::VectorXd u(static_cast<Eigen::Index>(axes_.size()));
+  for (std::size_t k = 0; k < axes_.size(); ++k) {
+    const SearchAxis& a = axes_[k];
+    const double x = a.logarithmic ? std::log10(values[k]) : values[k];
+    u[static_cast<Eigen::Index>(k)] = std::clamp((x - a.lo) / (a.hi - a.lo), 0.0, 1.0);
+  }
+  return u;
+}
+
+bool FitProblem::terms(const Eigen::VectorXd& u, Eigen::VectorXd& out, bool squares) const {
+  const FingerParameters p = parametersAt(u);
+  // The paper law's wall is bent by its root below the chamber's top: b <= L (docs/MODEL.md).
+  for (std::size_t i = 0; p.wall_law == WallLaw::kPaper && i < p.chamber_height_m.size(); ++i) {
+    if (p.wall_critical_height_m[i] > p.chamber_height_m[i]) return false;
+  }
+  evaluations_ += static_cast<long>(data_->size());
+  const bool split = squares && quantity_ == CalibrationQuantity::kTipPosition;
+  out.resize(static_cast<Eigen::Index>(termCount(squares)));
+  Eigen::Index i = 0;
+  for (const Residual& r : residuals(p, *data_)) {
+    const std::vector<double> row = split ? std::vector<double>{r.model_tip_x_m - r.measured_tip_x_m,
+                                                                r.model_tip_y_m - r.measured_tip_y_m}
+                                          : r.terms(quantity_);
+    for (double e : row) {
+      if (std::isnan(e)) return false;
+      out[i++] = e;
+    }
+  }
+  return true;
+}
+
+bool FitProblem::termsAndJacobian(const Eigen::VectorXd& u, Eigen::VectorXd& out, Eigen::MatrixXd& jacobian,
+                                  bool squares) const {
+  if (!terms(u, out, squares)) return false;
+  jacobian.resize(out.size(), u.size());
+  Eigen::VectorXd up, down;
+  for (Eigen::Index k = 0; k < u.size(); ++k) {
+    Eigen::VectorXd hi = u, lo = u;
+    hi[k] = std::min(1.0, u[k] + kStep);
+    lo[k] = std::max(0.0, u[k] - kStep);
+    if (!terms(hi, up, squares) || !terms(lo, down, squares)) return false;
+    jacobian.col(k) = (up - down) / (hi[k] - lo[k]);
+  }
+  return true;
+}
+
+double FitProblem::objective(const Eigen::VectorXd& u, CalibrationObjective objective) const {
+  Eigen::VectorXd e;
+  if (!terms(u, e)) return std::numeric_limits<double>::infinity();
+  return objective == CalibrationObjective::kMinimax ? e.cwiseAbs().maxCoeff() : e.squaredNorm();
+}
+
+void FitProblem::report(const std::string& step) const {
+  // Every 64th call: the report's words cost more than a small data set's residuals.
+  if (progress_ && ++reports_ % 64 == 0) progress_(step + ": " + std::to_string(evaluations_) + " model evaluations");
+}
+
+}  // namespace pneumatic_finger

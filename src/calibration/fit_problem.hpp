@@ -1,0 +1,63 @@
+// The fit as a function: every term a calibration compares (model - measured), at a point of the keys' search box.
+// The solvers (solver.cpp) and the uncertainty (calibration_uncertainty.cpp) see the fit only through this. Internal
+// header of src/calibration.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include <string>
+#include <vector>
+
+#include "fit_space.hpp"
+#include "pneumatic_finger/calibration/calibration.hpp"
+
+namespace pneumatic_finger {
+
+/// The keys' search box, scaled to the unit cube: u_k in [0, 1] is axes[k].lo + u_k (hi - lo) in the key's search
+/// coordinate (log10 for mu and J_m). One scale for every key, so that one difference step and one tolerance serve all.
+class FitProblem {
+ public:
+  FitProblem(const FingerParameters& base, const std::vector<std::string>& keys, const std::vector<Measurement>& data,
+             CalibrationQuantity quantity, CalibrationProgress progress = {});
+
+  std::size_t keyCount() const { return axes_.size(); }
+  /// How many terms every point gives (a row's terms do not depend on the keys): in the compared form, or in the
+  /// squares' form (@p squares), where a tip position's distance is its two components, whose squares sum to the
+  /// distance's and which, unlike the distance, are smooth where the fit is exact.
+  std::size_t termCount(bool squares = false) const { return squares ? square_count_ : term_count_; }
+  const std::vector<SearchAxis>& axes() const { return axes_; }
+
+  /// The terms at @p u; false where the model gives a row no shape (beyond its limit point with no far branch) or the
+  /// point is a wall the law does not allow: no number to compare, which the solvers treat as outside the feasible set.
+  bool terms(const Eigen::VectorXd& u, Eigen::VectorXd& out, bool squares = false) const;
+  /// The same and d terms / d u, by central differences of step kStep kept inside the cube (one-sided on its faces).
+  bool termsAndJacobian(const Eigen::VectorXd& u, Eigen::VectorXd& out, Eigen::MatrixXd& jacobian,
+                        bool squares = false) const;
+  /// The objective over the terms: max |term| or sum of squares; +inf where terms() is false.
+  double objective(const Eigen::VectorXd& u, CalibrationObjective objective) const;
+
+  FingerParameters parametersAt(const Eigen::VectorXd& u) const;
+  /// The keys' values at @p u, in their units, in the order the keys were given.
+  std::vector<double> valuesAt(const Eigen::VectorXd& u) const;
+  /// Where @p values (in the keys' units) sit in the cube.
+  Eigen::VectorXd pointOf(const std::vector<double>& values) const;
+
+  /// Model evaluations so far (a row at a point is one).
+  long evaluations() const { return evaluations_; }
+  /// Tells the progress listener @p step with the evaluations so far, at most every 64th call.
+  void report(const std::string& step) const;
+
+  static constexpr double kStep = 1e-6;  ///< the difference step, in the cube's unit (a millionth of each bracket)
+
+ private:
+  FingerParameters base_;
+  std::vector<SearchAxis> axes_;
+  const std::vector<Measurement>* data_;
+  CalibrationQuantity quantity_;
+  CalibrationProgress progress_;
+  std::size_t term_count_ = 0, square_count_ = 0;
+  mutable long evaluations_ = 0;
+  mutable long reports_ = 0;
+};
+
+}  // namespace pneumatic_finger

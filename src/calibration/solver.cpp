@@ -1,0 +1,226 @@
+#include "solver.hpp"
+
+#include <ceres/ceres.h>
+#include <nlopt.hpp>
+
+#include "pneumatic_finger/core/golden_section.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace pneumatic_finger {
+
+namespace {
+
+constexpr std::size_t kStarts = 3;           // local solves from the best distinct scan points
+constexpr double kDistinct = 0.15;           // scan points closer than this (in every key, unit cube) are one start
+constexpr double kTolerance = 1e-12;         // the local solvers' relative tolerances, as the old golden sections'
+
+// The i-th point (from 1) of the Halton sequence in base @p base: well spread in any number of dimensions.
+double halton(int i, int base) {
+  double f = 1.0, x = 0.0;
+  for (; i > 0; i /= base) {
+    f /= base;
+    x += f * (i % base);
+  }
+  return x;
+}
+
+// scanPoints(dims) points of the cube [0, 1]^dims: a grid for one dimension, a Halton sequence for more.
+std::vector<Eigen::VectorXd> scanCube(std::size_t dims) {
+  static constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
+  const int n = scanPoints(dims);
+  std::vector<Eigen::VectorXd> points;
+  for (int i = 0; i < n; ++i) {
+    Eigen::VectorXd u(static_cast<Eigen::Index>(dims));
+    for (std::size_t k = 0; k < dims; ++k) {
+      u[static_cast<Eigen::Index>(k)] = dims == 1 ? static_cast<double>(i) / (n - 1) : halton(i + 1, kPrimes[k % 12]);
+    }
+    points.push_back(std::move(u));
+  }
+  return points;
+}
+
+// The scan's points, each with its objective. The shear modulus, where it is fitted with other keys, is not scanned but
+// solved at each point of the others (a profile): every bend falls as mu rises, so along mu the objective is
+// quasi-convex, and its valley, a fraction of a decade wide in 7, falls between any coarse grid's points. A coarse
+// line of kMuLine points brackets it, a golden section to 1e-4 of the range finds it.
+std::vector<std::pair<double, Eigen::VectorXd>> scan(const FitProblem& problem, CalibrationObjective objective) {
+  constexpr int kMuLine = 17;
+  const auto& axes = problem.axes();
+  const auto mu = std::find_if(axes.begin(), axes.end(), [](const SearchAxis& a) { return a.key == "shear_modulus_pa"; });
+  const bool profile = mu != axes.end() && axes.size() > 1;
+  const auto m = static_cast<Eigen::Index>(mu - axes.begin());
+  std::vector<std::pair<double, Eigen::VectorXd>> scanned;
+  for (const Eigen::VectorXd& v : scanCube(axes.size() - (profile ? 1 : 0))) {
+    Eigen::VectorXd u(static_cast<Eigen::Index>(axes.size()));
+    if (profile) u << v.head(m), 0.0, v.tail(v.size() - m); else u = v;
+    auto at = [&](double x) {
+      if (profile) u[m] = x;
+      problem.report("scan");
+      return problem.objective(u, objective);
+    };
+    double best_x = 0.0, best = at(0.0);
+    for (int i = 1; profile && i < kMuLine; ++i) {
+      const double x = static_cast<double>(i) / (kMuLine - 1), value = at(x);
+      if (value < best) best = value, best_x = x;
+    }
+    if (profile && std::isfinite(best)) {
+      const double w = 1.0 / (kMuLine - 1);
+      const GoldenMinimum g = goldenSection(at, std::max(0.0, best_x - w), std::min(1.0, best_x + w), 40,
+                                            [](double a, double b, double, double) { return b - a > 1e-4; });
+      if (g.value < best) best = g.value, best_x = g.x;
+    }
+    if (profile) u[m] = best_x;
+    if (std::isfinite(best)) scanned.emplace_back(best, u);
+  }
+  return scanned;
+}
+
+// Ceres' view of the fit: one residual block, every term, the Jacobian from FitProblem's differences.
+class TermsCost final : public ceres::CostFunction {
+ public:
+  explicit TermsCost(const FitProblem& problem) : problem_(problem) {
+    set_num_residuals(static_cast<int>(problem.termCount(true)));
+    mutable_parameter_block_sizes()->push_back(static_cast<int>(problem.keyCount()));
+  }
+  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
+    const auto k = static_cast<Eigen::Index>(problem_.keyCount());
+    const Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(parameters[0], k);
+    Eigen::VectorXd e;
+    Eigen::MatrixXd j;
+    const bool ok =
+        jacobians && jacobians[0] ? problem_.termsAndJacobian(u, e, j, true) : problem_.terms(u, e, true);
+    problem_.report("least squares");
+    if (!ok) return false;
+    Eigen::Map<Eigen::VectorXd>(residuals, e.size()) = e;
+    if (jacobians && jacobians[0]) {
+      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(jacobians[0], e.size(), k) = j;
+    }
+    return true;
+  }
+
+ private:
+  const FitProblem& problem_;
+};
+
+FitSolution leastSquaresFrom(const FitProblem& problem, const Eigen::VectorXd& start) {
+  Eigen::VectorXd u = start;
+  ceres::Problem solve;
+  solve.AddResidualBlock(new TermsCost(problem), nullptr, u.data());
+  for (Eigen::Index k = 0; k < u.size(); ++k) {
+    solve.SetParameterLowerBound(u.data(), static_cast<int>(k), 0.0);
+    solve.SetParameterUpperBound(u.data(), static_cast<int>(k), 1.0);
+  }
+  ceres::Solver::Options options;
+  options.max_num_iterations = 100;
+  options.function_tolerance = kTolerance;
+  options.parameter_tolerance = kTolerance;
+  options.gradient_tolerance = 1e-16;
+  options.logging_type = ceres::SILENT;
+  ceres::Solver::Summary summary;
+  ceres::Solve(options, &solve, &summary);
+  return {u, problem.objective(u, CalibrationObjective::kLeastSquares)};
+}
+
+// The minimax's epigraph: the point (u, t) with every |term| <= t, t least. The best point any evaluation saw is kept
+// (SLSQP may end on a roundoff limit a step past it).
+struct Epigraph {
+  const FitProblem* problem;
+  FitSolution best;
+};
+
+void epigraphConstraints(unsigned m, double* result, unsigned n, const double* x, double* gradient, void* data) {
+  auto& g = *static_cast<Epigraph*>(data);
+  const auto k = static_cast<Eigen::Index>(n - 1);
+  const Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(x, k);
+  const double t = x[n - 1];
+  Eigen::VectorXd e;
+  Eigen::MatrixXd j;
+  const bool ok = gradient ? g.problem->termsAndJacobian(u, e, j) : g.problem->terms(u, e);
+  g.problem->report("minimax");
+  const unsigned terms = m / 2;
+  for (unsigned i = 0; i < terms; ++i) {
+    // No shape: far outside the feasible set, so that the line search steps back.
+    result[i] = ok ? e[i] - t : 1e6;
+    result[terms + i] = ok ? -e[i] - t : 1e6;
+    for (unsigned c = 0; gradient && c < n; ++c) {
+      const double d = ok && c + 1 < n ? j(i, c) : 0.0;
+      gradient[i * n + c] = c + 1 < n ? d : -1.0;
+      gradient[(terms + i) * n + c] = c + 1 < n ? -d : -1.0;
+    }
+  }
+  if (ok && e.cwiseAbs().maxCoeff() < g.best.objective) g.best = {u, e.cwiseAbs().maxCoeff()};
+}
+
+double epigraphObjective(unsigned n, const double* x, double* gradient, void*) {
+  for (unsigned c = 0; gradient && c < n; ++c) gradient[c] = c + 1 < n ? 0.0 : 1.0;
+  return x[n - 1];
+}
+
+FitSolution minimaxFrom(const FitProblem& problem, const Eigen::VectorXd& start, double start_objective) {
+  const auto k = static_cast<unsigned>(start.size());
+  Epigraph g{&problem, {start, start_objective}};
+  nlopt::opt opt(nlopt::LD_SLSQP, k + 1);
+  std::vector<double> lower(k + 1, 0.0), upper(k + 1, 1.0);
+  upper[k] = HUGE_VAL;
+  opt.set_lower_bounds(lower);
+  opt.set_upper_bounds(upper);
+  opt.set_min_objective(epigraphObjective, nullptr);
+  const std::vector<double> tolerances(2 * problem.termCount(), 0.0);
+  opt.add_inequality_mconstraint(epigraphConstraints, &g, tolerances);
+  opt.set_xtol_rel(kTolerance);
+  opt.set_maxeval(300);
+  std::vector<double> x(start.data(), start.data() + k);
+  x.push_back(start_objective);
+  std::vector<double> step(k + 1, 0.5 / (scanPoints(k) - 1));
+  step[k] = 0.5 * start_objective;
+  opt.set_initial_step(step);
+  double t = 0.0;
+  try {
+    opt.optimize(x, t);
+  } catch (const std::exception&) {
+    // A roundoff limit or a failed line search: the best point seen stands.
+  }
+  return g.best;
+}
+
+}  // namespace
+
+int scanPoints(std::size_t keys) { return 41 + 32 * static_cast<int>(keys - 1); }
+
+FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective) {
+  std::vector<std::pair<double, Eigen::VectorXd>> scanned = scan(problem, objective);
+  if (scanned.empty()) {
+    throw ParameterError("no point of the keys' search range gives every row a shape (each is beyond the limit point "
+                         "with no far branch): the start parameters or the data are far from this finger");
+  }
+  std::stable_sort(scanned.begin(), scanned.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::vector<const std::pair<double, Eigen::VectorXd>*> starts;
+  for (const auto& s : scanned) {
+    const bool distinct = std::none_of(starts.begin(), starts.end(), [&](const auto* t) {
+      return (t->second - s.second).cwiseAbs().maxCoeff() < kDistinct;
+    });
+    if (distinct) starts.push_back(&s);
+    if (starts.size() == kStarts) break;
+  }
+  FitSolution best{scanned.front().second, scanned.front().first};
+  for (const auto* s : starts) {
+    FitSolution local = leastSquaresFrom(problem, s->second);
+    if (objective == CalibrationObjective::kMinimax) {
+      // The least-squares point too, measured by the largest error: where the data are exact, minimax's optimum is
+      // degenerate (every term zero at once) and SLSQP's end game slow, while least squares reaches it exactly.
+      const FitSolution squares{local.u, problem.objective(local.u, objective)};
+      local = minimaxFrom(problem, s->second, s->first);
+      if (squares.objective < local.objective) local = squares;
+    }
+    if (local.objective < best.objective) best = local;
+  }
+  return best;
+}
+
+}  // namespace pneumatic_finger

@@ -1,0 +1,25 @@
+// The calibration's solver: a fit's best point over its keys' whole search box. Internal header of src/calibration.
+#pragma once
+
+#include <Eigen/Dense>
+
+#include "fit_problem.hpp"
+
+namespace pneumatic_finger {
+
+struct FitSolution {
+  Eigen::VectorXd u;       ///< the best point, in the unit cube of FitProblem
+  double objective = 0.0;  ///< its objective (max |term| or sum of squares)
+};
+
+/// Global and exact: a coarse scan of the cube (a grid for one key, a Halton sequence for more; no start point to get
+/// wrong), then a local solve from each of the best few distinct scan points, the best kept. Least squares are solved
+/// by Ceres (Levenberg-Marquardt within the bounds); a minimax by NLopt's SLSQP on its epigraph form (minimise t with
+/// every |term| <= t), which is smooth where the largest error is not.
+/// @throws ParameterError when no point of the scan gives every row a shape
+FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective);
+
+/// How many scan points a fit of @p keys keys takes: 41 for one key, 32 more for each further one.
+int scanPoints(std::size_t keys);
+
+}  // namespace pneumatic_finger
