@@ -59,7 +59,7 @@ bool FitProblem::terms(const Eigen::VectorXd& u, Eigen::VectorXd& out, bool squa
                                                                 r.model_tip_y_m - r.measured_tip_y_m}
                                           : r.terms(quantity_);
     for (double e : row) {
-      if (std::isnan(e)) return false;
+      if (!std::isfinite(e)) return false;  // no shape (NaN), or a pressure without bound
       out[i++] = e;
     }
   }
@@ -75,8 +75,13 @@ bool FitProblem::termsAndJacobian(const Eigen::VectorXd& u, Eigen::VectorXd& out
     Eigen::VectorXd hi = u, lo = u;
     hi[k] = std::min(1.0, u[k] + kStep);
     lo[k] = std::max(0.0, u[k] - kStep);
-    if (!terms(hi, up, squares) || !terms(lo, down, squares)) return false;
-    jacobian.col(k) = (up - down) / (hi[k] - lo[k]);
+    // One-sided where a step leaves the shaped rows (the point sits by a row's limit point): the side that has them.
+    // Where neither side has them, the key cannot move here: its column is zero, and the solver leaves it.
+    const bool above = terms(hi, up, squares), below = terms(lo, down, squares);
+    if (!above) hi = u, up = out;
+    if (!below) lo = u, down = out;
+    jacobian.col(k).setZero();
+    if (hi[k] > lo[k]) jacobian.col(k) = (up - down) / (hi[k] - lo[k]);
   }
   return true;
 }

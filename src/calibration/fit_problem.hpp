@@ -30,7 +30,8 @@ class FitProblem {
   /// The terms at @p u; false where the model gives a row no shape (beyond its limit point with no far branch) or the
   /// point is a wall the law does not allow: no number to compare, which the solvers treat as outside the feasible set.
   bool terms(const Eigen::VectorXd& u, Eigen::VectorXd& out, bool squares = false) const;
-  /// The same and d terms / d u, by central differences of step kStep kept inside the cube (one-sided on its faces).
+  /// The same and d terms / d u, by central differences of step kStep kept inside the cube (one-sided on its faces,
+  /// and where a step leaves the rows' shapes; zero where both do). False only where terms() is.
   bool termsAndJacobian(const Eigen::VectorXd& u, Eigen::VectorXd& out, Eigen::MatrixXd& jacobian,
                         bool squares = false) const;
   /// The objective over the terms: max |term| or sum of squares; +inf where terms() is false.

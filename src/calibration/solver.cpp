@@ -108,8 +108,42 @@ class TermsCost final : public ceres::CostFunction {
   const FitProblem& problem_;
 };
 
+// NLopt's Subplex on the objective itself, from @p start: a local search that needs no derivative.
+FitSolution derivativeFreeFrom(const FitProblem& problem, const Eigen::VectorXd& start, CalibrationObjective objective) {
+  const auto k = static_cast<unsigned>(start.size());
+  struct Goal {
+    const FitProblem* problem;
+    CalibrationObjective objective;
+  } goal{&problem, objective};
+  nlopt::opt opt(nlopt::LN_SBPLX, k);
+  opt.set_lower_bounds(std::vector<double>(k, 0.0));
+  opt.set_upper_bounds(std::vector<double>(k, 1.0));
+  opt.set_min_objective(
+      [](unsigned n, const double* x, double*, void* data) {
+        const auto& g = *static_cast<Goal*>(data);
+        const double value = g.problem->objective(Eigen::Map<const Eigen::VectorXd>(x, n), g.objective);
+        g.problem->report("derivative-free");
+        return std::isfinite(value) ? value : HUGE_VAL;
+      },
+      &goal);
+  opt.set_xtol_rel(kTolerance);
+  opt.set_maxeval(100 * static_cast<int>(k));
+  opt.set_initial_step(std::vector<double>(k, 0.5 / (scanPoints(k) - 1)));
+  std::vector<double> x(start.data(), start.data() + k);
+  double value = HUGE_VAL;
+  try {
+    opt.optimize(x, value);
+  } catch (const std::exception&) {
+    // A roundoff limit: the point reached stands.
+  }
+  const Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(x.data(), k);
+  return {u, problem.objective(u, objective)};
+}
+
 FitSolution leastSquaresFrom(const FitProblem& problem, const Eigen::VectorXd& start) {
-  Eigen::VectorXd u = start;
+  // A start on a face of the cube, moved a thousandth inside it: room for the differences on both sides.
+  Eigen::VectorXd u = start.cwiseMax(1e-3).cwiseMin(1.0 - 1e-3);
+
   ceres::Problem solve;
   solve.AddResidualBlock(new TermsCost(problem), nullptr, u.data());
   for (Eigen::Index k = 0; k < u.size(); ++k) {
@@ -218,6 +252,10 @@ FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective) 
       local = minimaxFrom(problem, s->second, s->first);
       if (squares.objective < local.objective) local = squares;
     }
+    // Then Subplex, which needs no derivative, from there: where a key's step leaves the rows' shapes (its column
+    // is zero) the derivative solvers cannot move it.
+    const FitSolution polished = derivativeFreeFrom(problem, local.u, objective);
+    if (polished.objective < local.objective) local = polished;
     if (local.objective < best.objective) best = local;
   }
   return best;

@@ -1,0 +1,159 @@
+"""Every calibration of docs/CALIBRATE.md and docs/ACCURACY.md, timed side by side with another commit's engine.
+
+usage: python3 scripts/bench_calibration.py [--base REV] [--timeout S] [--only NAME] [--doc FILE]
+  (needs the built package: source devel/setup.bash)
+
+Each calibration is pneumatic_finger.calibrate (the code of finger_calibrate) as a user runs it: with leave-one-out,
+the CLI's default. It runs in a fresh interpreter, once with REV's build (default 5ec0fca, the last commit of the
+nested one-dimensional searches; built in a scratch clone, as scripts/bench_compare.sh does) and once with this
+tree's, both on this tree's data and parameter files, so that both engines solve the same problem. Printed for each:
+the wall time of each, and the objective each reached (the largest |error| for minimax, the sum of squares for least
+squares; lower is better). A run past --timeout seconds (default 900) is reported as "> S". --doc FILE writes the
+table into FILE between its generated markers.
+"""
+import argparse
+import json
+import os
+import pathlib
+import platform
+import subprocess
+import sys
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+MU, GAP, JM, SHARE = "shear_modulus_pa", "chamber_gap_m", "wall_locking_jm", "base_wall_share"
+DEAD, SKIN = "dead_volume_m3", "chamber_growth_ratio"
+TABLE1, RIBBED, CYLINDRICAL = "data/sierra2022_table1.csv", "data/marchese2015_ribbed_bending.csv", \
+    "data/marchese2015_cylindrical_bending.csv"
+RIBBED_START, CYLINDRICAL_START = "config/marchese2015_ribbed.yaml", "config/marchese2015_cylindrical.yaml"
+
+# name, page, pf.calibrate's arguments (paths relative to the package).
+CALIBRATIONS = [
+    ("Table 1, every joint (the shipped fit)", "CALIBRATE", {}),
+    ("Table 1, joints 2..7 average, s0 = 0", "ACCURACY", {"overrides": {SHARE: 0.0}, "compare": "average"}),
+    ("Table 1, tip angle", "ACCURACY", {"compare": "tip_angle"}),
+    ("Table 1, the paper's average column", "ACCURACY", {"average_column": "paper_avg_rad"}),
+    ("Table 1, least squares", "ACCURACY", {"objective": "least_squares"}),
+    ("Table 1, --wall-law auto", "ACCURACY", {"compare": "average", "wall_law": "auto", "keys": [MU, GAP]}),
+    ("ribbed, --wall-law auto", "ACCURACY", {"data": RIBBED, "config": RIBBED_START, "compare": "tip_angle",
+                                            "wall_law": "auto"}),
+    ("ribbed, thick wall, mu c J_m", "ACCURACY", {"data": RIBBED, "config": RIBBED_START, "compare": "tip_angle",
+                                                 "wall_law": "thick", "keys": [MU, GAP, JM]}),
+    ("ribbed by volume, bends (mu c)", "CALIBRATE", {
+        "data": RIBBED, "config": RIBBED_START, "overrides": {DEAD: 1.28e-4, JM: 1.16}, "drive": "volume",
+        "compare": "tip_angle", "keys": [MU, GAP]}),
+    ("ribbed by volume, the gas", "CALIBRATE", {
+        "data": RIBBED, "config": RIBBED_START, "overrides": {DEAD: 1.28e-4, JM: 1.16}, "drive": "volume",
+        "compare": "gauge_pa", "keys": [DEAD], "objective": "least_squares"}),
+    ("ribbed by volume, gap and gas together", "CALIBRATE", {
+        "data": RIBBED, "config": RIBBED_START, "overrides": {DEAD: 1.28e-4, JM: 1.16}, "drive": "volume",
+        "compare": "tip_angle+gauge_pa", "keys": [GAP, DEAD], "objective": "least_squares"}),
+    ("ribbed by volume, membrane mu c gas", "ACCURACY", {
+        "data": RIBBED, "config": RIBBED_START, "overrides": {DEAD: 1.28e-4, JM: 1.16}, "drive": "volume",
+        "compare": "tip_angle+gauge_pa", "keys": [MU, GAP, DEAD], "objective": "least_squares"}),
+    ("cylindrical, --wall-law auto", "ACCURACY", {"data": CYLINDRICAL, "config": CYLINDRICAL_START,
+                                                 "compare": "tip_angle", "wall_law": "auto"}),
+    ("cylindrical by volume, paper law", "CALIBRATE", {
+        "data": CYLINDRICAL, "config": CYLINDRICAL_START, "wall_law": "paper", "drive": "volume",
+        "compare": "tip_angle", "overrides": {DEAD: 1.35e-4, "wall_critical_height_m": 0.0014}, "keys": [MU, GAP]}),
+    ("cylindrical by volume, thick inner face, mu c gas", "CALIBRATE", {
+        "data": CYLINDRICAL, "config": CYLINDRICAL_START, "wall_law": "thick", "drive": "volume",
+        "overrides": {DEAD: 1.35e-4, "wall_flexion_face": "inner", JM: 0.0}, "compare": "tip_angle+gauge_pa",
+        "keys": [MU, GAP, DEAD], "objective": "least_squares"}),
+    ("cylindrical by volume, thick inner face, four keys: mu c gas skin", "CALIBRATE", {
+        "data": CYLINDRICAL, "config": CYLINDRICAL_START, "wall_law": "thick", "drive": "volume",
+        "overrides": {DEAD: 1.35e-4, "wall_flexion_face": "inner", JM: 0.0},
+        "compare": "tip_angle+gauge_pa", "keys": [MU, GAP, DEAD, SKIN], "objective": "least_squares"}),
+]
+
+RUN = """
+import json, sys, time
+import pneumatic_finger.core as pf
+spec = json.loads(sys.argv[1])
+start = time.perf_counter()
+try:
+    fit = pf.calibrate(**spec)
+except ValueError as e:
+    print(json.dumps({"refused": str(e).splitlines()[0]}))
+    sys.exit(0)
+print(json.dumps({"seconds": time.perf_counter() - start, "objective": fit["objective_value"],
+                  "wall_law": fit["wall_law"], "fitted": fit["fitted"]}))
+"""
+
+
+def base_build(rev):
+    """REV's build in the scratch clone scripts/bench_compare.sh uses (built there when missing)."""
+    short = subprocess.check_output(["git", "-C", str(ROOT), "rev-parse", "--short", rev], text=True).strip()
+    base = pathlib.Path(os.environ.get("TMPDIR", "/tmp")) / "pneumatic_finger_bench_compare" / short
+    if not (base / "devel" / "lib" / "pneumatic_finger" / "finger_bench").exists():
+        subprocess.run(["rm", "-rf", str(base)], check=True)
+        subprocess.run(["git", "clone", "-q", str(ROOT), str(base)], check=True)
+        subprocess.run(["git", "-C", str(base), "checkout", "-q", rev], check=True)
+        subprocess.run(["bash", str(base / "scripts" / "build.sh")], check=True, stdout=subprocess.DEVNULL)
+    return base / "devel" / "lib" / "python3" / "dist-packages"
+
+
+def run(python_path, spec, timeout):
+    """One calibration in a fresh interpreter with @p python_path first: its result, or None past the timeout."""
+    args = {k: (str(ROOT / v) if k in ("data", "config") else v) for k, v in spec.items()}
+    env = dict(os.environ, PYTHONPATH=f"{python_path}:{os.environ.get('PYTHONPATH', '')}")
+    try:
+        out = subprocess.run([sys.executable, "-c", RUN, json.dumps(args)], env=env, capture_output=True, text=True,
+                             timeout=timeout, check=True).stdout
+    except subprocess.TimeoutExpired:
+        return None
+    return json.loads(out.strip().splitlines()[-1])
+
+
+def cell_time(result, timeout):
+    if result is None:
+        return f"> {timeout:g}"
+    return "refused" if "refused" in result else f"{result['seconds']:.2f}"
+
+
+def cell_objective(result):
+    return "" if result is None or "refused" in result else f"{result['objective']:.6g}"
+
+
+def table(rows, rev, timeout):
+    lines = [f"| calibration (page) | {rev}: s | now: s | {rev}: objective | now: objective |",
+             "|---|---:|---:|---:|---:|"]
+    for name, page, base, now in rows:
+        lines.append(f"| {name} ({page}) | {cell_time(base, timeout)} | {cell_time(now, timeout)} | "
+                     f"{cell_objective(base)} | {cell_objective(now)} |")
+    return "\n".join(lines)
+
+
+def write_doc(path, text, command):
+    begin, end = f"<!-- generated by {command}: begin -->", f"<!-- generated by {command}: end -->"
+    page = pathlib.Path(path).read_text()
+    head, rest = page.split(begin)
+    _, tail = rest.split(end)
+    pathlib.Path(path).write_text(f"{head}{begin}\n{text}\n{end}{tail}")
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--base", default="5ec0fca")
+    parser.add_argument("--timeout", type=float, default=900.0)
+    parser.add_argument("--only", default="", help="run only the calibrations whose name contains this")
+    parser.add_argument("--doc", default="")
+    a = parser.parse_args()
+    base_path = base_build(a.base)
+    tree_path = ROOT / "devel" / "lib" / "python3" / "dist-packages"
+    rows = []
+    for name, page, spec in CALIBRATIONS:
+        if a.only not in name:
+            continue
+        base, now = run(base_path, spec, a.timeout), run(tree_path, spec, a.timeout)
+        rows.append((name, page, base, now))
+        print(f"{name}: {a.base} {cell_time(base, a.timeout)} s {cell_objective(base)} | now "
+              f"{cell_time(now, a.timeout)} s {cell_objective(now)}", flush=True)
+    text = table(rows, a.base, a.timeout)
+    text += f"\n\nMachine: {platform.node()}, {os.cpu_count()} cores, {platform.processor() or platform.machine()}."
+    print(text)
+    if a.doc:
+        write_doc(a.doc, text, "scripts/bench_calibration.py")
+
+
+if __name__ == "__main__":
+    main()
