@@ -159,6 +159,30 @@ TEST(CalibrationByVolume, FitsTheBendsAndThePressureTogether) {
   EXPECT_EQ(pf::parseQuantity("tip_angle+gauge_pa"), pf::CalibrationQuantity::kTipAngleAndGauge);
 }
 
+// Four keys at once (the nested searches fitted at most three): the modulus, the gap, the gas and the skin's share,
+// from bends and pressures against volume, each from a start off the truth, all four back.
+TEST(CalibrationByVolume, FitsFourKeysAtOnce) {
+  const pf::FingerParameters truth =
+      pf_test::membraneFinger(20.0, "chamber_gap_m: 1e-3\ndead_volume_m3: 3e-5\nchamber_growth_ratio: 6\n");
+  std::vector<pf::Measurement> rows = filledByVolume(truth, 1.5, true);
+  pf::driveByVolume(rows);
+  pf::FingerParameters start = truth;
+  start.shear_modulus_pa.assign(start.shear_modulus_pa.size(), 4e4);
+  start.chamber_gap_m.assign(start.chamber_gap_m.size(), 0.0);
+  start.dead_volume_m3 = 1e-4;
+  start.chamber_growth_ratio = 1.0;
+  const std::vector<std::string> keys = {"shear_modulus_pa", "chamber_gap_m", "dead_volume_m3", "chamber_growth_ratio"};
+  const pf::CalibrationResult fit = pf::calibrate(start, keys, rows, pf::CalibrationObjective::kLeastSquares,
+                                                  pf::CalibrationQuantity::kTipAngleAndGauge);
+  ASSERT_EQ(fit.values.size(), 4U);
+  EXPECT_NEAR(fit.values[0], 2e4, 2e4 * 1e-6);
+  EXPECT_NEAR(fit.values[1], 1e-3, 1e-3 * 1e-6);
+  EXPECT_NEAR(fit.values[2], 3e-5, 3e-5 * 1e-6);
+  EXPECT_NEAR(fit.values[3], 6.0, 6.0 * 1e-6);
+  EXPECT_EQ(fit.uncertainty.size(), 4U);
+  for (double sd : fit.uncertainty) EXPECT_TRUE(std::isfinite(sd));  // exact data: every key determined
+}
+
 TEST(CalibrationByVolume, ReadsTheVolumeColumnWithOrWithoutThePressure) {
   const pf::MeasurementSet both =
       pf::parseMeasurementSet("gauge_pa,supplied_volume_m3,tip_angle_rad\n1000,1e-6,0.1\n2000,2e-6,0.2\n", "m.csv", 2);

@@ -74,7 +74,7 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
     """finger_calibrate from Python: the same defaults, data check, fit and leave-one-out.
 
     data: a CSV path, or a mapping of column names to arrays: gauge_pa and/or supplied_volume_m3, and any of
-    joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m (None: the package's data). keys: one to three keys, a
+    joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m (None: the package's data). keys: the keys to fit (any number), a
     list or "a,b" (None: the tool's default). compare: "joints", "average", "joint_1", "tip_angle", "tip_position" or
     "gauge_pa" (the model's pressure at each row's volume; needs drive="volume") (None: what the data has). drive:
     "pressure" (each row set by its gauge_pa) or "volume" (by its supplied_volume_m3; the pressure is then an output)

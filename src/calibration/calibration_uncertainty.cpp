@@ -6,9 +6,12 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "fit_problem.hpp"
 #include "fit_space.hpp"
+#include "terms_cost.hpp"
 #include "pneumatic_finger/calibration/calibration.hpp"
 
 namespace pneumatic_finger {
@@ -17,35 +20,23 @@ namespace {
 
 constexpr double kTradeOffCorrelation = 0.95;
 
-// Every compared term of @p parameters against @p data, in one vector (NaN terms kept: the caller checks).
-Eigen::VectorXd termsAt(const FingerParameters& parameters, const std::vector<Measurement>& data,
-                        CalibrationQuantity quantity) {
-  std::vector<double> all;
-  for (const Residual& r : residuals(parameters, data)) {
-    for (double e : r.terms(quantity)) all.push_back(e);
-  }
-  return Eigen::Map<const Eigen::VectorXd>(all.data(), static_cast<Eigen::Index>(all.size()));
-}
-
 // The search coordinate of @p value on @p axis (log10 for a logarithmic one).
 double coordinateOf(const SearchAxis& axis, double value) { return axis.logarithmic ? std::log10(value) : value; }
 
-// d terms / d coordinate for each key by central differences, a step of 1e-4 of the bracket kept inside it.
-Eigen::MatrixXd jacobian(const CalibrationResult& fit, const std::vector<SearchAxis>& axes,
-                         const std::vector<Measurement>& data, CalibrationQuantity quantity) {
-  const Eigen::VectorXd at = termsAt(fit.parameters, data, quantity);
-  Eigen::MatrixXd j(at.size(), static_cast<Eigen::Index>(axes.size()));
-  for (std::size_t k = 0; k < axes.size(); ++k) {
-    const double x = coordinateOf(axes[k], fit.values[k]), h = 1e-4 * (axes[k].hi - axes[k].lo);
-    const double lo = std::max(axes[k].lo, x - h), hi = std::min(axes[k].hi, x + h);
-    FingerParameters p = fit.parameters;
-    setKey(p, axes[k].key, axes[k].toValue(hi));
-    const Eigen::VectorXd up = termsAt(p, data, quantity);
-    setKey(p, axes[k].key, axes[k].toValue(lo));
-    const Eigen::VectorXd down = termsAt(p, data, quantity);
-    j.col(static_cast<Eigen::Index>(k)) = (up - down) / (hi - lo);
-  }
-  return j;
+// (J^T J)^-1 at @p u by Ceres' covariance (a dense SVD, which finds a rank the data leave short), in the unit cube's
+// coordinates; false where the data do not determine every key.
+bool unscaledCovariance(const FitProblem& problem, Eigen::VectorXd u, Eigen::MatrixXd& covariance) {
+  ceres::Problem at;
+  at.AddResidualBlock(new TermsCost(problem, false), nullptr, u.data());
+  ceres::Covariance::Options options;
+  options.algorithm_type = ceres::DENSE_SVD;
+  ceres::Covariance c(options);
+  const std::vector<std::pair<const double*, const double*>> blocks = {{u.data(), u.data()}};
+  if (!c.Compute(blocks, &at)) return false;
+  Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> block(u.size(), u.size());
+  c.GetCovarianceBlock(u.data(), u.data(), block.data());
+  covariance = block;
+  return true;
 }
 
 std::string boundWarning(const SearchAxis& axis, double value) {
@@ -73,23 +64,27 @@ void calibrationUncertainty(const FingerParameters& base, const std::vector<Meas
     const std::string w = boundWarning(axes[i], result.values[i]);
     if (!w.empty()) result.warnings.push_back(w);
   }
-  const Eigen::VectorXd r = termsAt(result.parameters, data, quantity);
-  const Eigen::MatrixXd j = jacobian(result, axes, data, quantity);
-  const auto m = r.size(), n = static_cast<Eigen::Index>(k);
-  if (!r.allFinite() || !j.allFinite() || m <= n) {
+  const FitProblem problem(base, result.keys, data, quantity);
+  const Eigen::VectorXd u = problem.pointOf(result.values);
+  Eigen::VectorXd r;
+  Eigen::MatrixXd j, unscaled;
+  const auto m = static_cast<Eigen::Index>(problem.termCount()), n = static_cast<Eigen::Index>(k);
+  if (!problem.termsAndJacobian(u, r, j) || m <= n) {
     result.warnings.push_back("no uncertainty: " + std::string(m <= n ? "no more compared terms than keys"
                                                                         : "a row has no shape near the fit"));
     return;
   }
-  const double s2 = r.squaredNorm() / static_cast<double>(m - n);
-  const Eigen::MatrixXd jtj = j.transpose() * j;
-  const Eigen::FullPivLU<Eigen::MatrixXd> lu(jtj);
-  if (lu.rank() < n) {
+  if (!unscaledCovariance(problem, u, unscaled)) {
     result.warnings.push_back("the data do not determine every key: a change of one can be undone by another "
                               "without changing any compared term");
     return;
   }
-  const Eigen::MatrixXd cov = s2 * lu.inverse();
+  // The terms' own scatter s^2 = sum of squares / (terms - keys) scales it, as for a least-squares fit; each key's
+  // cube coordinate to its search coordinate by its bracket's width.
+  Eigen::VectorXd width(n);
+  for (std::size_t a = 0; a < k; ++a) width[static_cast<Eigen::Index>(a)] = axes[a].hi - axes[a].lo;
+  const Eigen::MatrixXd cov =
+      r.squaredNorm() / static_cast<double>(m - n) * width.asDiagonal() * unscaled * width.asDiagonal();
   for (std::size_t a = 0; a < k; ++a) {
     const auto ia = static_cast<Eigen::Index>(a);
     const double sd = std::sqrt(cov(ia, ia));  // in the search coordinate

@@ -1,5 +1,7 @@
 #include "solver.hpp"
 
+#include "terms_cost.hpp"
+
 #include <ceres/ceres.h>
 #include <nlopt.hpp>
 
@@ -81,33 +83,6 @@ std::vector<std::pair<double, Eigen::VectorXd>> scan(const FitProblem& problem, 
   return scanned;
 }
 
-// Ceres' view of the fit: one residual block, every term, the Jacobian from FitProblem's differences.
-class TermsCost final : public ceres::CostFunction {
- public:
-  explicit TermsCost(const FitProblem& problem) : problem_(problem) {
-    set_num_residuals(static_cast<int>(problem.termCount(true)));
-    mutable_parameter_block_sizes()->push_back(static_cast<int>(problem.keyCount()));
-  }
-  bool Evaluate(double const* const* parameters, double* residuals, double** jacobians) const override {
-    const auto k = static_cast<Eigen::Index>(problem_.keyCount());
-    const Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(parameters[0], k);
-    Eigen::VectorXd e;
-    Eigen::MatrixXd j;
-    const bool ok =
-        jacobians && jacobians[0] ? problem_.termsAndJacobian(u, e, j, true) : problem_.terms(u, e, true);
-    problem_.report("least squares");
-    if (!ok) return false;
-    Eigen::Map<Eigen::VectorXd>(residuals, e.size()) = e;
-    if (jacobians && jacobians[0]) {
-      Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(jacobians[0], e.size(), k) = j;
-    }
-    return true;
-  }
-
- private:
-  const FitProblem& problem_;
-};
-
 // NLopt's Subplex on the objective itself, from @p start: a local search that needs no derivative.
 FitSolution derivativeFreeFrom(const FitProblem& problem, const Eigen::VectorXd& start, CalibrationObjective objective) {
   const auto k = static_cast<unsigned>(start.size());
@@ -145,7 +120,7 @@ FitSolution leastSquaresFrom(const FitProblem& problem, const Eigen::VectorXd& s
   Eigen::VectorXd u = start.cwiseMax(1e-3).cwiseMin(1.0 - 1e-3);
 
   ceres::Problem solve;
-  solve.AddResidualBlock(new TermsCost(problem), nullptr, u.data());
+  solve.AddResidualBlock(new TermsCost(problem, true), nullptr, u.data());
   for (Eigen::Index k = 0; k < u.size(); ++k) {
     solve.SetParameterLowerBound(u.data(), static_cast<int>(k), 0.0);
     solve.SetParameterUpperBound(u.data(), static_cast<int>(k), 1.0);

@@ -241,7 +241,7 @@ void addDataOptions(CLI::App& app, DataOptions& o) {
                  "relative error, 1 deg of bend weighing as 1.75 % of the pressure); default: joints if the file has "
                  "them, else tip_position, else tip_angle");
   app.add_option("--fit", o.fit_keys,
-                 "one to three parameter keys to fit, comma-separated; default: shear_modulus_pa,chamber_gap_m and, "
+                 "parameter keys to fit (any number, each once), comma-separated; default: shear_modulus_pa,chamber_gap_m and, "
                  "when every joint is compared, base_wall_share (joint_1: base_wall_share alone)");
   app.add_option("--objective", o.objective_name, "minimax or least_squares")->capture_default_str();
   app.add_option("--average-column", o.average_column,

@@ -176,10 +176,11 @@ struct CalibrationResult {
 };
 
 /// The uncertainty of a fit, from its curvature: J, the derivatives of every compared term with respect to each key
-/// (central differences in the search coordinate: log10 for shear_modulus_pa and wall_locking_jm), and the terms' own
-/// scatter s^2 = sum of squares / (terms - keys), give the covariance s^2 (J^T J)^-1, as for a least-squares fit
-/// (for a minimax fit it is the same linearisation about its optimum: an estimate of the same size). Fills
-/// @p result's uncertainty, correlation and warnings.
+/// (central differences of a millionth of the key's bracket, in the search coordinate: log10 for shear_modulus_pa and
+/// wall_locking_jm), and the terms' own scatter s^2 = sum of squares / (terms - keys), give the covariance
+/// s^2 (J^T J)^-1 (Ceres' covariance, by a dense SVD that finds keys the data leave undetermined), as for a
+/// least-squares fit (for a minimax fit it is the same linearisation about its optimum: an estimate of the same size).
+/// Fills @p result's uncertainty, correlation and warnings.
 void calibrationUncertainty(const FingerParameters& base, const std::vector<Measurement>& data,
                             CalibrationQuantity quantity, CalibrationResult& result);
 
@@ -190,15 +191,17 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
 /// empty: nobody.
 using CalibrationProgress = std::function<void(const std::string& step)>;
 
-/// Fits @p keys (one to three of isFittableKey) of @p base to @p data over @p quantity.
+/// Fits @p keys (any number of isFittableKey, each once) of @p base to @p data over @p quantity.
 /// Every joint with base_wall_share and chamber keys is fitted in two stages, each key to the joints it moves: the
 /// chamber keys to the joints 2..N average (in the model those joints are all 2 theta, so their average is what the
 /// chambers can match), then base_wall_share, which moves joint 1 alone, to joint 1. One search over every joint at
 /// once would let the chamber keys trade the outer joints' fit for joint 1's, and under minimax it leaves
 /// base_wall_share undetermined wherever joint 1 is not the worst joint.
-/// Search: each key over a fixed bracket (mu logarithmically over [1e5, 1e12] Pa; lengths linearly from 0 to the
-/// chamber height; base_wall_share over [0, 1]), a scan followed by golden-section refinement, nested per key.
-/// @throws ParameterError for an unknown, repeated or non-fittable key, more than three keys, a quantity the data
+/// Search: each key over a fixed bracket (mu logarithmically over [1e5, 1e12] Pa for the paper law, [1e4, 1e7] for
+/// the others; lengths linearly from 0 to the chamber height; base_wall_share over [0, 1]), global: a coarse scan of
+/// the brackets with mu solved at each point, then local solves from the best few points (least squares by Ceres,
+/// minimax by NLopt's SLSQP, both polished by Subplex). docs/CALIBRATE.md, "The solver".
+/// @throws ParameterError for an unknown, repeated or non-fittable key, no key, a quantity the data
 ///         lacks, or keys the data cannot determine: as many chamber keys (all but base_wall_share) as rows or
 ///         more; base_wall_share from the joints
 ///         2..N average (it moves only joint 1); base_wall_share with another key from tip data alone (the tip

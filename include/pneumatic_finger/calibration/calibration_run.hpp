@@ -18,7 +18,7 @@ namespace pneumatic_finger {
 /// What to fit; every field empty takes the tool's default.
 struct CalibrationRequest {
   std::string wall_law;        ///< "auto", "paper" or "membrane"; empty: the parameters' wall_law
-  std::vector<std::string> keys;  ///< one to three fittable keys; empty: each law's defaultFitKeys
+  std::vector<std::string> keys;  ///< fittable keys, any number; empty: each law's defaultFitKeys
   std::string objective = "minimax";
   std::string compare;         ///< a quantityName; empty: average with an average column, else defaultQuantity
   std::string average_column;  ///< the column that gives the joints 2..N average (e.g. paper_avg_rad), or empty
