@@ -6,6 +6,7 @@
 #include <sstream>
 
 #include "pneumatic_finger/calibration/calibration.hpp"
+#include "test_support.hpp"
 #include "pneumatic_finger/calibration/calibration_run.hpp"
 
 namespace pf = pneumatic_finger;
@@ -331,4 +332,45 @@ TEST(Calibration, ALongCalibrationReportsItsProgress) {
   EXPECT_NE(loud.str().find("finger_calibrate: 0.0 s: paper law: the fit: 64 model evaluations\n"), std::string::npos)
       << loud.str();
   EXPECT_EQ(silent.str(), "");
+}
+
+// A snap under pressure control: a Gent membrane finger on a pressure ramp through its limit point leaps to its far
+// branch. Its bends leap, so the default comparison is the pressure that holds each measured bend (continuous through
+// the snap, on both branches); at the truth every such pressure is the measured one, and the fit finds the truth
+// again from a start off it.
+TEST(Calibration, FitsASnapByThePressureThatHoldsEachBend) {
+  const pf::FingerParameters truth = pf_test::membraneFinger(20.0, "chamber_gap_m: 1e-3\n");
+  pf::FingerModel model(truth);
+  pf::FingerWorkspace ws(model);
+  ASSERT_TRUE(std::isfinite(model.limitGaugePa()));
+  std::vector<pf::Measurement> rows;
+  bool snapped = false;
+  for (int k = 1; k <= 19; ++k) {
+    pf::Measurement m;
+    m.line = k;
+    m.gauge_pa = model.limitGaugePa() * (0.5 + 0.05 * (k - 1));  // 0.5 to 1.4 of the limit point
+    const pf::FingerState& s = model.evaluate(m.gauge_pa, ws);
+    snapped = snapped || s.status == pf::EvaluationStatus::kSnappedThrough;
+    ASSERT_TRUE(std::isfinite(s.tip_angle_rad)) << "row " << k;
+    m.tip_angle_rad = s.tip_angle_rad;
+    rows.push_back(m);
+  }
+  ASSERT_TRUE(snapped) << "the ramp must pass the snap";
+  EXPECT_TRUE(pf::bendLeaps(rows));
+  EXPECT_EQ(pf::defaultQuantity(rows), pf::CalibrationQuantity::kGaugeAtTipAngle);
+  for (const pf::Residual& r : pf::residuals(truth, rows, pf::CalibrationQuantity::kGaugeAtTipAngle)) {
+    if (r.measured_tip_angle_rad == 0.0) continue;  // before the walls touch: no one pressure holds a straight finger
+    EXPECT_NEAR(r.model_gauge_at_tip_angle_pa, r.measured_gauge_pa, 1e-7 * r.measured_gauge_pa) << r.gauge_pa;
+  }
+  pf::FingerParameters start = truth;
+  start.shear_modulus_pa.assign(start.shear_modulus_pa.size(), 5e4);
+  start.chamber_gap_m.assign(start.chamber_gap_m.size(), 0.0);
+  for (auto objective : {pf::CalibrationObjective::kMinimax, pf::CalibrationObjective::kLeastSquares}) {
+    const pf::CalibrationResult fit = pf::calibrate(start, {"shear_modulus_pa", "chamber_gap_m"}, rows, objective,
+                                                    pf::CalibrationQuantity::kGaugeAtTipAngle);
+    EXPECT_NEAR(fit.values[0], 2e4, 2e4 * 1e-6) << pf::objectiveName(objective);
+    EXPECT_NEAR(fit.values[1], 1e-3, 1e-3 * 1e-6) << pf::objectiveName(objective);
+  }
+  // Table 1's four pressures do not leap: the bend is compared as it is.
+  EXPECT_FALSE(pf::bendLeaps(pf::readMeasurementsCsv(kTable1, 4)));
 }

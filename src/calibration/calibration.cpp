@@ -23,138 +23,11 @@ const char* objectiveName(CalibrationObjective objective) {
   return objective == CalibrationObjective::kMinimax ? "minimax" : "least_squares";
 }
 
-CalibrationQuantity parseQuantity(const std::string& name) {
-  for (CalibrationQuantity q : {CalibrationQuantity::kOuterAverage, CalibrationQuantity::kEveryJoint,
-                                CalibrationQuantity::kFirstJoint, CalibrationQuantity::kTipAngle,
-                                CalibrationQuantity::kTipPosition, CalibrationQuantity::kGauge,
-                                CalibrationQuantity::kTipAngleAndGauge}) {
-    if (name == quantityName(q)) return q;
-  }
-  throw ParameterError("unknown quantity '" + name + "'; known: average, joints, joint_1, tip_angle, tip_position, "
-                       "gauge_pa, tip_angle+gauge_pa");
-}
-
-const char* quantityName(CalibrationQuantity quantity) {
-  switch (quantity) {
-    case CalibrationQuantity::kOuterAverage: return "average";
-    case CalibrationQuantity::kEveryJoint: return "joints";
-    case CalibrationQuantity::kFirstJoint: return "joint_1";
-    case CalibrationQuantity::kTipAngle: return "tip_angle";
-    case CalibrationQuantity::kTipPosition: return "tip_position";
-    case CalibrationQuantity::kGauge: return "gauge_pa";
-    case CalibrationQuantity::kTipAngleAndGauge: return "tip_angle+gauge_pa";
-  }
-  return "average";
-}
-
-CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data) {
-  if (data.empty()) throw ParameterError("no measurements");
-  if (data.front().hasJoints()) return CalibrationQuantity::kEveryJoint;
-  if (data.front().hasTipPosition()) return CalibrationQuantity::kTipPosition;
-  return CalibrationQuantity::kTipAngle;
-}
-
-std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity, WallLaw law) {
-  if (quantity == CalibrationQuantity::kEveryJoint) return {"shear_modulus_pa", "chamber_gap_m", "base_wall_share"};
-  if (quantity == CalibrationQuantity::kFirstJoint) return {"base_wall_share"};
-  // The thick wall keeps the file's J_m: its Gent pressure costs about twice the membrane's, and a third nested key
-  // with leave-one-out took ten minutes on the ribbed segment's 15 rows. Name wall_locking_jm with --fit to fit it.
-  if (law == WallLaw::kMembrane) return {"shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"};
-  return {"shear_modulus_pa", "chamber_gap_m"};
-}
-
-std::vector<double> Residual::terms(CalibrationQuantity quantity) const {
-  switch (quantity) {
-    case CalibrationQuantity::kOuterAverage: return {error_rad()};
-    case CalibrationQuantity::kEveryJoint: {
-      std::vector<double> e(model_joint_rad.size());
-      for (std::size_t k = 0; k < e.size(); ++k) e[k] = model_joint_rad[k] - measured_joint_rad[k];
-      return e;
-    }
-    case CalibrationQuantity::kFirstJoint: return {joint1_error_rad()};
-    case CalibrationQuantity::kTipAngle: return {tip_angle_error_rad()};
-    case CalibrationQuantity::kTipPosition: return {tip_position_error_m()};
-    case CalibrationQuantity::kGauge: return {gauge_error_pa()};
-    case CalibrationQuantity::kTipAngleAndGauge:
-      // One radian of bend weighs as the whole pressure: a scale both errors share, with no unit to choose.
-      if (measured_gauge_pa == 0.0) return {tip_angle_error_rad()};
-      return {tip_angle_error_rad(), gauge_relative_error()};
-  }
-  return {};
-}
 
 bool isFittableKey(const std::string& key) {
   return std::find(std::begin(kFittable), std::end(kFittable), key) != std::end(kFittable);
 }
 
-namespace {
-
-// What was measured of a row, into @p r: the joints (and the tip they make along the model's segments, eq 38), the
-// tip angle and position where the file gives them.
-void measuredInto(const FingerParameters& parameters, const Measurement& m, Residual& r) {
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  r.measured_avg_rad = r.measured_joint1_rad = r.measured_tip_angle_rad = nan;
-  r.measured_tip_x_m = r.measured_tip_y_m = nan;
-  if (m.hasJoints()) {
-    r.measured_joint_rad = m.joint_rad;
-    r.measured_avg_rad = m.averageOuterJoints();
-    r.measured_joint1_rad = m.joint_rad[0];
-    double angle = 0.0;
-    for (std::size_t k = 0; k < m.joint_rad.size() && k < parameters.segment_length_m.size(); ++k) {
-      angle += m.joint_rad[k];
-    }
-    const Eigen::Vector2d tip = tipOfJoints(parameters, m.joint_rad);
-    r.measured_tip_angle_rad = angle;
-    r.measured_tip_x_m = tip.x();
-    r.measured_tip_y_m = tip.y();
-  }
-  if (m.hasTipAngle()) r.measured_tip_angle_rad = m.tip_angle_rad;
-  if (m.hasTipPosition()) {
-    r.measured_tip_x_m = m.tip_x_m;
-    r.measured_tip_y_m = m.tip_y_m;
-  }
-}
-
-}  // namespace
-
-std::vector<Residual> residuals(const FingerParameters& parameters, const std::vector<Measurement>& data) {
-  ModelOptions options;
-  options.wall_inverse = false;  // one model per candidate, a few dozen rows each: the inverse's build would dominate
-  FingerModel model(parameters, options);
-  FingerWorkspace ws(model);
-  std::vector<Residual> out;
-  const int n = parameters.chamber_count;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  FingerState none = restState(parameters);  // what a row beyond the limit point gets: NaN, no shape
-  none.joint_angle_rad.setConstant(nan);
-  none.backbone_m.setConstant(nan);
-  none.tip_angle_rad = nan;
-  none.gauge_pa = nan;
-  for (const Measurement& m : data) {
-    // The rows in order, as a path: a wall past its limit point snaps to its far branch where it has one, and such a
-    // row is data like any other (docs/MODEL.md, "The snap-through"). A row set by its volume has a shape before, at
-    // and past the limit point, and the model's pressure there is compared with the measured.
-    const FingerState& evaluated =
-        m.driven_by_volume ? model.evaluateVolume(m.supplied_volume_m3, ws) : model.evaluate(m.gauge_pa, ws);
-    const bool shaped = evaluated.status == EvaluationStatus::kOk || evaluated.status == EvaluationStatus::kVacuum ||
-                        evaluated.status == EvaluationStatus::kSnappedThrough;
-    const FingerState& s = shaped ? evaluated : none;
-    Residual r;
-    r.measured_gauge_pa = m.gauge_pa;
-    r.model_gauge_pa = m.driven_by_volume ? s.gauge_pa : m.gauge_pa;
-    r.gauge_pa = m.hasGauge() ? m.gauge_pa : r.model_gauge_pa;
-    r.supplied_volume_m3 = m.supplied_volume_m3;
-    r.model_joint_rad.assign(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n);
-    r.model_avg_rad = n > 1 ? s.joint_angle_rad.tail(n - 1).mean() : nan;
-    r.model_joint1_rad = s.joint_angle_rad[0];
-    r.model_tip_angle_rad = s.tip_angle_rad;
-    r.model_tip_x_m = s.tip().x();
-    r.model_tip_y_m = s.tip().y();
-    measuredInto(parameters, m, r);
-    out.push_back(std::move(r));
-  }
-  return out;
-}
 
 namespace {
 
@@ -227,7 +100,12 @@ void checkKeysAndData(const FingerParameters& base, const std::vector<std::strin
   checkTheDrive(base, keys, data, quantity);
   for (const auto& m : data) {
     if (quantity == CalibrationQuantity::kGauge) continue;  // checkTheDrive saw to it
-    const bool angle = quantity == CalibrationQuantity::kTipAngle || quantity == CalibrationQuantity::kTipAngleAndGauge;
+    const bool angle = quantity == CalibrationQuantity::kTipAngle ||
+                       quantity == CalibrationQuantity::kTipAngleAndGauge ||
+                       quantity == CalibrationQuantity::kGaugeAtTipAngle;
+    if (quantity == CalibrationQuantity::kGaugeAtTipAngle && !m.hasGauge()) {
+      throw ParameterError(m.where() + ": no gauge_pa to compare the pressure at the measured bend with");
+    }
     const bool has = uses_joints ? m.hasJoints()
                      : angle     ? m.hasTipAngle() || m.hasJoints()
                                  : m.hasTipPosition() || m.hasJoints();
@@ -269,7 +147,7 @@ void refuseWhatTheDataCannotTell(const std::vector<std::string>& keys, std::size
   }
   if (share && keys.size() > 1 &&
       (quantity == CalibrationQuantity::kTipAngle || quantity == CalibrationQuantity::kTipPosition ||
-       quantity == CalibrationQuantity::kTipAngleAndGauge)) {
+       quantity == CalibrationQuantity::kTipAngleAndGauge || quantity == CalibrationQuantity::kGaugeAtTipAngle)) {
     throw ParameterError("base_wall_share cannot be fitted with other keys to tip data alone: the tip cannot tell "
                          "the base face's share of the bending from the chambers' (measure the joints, or fit it "
                          "alone)");
@@ -314,7 +192,7 @@ CalibrationResult searchKeys(const FingerParameters& base, const std::vector<std
   result.values = problem.valuesAt(best.u);
   result.objective_value = best.objective;
   result.model_evaluations = problem.evaluations();
-  result.residuals = residuals(result.parameters, data);
+  result.residuals = residuals(result.parameters, data, quantity);
   return result;
 }
 
@@ -399,15 +277,30 @@ std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vecto
     throw ParameterError(std::to_string(data.size()) + " rows; fitting " + std::to_string(chamber_keys) +
                          " chamber keys with leave-one-out needs at least " + std::to_string(chamber_keys + 2));
   }
+  checkKeysAndData(base, keys, data, quantity);
+  const bool two_steps = std::count(keys.begin(), keys.end(), "base_wall_share") > 0 && keys.size() > 1 &&
+                         quantity == CalibrationQuantity::kEveryJoint;
+  auto heard = [&](const std::string& prefix) {
+    return progress ? CalibrationProgress([&, prefix](const std::string& s) { progress(prefix + s); })
+                    : CalibrationProgress();
+  };
+  // One scan of every row, kept; each fold starts from its best points measured without the held-out row.
+  const FitProblem full(base, keys, data, quantity, heard(step + ", the scan: "));
+  ScanRecord record;
+  if (!two_steps) solveFit(full, objective, &record);
   std::vector<Residual> predicted;
   for (std::size_t i = 0; i < data.size(); ++i) {
     const std::string row = step + ", row " + std::to_string(i + 1) + " of " + std::to_string(data.size()) + ": ";
     std::vector<Measurement> others = data;
     others.erase(others.begin() + static_cast<long>(i));
-    const CalibrationResult without = calibrate(base, keys, others, objective, quantity,
-                                                progress ? CalibrationProgress([&](const std::string& s) { progress(row + s); })
-                                                         : CalibrationProgress());
-    predicted.push_back(residuals(without.parameters, {data[i]})[0]);
+    FingerParameters without;
+    if (two_steps) {  // every joint with the base face's share: fitted in two steps, each fold in full
+      without = calibrate(base, keys, others, objective, quantity, heard(row)).parameters;
+    } else {
+      const FitProblem fold(base, keys, others, quantity, heard(row));
+      without = fold.parametersAt(solveFold(fold, objective, record, full.firstTermOf(i), full.termCountOf(i)).u);
+    }
+    predicted.push_back(residuals(without, {data[i]}, quantity)[0]);
   }
   return predicted;
 }

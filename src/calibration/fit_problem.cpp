@@ -12,7 +12,11 @@ FitProblem::FitProblem(const FingerParameters& base, const std::vector<std::stri
     : base_(base), data_(&data), quantity_(quantity), progress_(std::move(progress)) {
   for (const std::string& k : keys) axes_.push_back(axisFor(k, base));
   // A row's terms are as many at every point: count them at the base, shaped or not.
-  for (const Residual& r : residuals(base, data)) term_count_ += r.terms(quantity).size();
+  row_first_.push_back(0);
+  for (const Residual& r : residuals(base, data, quantity)) {
+    term_count_ += r.terms(quantity).size();
+    row_first_.push_back(term_count_);
+  }
   square_count_ = quantity == CalibrationQuantity::kTipPosition ? 2 * term_count_ : term_count_;
 }
 
@@ -54,7 +58,7 @@ bool FitProblem::terms(const Eigen::VectorXd& u, Eigen::VectorXd& out, bool squa
   const bool split = squares && quantity_ == CalibrationQuantity::kTipPosition;
   out.resize(static_cast<Eigen::Index>(termCount(squares)));
   Eigen::Index i = 0;
-  for (const Residual& r : residuals(p, *data_)) {
+  for (const Residual& r : residuals(p, *data_, quantity_)) {
     const std::vector<double> row = split ? std::vector<double>{r.model_tip_x_m - r.measured_tip_x_m,
                                                                 r.model_tip_y_m - r.measured_tip_y_m}
                                           : r.terms(quantity_);

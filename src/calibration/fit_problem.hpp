@@ -26,6 +26,9 @@ class FitProblem {
   /// distance's and which, unlike the distance, are smooth where the fit is exact.
   std::size_t termCount(bool squares = false) const { return squares ? square_count_ : term_count_; }
   const std::vector<SearchAxis>& axes() const { return axes_; }
+  /// Where row @p row's terms begin among a point's (compared form), and how many it has.
+  std::size_t firstTermOf(std::size_t row) const { return row_first_[row]; }
+  std::size_t termCountOf(std::size_t row) const { return row_first_[row + 1] - row_first_[row]; }
 
   /// The terms at @p u; false where the model gives a row no shape (beyond its limit point with no far branch) or the
   /// point is a wall the law does not allow: no number to compare, which the solvers treat as outside the feasible set.
@@ -57,6 +60,7 @@ class FitProblem {
   CalibrationQuantity quantity_;
   CalibrationProgress progress_;
   std::size_t term_count_ = 0, square_count_ = 0;
+  std::vector<std::size_t> row_first_;
   mutable long evaluations_ = 0;
   mutable long reports_ = 0;
 };

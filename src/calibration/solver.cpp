@@ -51,7 +51,8 @@ std::vector<Eigen::VectorXd> scanCube(std::size_t dims) {
 // solved at each point of the others (a profile): every bend falls as mu rises, so along mu the objective is
 // quasi-convex, and its valley, a fraction of a decade wide in 7, falls between any coarse grid's points. A coarse
 // line of kMuLine points brackets it, a golden section to 1e-4 of the range finds it.
-std::vector<std::pair<double, Eigen::VectorXd>> scan(const FitProblem& problem, CalibrationObjective objective) {
+std::vector<std::pair<double, Eigen::VectorXd>> scan(const FitProblem& problem, CalibrationObjective objective,
+                                                     ScanRecord* record) {
   constexpr int kMuLine = 17;
   const auto& axes = problem.axes();
   const auto mu = std::find_if(axes.begin(), axes.end(), [](const SearchAxis& a) { return a.key == "shear_modulus_pa"; });
@@ -64,7 +65,10 @@ std::vector<std::pair<double, Eigen::VectorXd>> scan(const FitProblem& problem, 
     auto at = [&](double x) {
       if (profile) u[m] = x;
       problem.report("scan");
-      return problem.objective(u, objective);
+      Eigen::VectorXd e;
+      if (!problem.terms(u, e)) return std::numeric_limits<double>::infinity();
+      if (record) record->points.emplace_back(u, e);
+      return reduce(e, objective);
     };
     double best_x = 0.0, best = at(0.0);
     for (int i = 1; profile && i < kMuLine; ++i) {
@@ -202,8 +206,35 @@ FitSolution minimaxFrom(const FitProblem& problem, const Eigen::VectorXd& start,
 
 int scanPoints(std::size_t keys) { return 41 + 32 * static_cast<int>(keys - 1); }
 
-FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective) {
-  std::vector<std::pair<double, Eigen::VectorXd>> scanned = scan(problem, objective);
+namespace {
+
+// The local solves from one start, the best of them (least squares: Ceres; minimax: SLSQP and Ceres' least squares
+// measured by the largest error; then Subplex from the better).
+FitSolution localSolve(const FitProblem& problem, CalibrationObjective objective, const Eigen::VectorXd& start,
+                       double start_objective) {
+  FitSolution local = leastSquaresFrom(problem, start);
+  if (objective == CalibrationObjective::kMinimax) {
+    // The least-squares point too, measured by the largest error: where the data are exact, minimax's optimum is
+    // degenerate (every term zero at once) and SLSQP's end game slow, while least squares reaches it exactly.
+    const FitSolution squares{local.u, problem.objective(local.u, objective)};
+    local = minimaxFrom(problem, start, start_objective);
+    if (squares.objective < local.objective) local = squares;
+  }
+  // Then Subplex, which needs no derivative, from there: where a key's step leaves the rows' shapes (its column is
+  // zero) the derivative solvers cannot move it.
+  const FitSolution polished = derivativeFreeFrom(problem, local.u, objective);
+  if (polished.objective < local.objective) local = polished;
+  FitSolution best{start, start_objective};
+  return local.objective < best.objective ? local : best;
+}
+
+}  // namespace
+
+namespace {
+
+// The best kStarts distinct points of @p scanned (objective, point), each solved locally; the best of all.
+FitSolution fromTheBestOf(const FitProblem& problem, CalibrationObjective objective,
+                          std::vector<std::pair<double, Eigen::VectorXd>> scanned) {
   if (scanned.empty()) {
     throw ParameterError("no point of the keys' search range gives every row a shape (each is beyond the limit point "
                          "with no far branch): the start parameters or the data are far from this finger");
@@ -219,21 +250,33 @@ FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective) 
   }
   FitSolution best{scanned.front().second, scanned.front().first};
   for (const auto* s : starts) {
-    FitSolution local = leastSquaresFrom(problem, s->second);
-    if (objective == CalibrationObjective::kMinimax) {
-      // The least-squares point too, measured by the largest error: where the data are exact, minimax's optimum is
-      // degenerate (every term zero at once) and SLSQP's end game slow, while least squares reaches it exactly.
-      const FitSolution squares{local.u, problem.objective(local.u, objective)};
-      local = minimaxFrom(problem, s->second, s->first);
-      if (squares.objective < local.objective) local = squares;
-    }
-    // Then Subplex, which needs no derivative, from there: where a key's step leaves the rows' shapes (its column
-    // is zero) the derivative solvers cannot move it.
-    const FitSolution polished = derivativeFreeFrom(problem, local.u, objective);
-    if (polished.objective < local.objective) local = polished;
+    const FitSolution local = localSolve(problem, objective, s->second, s->first);
     if (local.objective < best.objective) best = local;
   }
   return best;
+}
+
+}  // namespace
+
+double reduce(const Eigen::VectorXd& terms, CalibrationObjective objective) {
+  if (terms.size() == 0) return 0.0;
+  return objective == CalibrationObjective::kMinimax ? terms.cwiseAbs().maxCoeff() : terms.squaredNorm();
+}
+
+FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective, ScanRecord* record) {
+  return fromTheBestOf(problem, objective, scan(problem, objective, record));
+}
+
+FitSolution solveFold(const FitProblem& fold, CalibrationObjective objective, const ScanRecord& full,
+                      std::size_t first_term, std::size_t terms) {
+  std::vector<std::pair<double, Eigen::VectorXd>> scanned;
+  const auto head = static_cast<Eigen::Index>(first_term), gone = static_cast<Eigen::Index>(terms);
+  for (const auto& [u, e] : full.points) {
+    Eigen::VectorXd others(e.size() - gone);
+    others << e.head(head), e.tail(e.size() - head - gone);
+    scanned.emplace_back(reduce(others, objective), u);
+  }
+  return fromTheBestOf(fold, objective, std::move(scanned));
 }
 
 }  // namespace pneumatic_finger

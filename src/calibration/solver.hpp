@@ -3,6 +3,9 @@
 
 #include <Eigen/Dense>
 
+#include <utility>
+#include <vector>
+
 #include "fit_problem.hpp"
 
 namespace pneumatic_finger {
@@ -12,12 +15,26 @@ struct FitSolution {
   double objective = 0.0;  ///< its objective (max |term| or sum of squares)
 };
 
+/// Every point a scan evaluated, with its terms (FitProblem::terms): leave-one-out's folds choose their starts from it.
+struct ScanRecord {
+  std::vector<std::pair<Eigen::VectorXd, Eigen::VectorXd>> points;
+};
+
 /// Global and exact: a coarse scan of the cube (a grid for one key, a Halton sequence for more; no start point to get
 /// wrong), then a local solve from each of the best few distinct scan points, the best kept. Least squares are solved
 /// by Ceres (Levenberg-Marquardt within the bounds); a minimax by NLopt's SLSQP on its epigraph form (minimise t with
-/// every |term| <= t), which is smooth where the largest error is not.
+/// every |term| <= t), which is smooth where the largest error is not. @p record, where given, keeps the scan.
 /// @throws ParameterError when no point of the scan gives every row a shape
-FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective);
+FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective, ScanRecord* record = nullptr);
+
+/// A leave-one-out fold: @p fold's problem is the full one without one row, whose terms are @p terms from
+/// @p first_term of the full problem's. Its starts are the best of the full scan @p full measured without that row
+/// (no new scan, and nothing of the held-out row), then solved locally as solveFit does.
+FitSolution solveFold(const FitProblem& fold, CalibrationObjective objective, const ScanRecord& full,
+                      std::size_t first_term, std::size_t terms);
+
+/// The objective over @p terms: the largest |term| (minimax) or the sum of squares.
+double reduce(const Eigen::VectorXd& terms, CalibrationObjective objective);
 
 /// How many scan points a fit of @p keys keys takes: 41 for one key, 32 more for each further one.
 int scanPoints(std::size_t keys);

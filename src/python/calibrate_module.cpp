@@ -53,6 +53,7 @@ py::dict residualArrays(const std::vector<pf::Residual>& rows, std::size_t n) {
   d["supplied_volume_m3"] = column(r, [&](std::size_t i) { return rows[i].supplied_volume_m3; });
   d["measured_gauge_pa"] = column(r, [&](std::size_t i) { return rows[i].measured_gauge_pa; });
   d["model_gauge_pa"] = column(r, [&](std::size_t i) { return rows[i].model_gauge_pa; });
+  d["model_gauge_at_tip_angle_pa"] = column(r, [&](std::size_t i) { return rows[i].model_gauge_at_tip_angle_pa; });
   d["measured_joint_rad"] = joints(true);
   d["model_joint_rad"] = joints(false);
   d["measured_avg_rad"] = column(r, [&](std::size_t i) { return rows[i].measured_avg_rad; });

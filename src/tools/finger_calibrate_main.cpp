@@ -47,15 +47,16 @@ std::string cell(double v, const char* format, int width) {
 
 // One table of errors (model - measured), in the data's own units: every joint, the joints 2..N average and the tip
 // angle (rad), the tip position (m), and for rows set by volume their volume and the pressure's error (Pa). Also
-// returns the largest |error| of each kind in @p worst (joint, average, tip angle, tip position, pressure, and the
-// pressure's relative error where it was measured above zero).
-std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_volume, std::array<double, 6>& worst) {
+// returns the largest |error| of each kind in @p worst (joint, average, tip angle, tip position, pressure, the
+// pressure's relative error where it was measured above zero, and, where @p at_bend, the pressure at the measured bend).
+std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_volume, bool at_bend,
+                       std::array<double, 7>& worst) {
   std::ostringstream t;
   t << "# " << (by_volume ? pad("volume_m3", 11) : "") << pad("gauge_pa", 10);
   for (int k = 1; k <= n; ++k) t << pad("joint_" + std::to_string(k), 9);
   t << pad("avg_2.." + std::to_string(n), 10) << pad("tip_angle", 10) << pad("tip_m", 9)
-    << (by_volume ? pad("gauge_err_pa", 13) : "") << "\n";
-  worst = {0, 0, 0, 0, 0, 0};
+    << (by_volume ? pad("gauge_err_pa", 13) : "") << (at_bend ? pad("at_bend_err_pa", 15) : "") << "\n";
+  worst = {0, 0, 0, 0, 0, 0, 0};
   auto keep = [](double& w, double e) {
     if (!std::isnan(e)) w = std::max(w, std::fabs(e));
   };
@@ -72,9 +73,10 @@ std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_vol
     keep(worst[3], r.tip_position_error_m());
     keep(worst[4], r.gauge_error_pa());
     keep(worst[5], r.measured_gauge_pa != 0.0 ? r.gauge_relative_error() : NAN);
+    if (at_bend) keep(worst[6], r.gauge_at_tip_angle_error_pa());
     t << cell(r.error_rad(), "%*.4f", 10) << cell(r.tip_angle_error_rad(), "%*.4f", 10)
       << cell(r.tip_position_error_m(), "%*.5f", 9) << (by_volume ? cell(r.gauge_error_pa(), "%*.0f", 13) : "")
-      << "\n";
+      << (at_bend ? cell(r.gauge_at_tip_angle_error_pa(), "%*.0f", 15) : "") << "\n";
   }
   return t.str();
 }
@@ -83,7 +85,7 @@ std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_vol
 std::string angle(double rad) { return pf::formatMessage(rad) + " rad (" + fmt("%.3f", rad * kDeg) + " deg)"; }
 std::string length(double m) { return pf::formatMessage(m) + " m (" + fmt("%.3f", m * 1e3) + " mm)"; }
 
-std::string largest(const std::array<double, 6>& w, int n, bool paper) {
+std::string largest(const std::array<double, 7>& w, int n, bool paper) {
   std::vector<std::string> parts;
   if (w[0] > 0) parts.push_back("joints " + angle(w[0]));
   if (w[1] > 0) {
@@ -95,6 +97,7 @@ std::string largest(const std::array<double, 6>& w, int n, bool paper) {
   if (w[4] > 0) {
     parts.push_back("pressure " + fmt("%.0f", w[4]) + " Pa (largest relative " + fmt("%.1f", 100.0 * w[5]) + " %)");
   }
+  if (w[6] > 0) parts.push_back("pressure at the measured bend " + fmt("%.0f", w[6]) + " Pa");
   std::string s;
   for (const std::string& p : parts) s += (s.empty() ? " " : ", ") + p;
   return s;
@@ -151,10 +154,11 @@ std::string report(const std::string& data_name, bool paper_data, std::size_t ro
         << "; objective: " << pf::objectiveName(run.objective) << "; error = model - measured\n# fitted:";
   for (std::size_t i = 0; i < fit.keys.size(); ++i) table << " " << fit.keys[i] << " = " << pf::formatExact(fit.values[i]);
   table << uncertaintyLines(run);
-  std::array<double, 6> worst{}, worst_loo{};
+  std::array<double, 7> worst{}, worst_loo{};
   const bool by_volume = run.by_volume;
-  const std::string fit_table = errorTable(fit.residuals, n, by_volume, worst);
-  const std::string loo_table = errorTable(run.best().leave_one_out, n, by_volume, worst_loo);
+  const bool at_bend = run.quantity == pf::CalibrationQuantity::kGaugeAtTipAngle;
+  const std::string fit_table = errorTable(fit.residuals, n, by_volume, at_bend, worst);
+  const std::string loo_table = errorTable(run.best().leave_one_out, n, by_volume, at_bend, worst_loo);
   table << "\n#\n# error of the fit (angles in rad, tip_m in m)\n" << fit_table
         << "# leave-one-out error: each row predicted by a fit to the others\n" << loo_table
         << "#\n# largest |error|:" << largest(worst, n, paper_data) << "\n# largest leave-one-out |error|:"
@@ -186,7 +190,8 @@ std::string errorSummary(const std::vector<pf::Residual>& rows, pf::CalibrationQ
            relativeSummary(rows);
   }
   const bool metres = quantity == pf::CalibrationQuantity::kTipPosition;
-  const bool pascals = quantity == pf::CalibrationQuantity::kGauge;
+  const bool pascals =
+      quantity == pf::CalibrationQuantity::kGauge || quantity == pf::CalibrationQuantity::kGaugeAtTipAngle;
   double worst = 0.0, sum_sq = 0.0;
   int count = 0;
   for (const pf::Residual& r : rows) {
@@ -238,8 +243,10 @@ void addDataOptions(CLI::App& app, DataOptions& o) {
                  "then base_wall_share to joint 1), average (of joints 2..N, the paper's measure), joint_1, tip_angle, "
                  "tip_position, gauge_pa (the pressure at each row's volume, with --drive volume) or "
                  "tip_angle+gauge_pa (both, with --drive volume: the tip angle's error in rad and the pressure's "
-                 "relative error, 1 deg of bend weighing as 1.75 % of the pressure); default: joints if the file has "
-                 "them, else tip_position, else tip_angle");
+                 "relative error, 1 deg of bend weighing as 1.75 % of the pressure) or gauge_at_tip_angle (the "
+                 "pressure that holds each measured bend, against the measured, in Pa: continuous through a snap); "
+                 "default: joints if the file has them, else tip_position, else tip_angle, or gauge_at_tip_angle "
+                 "where the bend leaps (by a quarter of its range within 5 % of the pressures': a snap)");
   app.add_option("--fit", o.fit_keys,
                  "parameter keys to fit (any number, each once), comma-separated; default: shear_modulus_pa,chamber_gap_m and, "
                  "when every joint is compared, base_wall_share (joint_1: base_wall_share alone)");

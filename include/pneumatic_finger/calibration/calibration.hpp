@@ -111,13 +111,26 @@ enum class CalibrationQuantity {
   kTipAngleAndGauge,  ///< "tip_angle+gauge_pa": both at once, rows driven by volume: the tip angle's error (rad) and
                       ///< the pressure's relative error (model/measured - 1), so that 1 degree of bend weighs as
                       ///< 1.75 % of the pressure; a row measured at zero pressure gives its bend alone
+  kGaugeAtTipAngle,   ///< "gauge_at_tip_angle": the pressure of the model's equilibrium at each row's measured tip
+                      ///< angle against the measured pressure (Pa). Continuous through a snap: under pressure control
+                      ///< the bend leaps at the limit point, so a bend error there is a poor residual (the fit learns
+                      ///< to avoid the snap), while the pressure that holds a bend is one number on either side of it.
+                      ///< A row with a measured bend of zero or less gives no term
 };
 
-/// "average", "joints", "joint_1", "tip_angle", "tip_position", "gauge_pa" or "tip_angle+gauge_pa". @throws ParameterError for anything else.
+/// "average", "joints", "joint_1", "tip_angle", "tip_position", "gauge_pa", "tip_angle+gauge_pa" or
+/// "gauge_at_tip_angle". @throws ParameterError for anything else.
 CalibrationQuantity parseQuantity(const std::string& name);
 const char* quantityName(CalibrationQuantity quantity);
 
-/// What a file's rows have, in this order of preference: every joint, the tip position, the tip angle.
+/// The bend "leaps" (a snap-through under pressure control): among the rows set by their pressure, within a window of
+/// kLeapWindow of their pressure range (or from one row to the next, where they lie farther apart), the tip angle
+/// rises by kLeapShare of its whole range or more, kLeapSteepness times as steeply as on average or more.
+inline constexpr double kLeapWindow = 0.05, kLeapShare = 0.25, kLeapSteepness = 3.0;
+bool bendLeaps(const std::vector<Measurement>& data);
+
+/// What a file's rows have, in this order of preference: every joint, the tip position, the tip angle; the tip angle
+/// compared as the pressure that holds it (gauge_at_tip_angle) where the bend leaps (bendLeaps).
 /// @throws ParameterError when @p data is empty
 CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data);
 
@@ -145,10 +158,13 @@ struct Residual {
   std::vector<double> measured_joint_rad, model_joint_rad;  ///< q_1..q_N (measured empty without joints)
   double measured_tip_angle_rad, model_tip_angle_rad;       ///< Theta_N
   double measured_tip_x_m, measured_tip_y_m, model_tip_x_m, model_tip_y_m;  ///< O_{N+1}
+  /// The pressure of the model's equilibrium at the measured tip angle (Pa); NaN unless gauge_at_tip_angle is compared
+  double model_gauge_at_tip_angle_pa;
   double error_rad() const { return model_avg_rad - measured_avg_rad; }
   double joint1_error_rad() const { return model_joint1_rad - measured_joint1_rad; }
   double tip_angle_error_rad() const { return model_tip_angle_rad - measured_tip_angle_rad; }
   double gauge_error_pa() const { return model_gauge_pa - measured_gauge_pa; }
+  double gauge_at_tip_angle_error_pa() const { return model_gauge_at_tip_angle_pa - measured_gauge_pa; }
   /// model/measured - 1 (NaN where the model has no pressure; not defined at a measured zero)
   double gauge_relative_error() const { return gauge_error_pa() / measured_gauge_pa; }
   double tip_position_error_m() const {
@@ -184,8 +200,10 @@ struct CalibrationResult {
 void calibrationUncertainty(const FingerParameters& base, const std::vector<Measurement>& data,
                             CalibrationQuantity quantity, CalibrationResult& result);
 
-/// Residuals of @p parameters against @p data.
-std::vector<Residual> residuals(const FingerParameters& parameters, const std::vector<Measurement>& data);
+/// Residuals of @p parameters against @p data; the pressure at each measured bend (model_gauge_at_tip_angle_pa, two
+/// inverse solves a row) only where @p quantity compares it.
+std::vector<Residual> residuals(const FingerParameters& parameters, const std::vector<Measurement>& data,
+                                CalibrationQuantity quantity = CalibrationQuantity::kOuterAverage);
 
 /// Hears where a long calibration is, step by step ("thick law: leave-one-out, row 5 of 15: 1200 model evaluations");
 /// empty: nobody.
@@ -211,8 +229,9 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
                             CalibrationQuantity quantity = CalibrationQuantity::kOuterAverage,
                             const CalibrationProgress& progress = {});
 
-/// Leave-one-out: each row predicted by calibrate() on the others (the same keys, objective and quantity), as its
-/// residual. The data needs two rows more than the chamber keys (calibrate()'s rule, one row up). @p progress hears
+/// Leave-one-out: each row predicted by a fit to the others (the same keys, objective and quantity), as its residual.
+/// The brackets are scanned once, on every row; each fold takes its starts from that scan measured without its row
+/// (nothing of the held-out row enters its fit) and solves locally from them, as calibrate() does from its own scan. The data needs two rows more than the chamber keys (calibrate()'s rule, one row up). @p progress hears
 /// each row's fit begin, named after @p step.
 /// @throws ParameterError naming the rows there are and the rows needed
 std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vector<std::string>& keys,

@@ -1,0 +1,188 @@
+// What a calibration compares (calibration.hpp): the quantities, each row's residual, and the quantity a data set
+// asks for by default.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "pneumatic_finger/calibration/calibration.hpp"
+
+namespace pneumatic_finger {
+
+CalibrationQuantity parseQuantity(const std::string& name) {
+  for (CalibrationQuantity q : {CalibrationQuantity::kOuterAverage, CalibrationQuantity::kEveryJoint,
+                                CalibrationQuantity::kFirstJoint, CalibrationQuantity::kTipAngle,
+                                CalibrationQuantity::kTipPosition, CalibrationQuantity::kGauge,
+                                CalibrationQuantity::kTipAngleAndGauge, CalibrationQuantity::kGaugeAtTipAngle}) {
+    if (name == quantityName(q)) return q;
+  }
+  throw ParameterError("unknown quantity '" + name + "'; known: average, joints, joint_1, tip_angle, tip_position, "
+                       "gauge_pa, tip_angle+gauge_pa, gauge_at_tip_angle");
+}
+
+const char* quantityName(CalibrationQuantity quantity) {
+  switch (quantity) {
+    case CalibrationQuantity::kOuterAverage: return "average";
+    case CalibrationQuantity::kEveryJoint: return "joints";
+    case CalibrationQuantity::kFirstJoint: return "joint_1";
+    case CalibrationQuantity::kTipAngle: return "tip_angle";
+    case CalibrationQuantity::kTipPosition: return "tip_position";
+    case CalibrationQuantity::kGauge: return "gauge_pa";
+    case CalibrationQuantity::kTipAngleAndGauge: return "tip_angle+gauge_pa";
+    case CalibrationQuantity::kGaugeAtTipAngle: return "gauge_at_tip_angle";
+  }
+  return "average";
+}
+
+bool bendLeaps(const std::vector<Measurement>& data) {
+  std::vector<std::pair<double, double>> rows;  // (pressure, bend) of the rows set by their pressure
+  for (const Measurement& m : data) {
+    if (!m.driven_by_volume && m.hasGauge() && m.hasTipAngle()) rows.emplace_back(m.gauge_pa, m.tip_angle_rad);
+  }
+  if (rows.size() < 4) return false;
+  std::sort(rows.begin(), rows.end());
+  double low = rows.front().second, high = low;
+  for (const auto& r : rows) low = std::min(low, r.second), high = std::max(high, r.second);
+  const double range_pa = rows.back().first - rows.front().first, mean_slope = (high - low) / range_pa;
+  for (std::size_t i = 0; i + 1 < rows.size(); ++i) {
+    // Within the window, or from one row to the next where the rows lie farther apart than it.
+    const double window_pa = std::max(kLeapWindow * range_pa, rows[i + 1].first - rows[i].first);
+    for (std::size_t j = i + 1; j < rows.size() && rows[j].first - rows[i].first <= window_pa; ++j) {
+      const double rise = rows[j].second - rows[i].second, span_pa = rows[j].first - rows[i].first;
+      if (rise >= kLeapShare * (high - low) && rise > kLeapSteepness * mean_slope * span_pa) return true;
+    }
+  }
+  return false;
+}
+
+CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data) {
+  if (data.empty()) throw ParameterError("no measurements");
+  if (data.front().hasJoints()) return CalibrationQuantity::kEveryJoint;
+  if (data.front().hasTipPosition()) return CalibrationQuantity::kTipPosition;
+  return bendLeaps(data) ? CalibrationQuantity::kGaugeAtTipAngle : CalibrationQuantity::kTipAngle;
+}
+
+std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity, WallLaw law) {
+  if (quantity == CalibrationQuantity::kEveryJoint) return {"shear_modulus_pa", "chamber_gap_m", "base_wall_share"};
+  if (quantity == CalibrationQuantity::kFirstJoint) return {"base_wall_share"};
+  // The thick wall keeps the file's J_m: its Gent pressure costs about twice the membrane's, and a third nested key
+  // with leave-one-out took ten minutes on the ribbed segment's 15 rows. Name wall_locking_jm with --fit to fit it.
+  if (law == WallLaw::kMembrane) return {"shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"};
+  return {"shear_modulus_pa", "chamber_gap_m"};
+}
+
+std::vector<double> Residual::terms(CalibrationQuantity quantity) const {
+  switch (quantity) {
+    case CalibrationQuantity::kOuterAverage: return {error_rad()};
+    case CalibrationQuantity::kEveryJoint: {
+      std::vector<double> e(model_joint_rad.size());
+      for (std::size_t k = 0; k < e.size(); ++k) e[k] = model_joint_rad[k] - measured_joint_rad[k];
+      return e;
+    }
+    case CalibrationQuantity::kFirstJoint: return {joint1_error_rad()};
+    case CalibrationQuantity::kTipAngle: return {tip_angle_error_rad()};
+    case CalibrationQuantity::kTipPosition: return {tip_position_error_m()};
+    case CalibrationQuantity::kGauge: return {gauge_error_pa()};
+    case CalibrationQuantity::kTipAngleAndGauge:
+      // One radian of bend weighs as the whole pressure: a scale both errors share, with no unit to choose.
+      if (measured_gauge_pa == 0.0) return {tip_angle_error_rad()};
+      return {tip_angle_error_rad(), gauge_relative_error()};
+    case CalibrationQuantity::kGaugeAtTipAngle:
+      // A bend of zero or less has no one pressure (any below the walls' first contact gives it): no term.
+      if (!(measured_tip_angle_rad > 0.0) || std::isnan(measured_gauge_pa)) return {};
+      return {gauge_at_tip_angle_error_pa()};
+  }
+  return {};
+}
+
+namespace {
+
+// What was measured of a row, into @p r: the joints (and the tip they make along the model's segments, eq 38), the
+// tip angle and position where the file gives them.
+void measuredInto(const FingerParameters& parameters, const Measurement& m, Residual& r) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  r.measured_avg_rad = r.measured_joint1_rad = r.measured_tip_angle_rad = nan;
+  r.measured_tip_x_m = r.measured_tip_y_m = nan;
+  if (m.hasJoints()) {
+    r.measured_joint_rad = m.joint_rad;
+    r.measured_avg_rad = m.averageOuterJoints();
+    r.measured_joint1_rad = m.joint_rad[0];
+    double angle = 0.0;
+    for (std::size_t k = 0; k < m.joint_rad.size() && k < parameters.segment_length_m.size(); ++k) {
+      angle += m.joint_rad[k];
+    }
+    const Eigen::Vector2d tip = tipOfJoints(parameters, m.joint_rad);
+    r.measured_tip_angle_rad = angle;
+    r.measured_tip_x_m = tip.x();
+    r.measured_tip_y_m = tip.y();
+  }
+  if (m.hasTipAngle()) r.measured_tip_angle_rad = m.tip_angle_rad;
+  if (m.hasTipPosition()) {
+    r.measured_tip_x_m = m.tip_x_m;
+    r.measured_tip_y_m = m.tip_y_m;
+  }
+}
+
+// The pressure of the model's equilibrium at @p tip_angle_rad: the state that holds this bend (the volume that gives
+// it, volumeForTipAngle), and that state's pressure. One number per bend on either side of the limit point, the
+// unstable stretch between them included, where under pressure control the bend leaps; NaN where no state holds it.
+double gaugeOnThePath(const FingerModel& model, double tip_angle_rad, FingerWorkspace& ws) {
+  double volume_m3 = 0.0;
+  std::string why;
+  if (!(tip_angle_rad > 0.0) ||
+      !model.volumeForTipAngle(tip_angle_rad, std::numeric_limits<double>::infinity(), volume_m3, why)) {
+    return std::numeric_limits<double>::quiet_NaN();
+  }
+  const FingerState& s = model.evaluateVolume(volume_m3, ws);
+  const bool shaped = s.status == EvaluationStatus::kOk || s.status == EvaluationStatus::kSnappedThrough;
+  return shaped ? s.gauge_pa : std::numeric_limits<double>::quiet_NaN();
+}
+
+}  // namespace
+
+std::vector<Residual> residuals(const FingerParameters& parameters, const std::vector<Measurement>& data,
+                                CalibrationQuantity quantity) {
+  ModelOptions options;
+  options.wall_inverse = false;  // one model per candidate, a few dozen rows each: the inverse's build would dominate
+  FingerModel model(parameters, options);
+  FingerWorkspace ws(model), inverse(model);
+  std::vector<Residual> out;
+  const int n = parameters.chamber_count;
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  FingerState none = restState(parameters);  // what a row beyond the limit point gets: NaN, no shape
+  none.joint_angle_rad.setConstant(nan);
+  none.backbone_m.setConstant(nan);
+  none.tip_angle_rad = nan;
+  none.gauge_pa = nan;
+  for (const Measurement& m : data) {
+    // The rows in order, as a path: a wall past its limit point snaps to its far branch where it has one, and such a
+    // row is data like any other (docs/MODEL.md, "The snap-through"). A row set by its volume has a shape before, at
+    // and past the limit point, and the model's pressure there is compared with the measured.
+    const FingerState& evaluated =
+        m.driven_by_volume ? model.evaluateVolume(m.supplied_volume_m3, ws) : model.evaluate(m.gauge_pa, ws);
+    const bool shaped = evaluated.status == EvaluationStatus::kOk || evaluated.status == EvaluationStatus::kVacuum ||
+                        evaluated.status == EvaluationStatus::kSnappedThrough;
+    const FingerState& s = shaped ? evaluated : none;
+    Residual r;
+    r.measured_gauge_pa = m.gauge_pa;
+    r.model_gauge_pa = m.driven_by_volume ? s.gauge_pa : m.gauge_pa;
+    r.gauge_pa = m.hasGauge() ? m.gauge_pa : r.model_gauge_pa;
+    r.supplied_volume_m3 = m.supplied_volume_m3;
+    r.model_joint_rad.assign(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n);
+    r.model_avg_rad = n > 1 ? s.joint_angle_rad.tail(n - 1).mean() : nan;
+    r.model_joint1_rad = s.joint_angle_rad[0];
+    r.model_tip_angle_rad = s.tip_angle_rad;
+    r.model_tip_x_m = s.tip().x();
+    r.model_tip_y_m = s.tip().y();
+    measuredInto(parameters, m, r);
+    r.model_gauge_at_tip_angle_pa = quantity == CalibrationQuantity::kGaugeAtTipAngle
+                                        ? gaugeOnThePath(model, r.measured_tip_angle_rad, inverse)
+                                        : nan;
+    out.push_back(std::move(r));
+  }
+  return out;
+}
+
+}  // namespace pneumatic_finger
