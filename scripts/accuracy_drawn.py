@@ -25,6 +25,9 @@ DEG = 180.0 / math.pi
 CASES = [
     ("EPFL Ecoflex 00-30, 7 chambers", "zero-shot: drawing + coupon", "config/epfl_ecoflex30_c7_coupon.yaml",
      "data/epfl_ecoflex30_c7_bending.csv", "data/epfl_ecoflex30_c7_bending_stepwise.csv"),
+    ("EPFL Ecoflex 00-30, 7 chambers", "fitted on its ramp (mu, c; gauge_at_tip_angle)",
+     "config/epfl_ecoflex30_c7.yaml", "data/epfl_ecoflex30_c7_bending.csv",
+     "data/epfl_ecoflex30_c7_bending_stepwise.csv"),
 ]
 
 

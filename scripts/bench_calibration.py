@@ -25,6 +25,7 @@ DEAD, SKIN = "dead_volume_m3", "chamber_growth_ratio"
 TABLE1, RIBBED, CYLINDRICAL = "data/sierra2022_table1.csv", "data/marchese2015_ribbed_bending.csv", \
     "data/marchese2015_cylindrical_bending.csv"
 RIBBED_START, CYLINDRICAL_START = "config/marchese2015_ribbed.yaml", "config/marchese2015_cylindrical.yaml"
+EPFL, EPFL_START = "data/epfl_ecoflex30_c7_bending.csv", "config/epfl_ecoflex30_c7_coupon.yaml"
 
 # name, page, pf.calibrate's arguments (paths relative to the package).
 CALIBRATIONS = [
@@ -63,6 +64,8 @@ CALIBRATIONS = [
         "data": CYLINDRICAL, "config": CYLINDRICAL_START, "wall_law": "thick", "drive": "volume",
         "overrides": {DEAD: 1.35e-4, "wall_flexion_face": "inner", JM: 0.0},
         "compare": "tip_angle+gauge_pa", "keys": [MU, GAP, DEAD, SKIN], "objective": "least_squares"}),
+    ("EPFL 7 chambers, its ramp through the snap (gauge_at_tip_angle)", "ACCURACY", {
+        "data": EPFL, "config": EPFL_START, "compare": "gauge_at_tip_angle"}),
 ]
 
 RUN = """
@@ -95,7 +98,10 @@ def base_build(rev):
 def run(python_path, spec, timeout):
     """One calibration in a fresh interpreter with @p python_path first: its result, or None past the timeout."""
     args = {k: (str(ROOT / v) if k in ("data", "config") else v) for k, v in spec.items()}
-    env = dict(os.environ, PYTHONPATH=f"{python_path}:{os.environ.get('PYTHONPATH', '')}")
+    # The build's own libraries first: devel/setup.bash puts this tree's on the library path.
+    lib = pathlib.Path(python_path).parent.parent
+    env = dict(os.environ, PYTHONPATH=f"{python_path}:{os.environ.get('PYTHONPATH', '')}",
+               LD_LIBRARY_PATH=f"{lib}:{os.environ.get('LD_LIBRARY_PATH', '')}")
     try:
         out = subprocess.run([sys.executable, "-c", RUN, json.dumps(args)], env=env, capture_output=True, text=True,
                              timeout=timeout, check=True).stdout
