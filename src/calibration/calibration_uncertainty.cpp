@@ -25,11 +25,20 @@ double coordinateOf(const SearchAxis& axis, double value) { return axis.logarith
 
 // (J^T J)^-1 at @p u by Ceres' covariance (a dense SVD, which finds a rank the data leave short), in the unit cube's
 // coordinates; false where the data do not determine every key.
-bool unscaledCovariance(const FitProblem& problem, Eigen::VectorXd u, Eigen::MatrixXd& covariance) {
+bool unscaledCovariance(const FitProblem& problem, Eigen::VectorXd u, const Eigen::MatrixXd& jacobian,
+                        Eigen::MatrixXd& covariance) {
+  // Ceres' own test, asked first: it logs an error where J^T J's reciprocal condition number is below this.
+  constexpr double kMinReciprocalCondition = 1e-14;
+  const Eigen::VectorXd sigma = Eigen::JacobiSVD<Eigen::MatrixXd>(jacobian).singularValues();
+  if (!(sigma.size() > 0 && sigma[sigma.size() - 1] * sigma[sigma.size() - 1] >
+                                kMinReciprocalCondition * sigma[0] * sigma[0])) {
+    return false;
+  }
   ceres::Problem at;
   at.AddResidualBlock(new TermsCost(problem, false), nullptr, u.data());
   ceres::Covariance::Options options;
   options.algorithm_type = ceres::DENSE_SVD;
+  options.min_reciprocal_condition_number = kMinReciprocalCondition;
   ceres::Covariance c(options);
   const std::vector<std::pair<const double*, const double*>> blocks = {{u.data(), u.data()}};
   if (!c.Compute(blocks, &at)) return false;
@@ -74,7 +83,7 @@ void calibrationUncertainty(const FingerParameters& base, const std::vector<Meas
                                                                         : "a row has no shape near the fit"));
     return;
   }
-  if (!unscaledCovariance(problem, u, unscaled)) {
+  if (!unscaledCovariance(problem, u, j, unscaled)) {
     result.warnings.push_back("the data do not determine every key: a change of one can be undone by another "
                               "without changing any compared term");
     return;

@@ -18,7 +18,7 @@ namespace pneumatic_finger {
 
 namespace {
 
-constexpr std::size_t kStarts = 3;           // local solves from the best distinct scan points
+constexpr std::size_t kStarts = 6;           // local solves from the best distinct scan points
 constexpr double kDistinct = 0.15;           // scan points closer than this (in every key, unit cube) are one start
 constexpr double kTolerance = 1e-12;         // the local solvers' relative tolerances, as the old golden sections'
 
