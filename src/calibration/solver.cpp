@@ -18,8 +18,11 @@ namespace pneumatic_finger {
 
 namespace {
 
-constexpr std::size_t kStarts = 6;           // local solves from the best distinct scan points
+// Local solves from the best kStarts distinct scan points (three under-solved a fold of the ribbed segment's
+// leave-one-out: its optimum lay in the basin of the fourth).
+constexpr std::size_t kStarts = 6;
 constexpr double kDistinct = 0.15;           // scan points closer than this (in every key, unit cube) are one start
+constexpr int kIterations = 100, kCandidateIterations = 20;  // Levenberg-Marquardt's, as the fit and as a candidate
 constexpr double kTolerance = 1e-12;         // the local solvers' relative tolerances, as the old golden sections'
 
 // The i-th point (from 1) of the Halton sequence in base @p base: well spread in any number of dimensions.
@@ -119,7 +122,7 @@ FitSolution derivativeFreeFrom(const FitProblem& problem, const Eigen::VectorXd&
   return {u, problem.objective(u, objective)};
 }
 
-FitSolution leastSquaresFrom(const FitProblem& problem, const Eigen::VectorXd& start) {
+FitSolution leastSquaresFrom(const FitProblem& problem, const Eigen::VectorXd& start, int iterations) {
   // A start on a face of the cube, moved a thousandth inside it: room for the differences on both sides.
   Eigen::VectorXd u = start.cwiseMax(1e-3).cwiseMin(1.0 - 1e-3);
 
@@ -130,7 +133,7 @@ FitSolution leastSquaresFrom(const FitProblem& problem, const Eigen::VectorXd& s
     solve.SetParameterUpperBound(u.data(), static_cast<int>(k), 1.0);
   }
   ceres::Solver::Options options;
-  options.max_num_iterations = 100;
+  options.max_num_iterations = iterations;
   options.function_tolerance = kTolerance;
   options.parameter_tolerance = kTolerance;
   options.gradient_tolerance = 1e-16;
@@ -212,18 +215,25 @@ namespace {
 // measured by the largest error; then Subplex from the better).
 FitSolution localSolve(const FitProblem& problem, CalibrationObjective objective, const Eigen::VectorXd& start,
                        double start_objective) {
-  FitSolution local = leastSquaresFrom(problem, start);
-  if (objective == CalibrationObjective::kMinimax) {
+  // As a minimax's candidate, least squares has a few iterations: enough for exact data (zero residuals, where
+  // Levenberg-Marquardt converges quadratically), cheap where it is only a start.
+  const bool minimax = objective == CalibrationObjective::kMinimax;
+  FitSolution local = leastSquaresFrom(problem, start, minimax ? kCandidateIterations : kIterations);
+  if (minimax) {
     // The least-squares point too, measured by the largest error: where the data are exact, minimax's optimum is
     // degenerate (every term zero at once) and SLSQP's end game slow, while least squares reaches it exactly.
     const FitSolution squares{local.u, problem.objective(local.u, objective)};
     local = minimaxFrom(problem, start, start_objective);
     if (squares.objective < local.objective) local = squares;
   }
-  // Then Subplex, which needs no derivative, from there: where a key's step leaves the rows' shapes (its column is
-  // zero) the derivative solvers cannot move it.
-  const FitSolution polished = derivativeFreeFrom(problem, local.u, objective);
-  if (polished.objective < local.objective) local = polished;
+  // Then Subplex, which needs no derivative, from there, where a key's step leaves the rows' shapes (its column is
+  // zero): the derivative solvers cannot move that key.
+  Eigen::VectorXd e;
+  Eigen::MatrixXd j;
+  if (!problem.termsAndJacobian(local.u, e, j) || (j.cwiseAbs().colwise().maxCoeff().array() == 0.0).any()) {
+    const FitSolution polished = derivativeFreeFrom(problem, local.u, objective);
+    if (polished.objective < local.objective) local = polished;
+  }
   FitSolution best{start, start_objective};
   return local.objective < best.objective ? local : best;
 }
@@ -232,7 +242,7 @@ FitSolution localSolve(const FitProblem& problem, CalibrationObjective objective
 
 namespace {
 
-// The best kStarts distinct points of @p scanned (objective, point), each solved locally; the best of all.
+// The best distinct points of @p scanned (objective, point), each solved locally; the best of all.
 FitSolution fromTheBestOf(const FitProblem& problem, CalibrationObjective objective,
                           std::vector<std::pair<double, Eigen::VectorXd>> scanned) {
   if (scanned.empty()) {
