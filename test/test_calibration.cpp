@@ -374,3 +374,32 @@ TEST(Calibration, FitsASnapByThePressureThatHoldsEachBend) {
   // Table 1's four pressures do not leap: the bend is compared as it is.
   EXPECT_FALSE(pf::bendLeaps(pf::readMeasurementsCsv(kTable1, 4)));
 }
+
+// Huber's robust loss: one row off by a blunder (0.2 rad) pulls a least-squares fit away from the truth; Huber's, whose
+// scale comes from the least-squares fit's median error, leaves it nearly where the other rows put it.
+TEST(Calibration, HubersLossKeepsAnOutlierFromPullingTheFit) {
+  const pf::FingerParameters truth = pf_test::membraneFinger(20.0, "chamber_gap_m: 1e-3\n");
+  pf::FingerModel model(truth);
+  pf::FingerWorkspace ws(model);
+  std::vector<pf::Measurement> rows;
+  for (int k = 1; k <= 10; ++k) {
+    pf::Measurement m;
+    m.line = k;
+    m.gauge_pa = model.limitGaugePa() * (0.5 + 0.045 * k);  // below the limit point
+    m.tip_angle_rad = model.evaluate(m.gauge_pa, ws).tip_angle_rad + 1e-3 * ((k % 3) - 1);  // 1 mrad of noise
+    rows.push_back(m);
+  }
+  rows[6].tip_angle_rad += 0.2;
+  pf::FingerParameters start = truth;
+  start.shear_modulus_pa.assign(start.shear_modulus_pa.size(), 5e4);
+  const std::vector<std::string> keys = {"shear_modulus_pa", "chamber_gap_m"};
+  const auto squares = pf::calibrate(start, keys, rows, pf::CalibrationObjective::kLeastSquares,
+                                     pf::CalibrationQuantity::kTipAngle);
+  const auto huber = pf::calibrate(start, keys, rows, pf::CalibrationObjective::kHuber,
+                                   pf::CalibrationQuantity::kTipAngle);
+  const double squares_off = std::fabs(squares.values[0] / 2e4 - 1), huber_off = std::fabs(huber.values[0] / 2e4 - 1);
+  EXPECT_GT(squares_off, 5 * huber_off) << squares.values[0] << " " << huber.values[0];
+  EXPECT_LT(huber_off, 0.01) << huber.values[0];
+  EXPECT_EQ(pf::parseObjective("huber"), pf::CalibrationObjective::kHuber);
+  EXPECT_STREQ(pf::objectiveName(pf::CalibrationObjective::kHuber), "huber");
+}

@@ -16,11 +16,14 @@ namespace pneumatic_finger {
 CalibrationObjective parseObjective(const std::string& name) {
   if (name == "minimax") return CalibrationObjective::kMinimax;
   if (name == "least_squares") return CalibrationObjective::kLeastSquares;
-  throw ParameterError("unknown objective '" + name + "'; known: minimax, least_squares");
+  if (name == "huber") return CalibrationObjective::kHuber;
+  throw ParameterError("unknown objective '" + name + "'; known: minimax, least_squares, huber");
 }
 
 const char* objectiveName(CalibrationObjective objective) {
-  return objective == CalibrationObjective::kMinimax ? "minimax" : "least_squares";
+  return objective == CalibrationObjective::kMinimax ? "minimax"
+         : objective == CalibrationObjective::kHuber ? "huber"
+                                                     : "least_squares";
 }
 
 
@@ -31,17 +34,19 @@ bool isFittableKey(const std::string& key) {
 
 namespace {
 
-// The objective over @p rows: the largest |term| (minimax) or the sum of squared terms, the terms being what
-// @p quantity compares in each row.
+// The objective over @p rows (reduce: the largest |term|, the sum of squares or of Huber's losses), the terms being
+// what @p quantity compares in each row.
 double objectiveOver(const std::vector<Residual>& rows, CalibrationQuantity quantity, CalibrationObjective objective) {
-  double value = 0.0;
+  std::vector<double> all;
   for (const Residual& r : rows) {
     for (double e : r.terms(quantity)) {
       if (std::isnan(e)) return std::numeric_limits<double>::infinity();  // a row the model gives no shape for
-      value = objective == CalibrationObjective::kMinimax ? std::max(value, std::fabs(e)) : value + e * e;
+      all.push_back(e);
     }
   }
-  return value;
+  const Eigen::Map<const Eigen::VectorXd> terms(all.data(), static_cast<Eigen::Index>(all.size()));
+  // Huber's scale from these terms themselves: the objective of a set of rows, as a fit's is of its own.
+  return reduce(terms, objective, objective == CalibrationObjective::kHuber ? huberScale(terms) : 0.0);
 }
 
 }  // namespace

@@ -93,7 +93,7 @@ bool FitProblem::termsAndJacobian(const Eigen::VectorXd& u, Eigen::VectorXd& out
 double FitProblem::objective(const Eigen::VectorXd& u, CalibrationObjective objective) const {
   Eigen::VectorXd e;
   if (!terms(u, e)) return std::numeric_limits<double>::infinity();
-  return objective == CalibrationObjective::kMinimax ? e.cwiseAbs().maxCoeff() : e.squaredNorm();
+  return objective == CalibrationObjective::kMinimax ? e.cwiseAbs().maxCoeff() : e.squaredNorm();  // Huber: the solver
 }
 
 void FitProblem::report(const std::string& step) const {

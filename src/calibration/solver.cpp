@@ -23,7 +23,8 @@ namespace {
 constexpr std::size_t kStarts = 6;
 constexpr double kDistinct = 0.15;           // scan points closer than this (in every key, unit cube) are one start
 constexpr int kIterations = 100, kCandidateIterations = 20;  // Levenberg-Marquardt's, as the fit and as a candidate
-constexpr double kTolerance = 1e-12;         // the local solvers' relative tolerances, as the old golden sections'
+constexpr double kTolerance = 1e-12;
+constexpr double kHuberK = 1.345, kMadToSigma = 1.4826;  // Huber's 95 %-efficient constant; MAD to sigma (normal)         // the local solvers' relative tolerances, as the old golden sections'
 
 // The i-th point (from 1) of the Halton sequence in base @p base: well spread in any number of dimensions.
 double halton(int i, int base) {
@@ -122,12 +123,14 @@ FitSolution derivativeFreeFrom(const FitProblem& problem, const Eigen::VectorXd&
   return {u, problem.objective(u, objective)};
 }
 
-FitSolution leastSquaresFrom(const FitProblem& problem, const Eigen::VectorXd& start, int iterations) {
+FitSolution leastSquaresFrom(const FitProblem& problem, const Eigen::VectorXd& start, int iterations,
+                             const Eigen::VectorXd* weights = nullptr) {
   // A start on a face of the cube, moved a thousandth inside it: room for the differences on both sides.
   Eigen::VectorXd u = start.cwiseMax(1e-3).cwiseMin(1.0 - 1e-3);
 
   ceres::Problem solve;
-  solve.AddResidualBlock(new TermsCost(problem, true), nullptr, u.data());
+  // Weighted (Huber's reweighting) in the compared form, whose terms the weights are of; else the squares' form.
+  solve.AddResidualBlock(new TermsCost(problem, weights == nullptr, weights), nullptr, u.data());
   for (Eigen::Index k = 0; k < u.size(); ++k) {
     solve.SetParameterLowerBound(u.data(), static_cast<int>(k), 0.0);
     solve.SetParameterUpperBound(u.data(), static_cast<int>(k), 1.0);
@@ -141,6 +144,27 @@ FitSolution leastSquaresFrom(const FitProblem& problem, const Eigen::VectorXd& s
   ceres::Solver::Summary summary;
   ceres::Solve(options, &solve, &summary);
   return {u, problem.objective(u, CalibrationObjective::kLeastSquares)};
+}
+
+// Huber's robust fit from the least-squares optimum @p u: the scale from its terms, then iteratively reweighted least
+// squares (each term weighted by min(1, s / |e|), whose fixed point is Huber's optimum) until the weights settle.
+FitSolution huberFrom(const FitProblem& problem, const Eigen::VectorXd& u) {
+  constexpr int kRounds = 30;
+  Eigen::VectorXd e;
+  if (!problem.terms(u, e)) return {u, std::numeric_limits<double>::infinity()};
+  const double scale = huberScale(e);
+  FitSolution at{u, reduce(e, CalibrationObjective::kHuber, scale)};
+  if (!(scale > 0.0)) return at;  // an exact fit: nothing is an outlier
+  Eigen::VectorXd weights = Eigen::VectorXd::Ones(e.size());
+  for (int round = 0; round < kRounds; ++round) {
+    const Eigen::VectorXd last = weights;
+    weights = (scale / e.array().abs().max(scale)).sqrt();  // sqrt(min(1, s/|e|)): squared, the weight itself
+    if (round > 0 && (weights - last).cwiseAbs().maxCoeff() < 1e-12) break;
+    const FitSolution next = leastSquaresFrom(problem, at.u, kIterations, &weights);
+    if (!problem.terms(next.u, e)) break;
+    at = {next.u, reduce(e, CalibrationObjective::kHuber, scale)};
+  }
+  return at;
 }
 
 // The minimax's epigraph: the point (u, t) with every |term| <= t, t least. The best point any evaluation saw is kept
@@ -268,24 +292,45 @@ FitSolution fromTheBestOf(const FitProblem& problem, CalibrationObjective object
 
 }  // namespace
 
-double reduce(const Eigen::VectorXd& terms, CalibrationObjective objective) {
+double reduce(const Eigen::VectorXd& terms, CalibrationObjective objective, double huber_scale) {
   if (terms.size() == 0) return 0.0;
-  return objective == CalibrationObjective::kMinimax ? terms.cwiseAbs().maxCoeff() : terms.squaredNorm();
+  if (objective == CalibrationObjective::kMinimax) return terms.cwiseAbs().maxCoeff();
+  if (objective == CalibrationObjective::kLeastSquares) return terms.squaredNorm();
+  double sum = 0.0;
+  for (double e : terms) {
+    const double a = std::fabs(e);
+    sum += a <= huber_scale ? a * a : 2.0 * huber_scale * a - huber_scale * huber_scale;
+  }
+  return sum;
+}
+
+double huberScale(const Eigen::VectorXd& terms) {
+  if (terms.size() == 0) return 0.0;
+  std::vector<double> a(terms.data(), terms.data() + terms.size());
+  for (double& x : a) x = std::fabs(x);
+  std::nth_element(a.begin(), a.begin() + static_cast<long>(a.size() / 2), a.end());
+  return kHuberK * kMadToSigma * a[a.size() / 2];
 }
 
 FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective, ScanRecord* record) {
+  if (objective == CalibrationObjective::kHuber) {
+    const CalibrationObjective squares = CalibrationObjective::kLeastSquares;
+    return huberFrom(problem, fromTheBestOf(problem, squares, scan(problem, squares, record)).u);
+  }
   return fromTheBestOf(problem, objective, scan(problem, objective, record));
 }
 
 FitSolution solveFold(const FitProblem& fold, CalibrationObjective objective, const ScanRecord& full,
                       std::size_t first_term, std::size_t terms) {
   std::vector<std::pair<double, Eigen::VectorXd>> scanned;
+  const bool huber = objective == CalibrationObjective::kHuber;  // its starts: the least-squares fit's
   const auto head = static_cast<Eigen::Index>(first_term), gone = static_cast<Eigen::Index>(terms);
   for (const auto& [u, e] : full.points) {
     Eigen::VectorXd others(e.size() - gone);
     others << e.head(head), e.tail(e.size() - head - gone);
-    scanned.emplace_back(reduce(others, objective), u);
+    scanned.emplace_back(reduce(others, huber ? CalibrationObjective::kLeastSquares : objective), u);
   }
+  if (huber) return huberFrom(fold, fromTheBestOf(fold, CalibrationObjective::kLeastSquares, std::move(scanned)).u);
   return fromTheBestOf(fold, objective, std::move(scanned));
 }
 

@@ -10,10 +10,13 @@
 namespace pneumatic_finger {
 
 /// Ceres' view of the fit: one residual block, every term (in the squares' form with @p squares: FitProblem::termCount),
-/// the Jacobian from FitProblem's differences. The solver's least squares and the uncertainty's covariance use it.
+/// the Jacobian from FitProblem's differences, each term times its weight in @p weights where given (Huber's
+/// reweighting: Ceres' losses act on a whole block, this one's every term at once). The solver's least squares and
+/// the uncertainty's covariance use it.
 class TermsCost final : public ceres::CostFunction {
  public:
-  TermsCost(const FitProblem& problem, bool squares) : problem_(problem), squares_(squares) {
+  TermsCost(const FitProblem& problem, bool squares, const Eigen::VectorXd* weights = nullptr)
+      : problem_(problem), squares_(squares), weights_(weights) {
     set_num_residuals(static_cast<int>(problem.termCount(squares)));
     mutable_parameter_block_sizes()->push_back(static_cast<int>(problem.keyCount()));
   }
@@ -26,8 +29,10 @@ class TermsCost final : public ceres::CostFunction {
         jacobians && jacobians[0] ? problem_.termsAndJacobian(u, e, j, squares_) : problem_.terms(u, e, squares_);
     problem_.report("least squares");
     if (!ok) return false;
+    if (weights_) e.array() *= weights_->array();
     Eigen::Map<Eigen::VectorXd>(residuals, e.size()) = e;
     if (jacobians && jacobians[0]) {
+      if (weights_) j.array().colwise() *= weights_->array();
       Eigen::Map<Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>(jacobians[0], e.size(), k) = j;
     }
     return true;
@@ -36,6 +41,7 @@ class TermsCost final : public ceres::CostFunction {
  private:
   const FitProblem& problem_;
   bool squares_;
+  const Eigen::VectorXd* weights_;
 };
 
 }  // namespace pneumatic_finger

@@ -250,7 +250,9 @@ void addDataOptions(CLI::App& app, DataOptions& o) {
   app.add_option("--fit", o.fit_keys,
                  "parameter keys to fit (any number, each once), comma-separated; default: shear_modulus_pa,chamber_gap_m and, "
                  "when every joint is compared, base_wall_share (joint_1: base_wall_share alone)");
-  app.add_option("--objective", o.objective_name, "minimax or least_squares")->capture_default_str();
+  app.add_option("--objective", o.objective_name,
+                 "minimax, least_squares or huber (least squares with Huber's robust loss: an outlying row does not "
+                 "pull the fit)")->capture_default_str();
   app.add_option("--average-column", o.average_column,
                  "take the joints 2..N average from this column (e.g. paper_avg_rad) instead of the joints; implies "
                  "--compare average");

@@ -97,6 +97,9 @@ void checkMeasurementsPlausible(const FingerParameters& parameters, const std::v
 enum class CalibrationObjective {
   kMinimax,       ///< minimise the largest |model - measured| of the joints 2..N averages
   kLeastSquares,  ///< minimise the sum of squared errors of the same averages
+  kHuber,         ///< least squares with Huber's robust loss: a term beyond the scale s counts as 2 s |e| - s^2, not
+                  ///< e^2, so that an outlying row does not pull the fit. s = 1.345 robust standard deviations of the
+                  ///< least-squares fit's terms (1.4826 times their median |e|), fixed before the robust solve
 };
 
 /// What the fit compares, model against measured.
@@ -140,7 +143,7 @@ CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data);
 /// (its Gent pressure costs about twice the membrane's, and a third key ten minutes of leave-one-out).
 std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity, WallLaw law = WallLaw::kPaper);
 
-/// "minimax" or "least_squares". @throws ParameterError for anything else.
+/// "minimax", "least_squares" or "huber". @throws ParameterError for anything else.
 CalibrationObjective parseObjective(const std::string& name);
 const char* objectiveName(CalibrationObjective objective);
 
@@ -179,7 +182,7 @@ struct CalibrationResult {
   FingerParameters parameters;     ///< @p base with the fitted keys replaced
   std::vector<std::string> keys;   ///< fitted keys
   std::vector<double> values;      ///< their fitted values
-  double objective_value = 0.0;    ///< max |error| (rad) or sum of squares (rad^2)
+  double objective_value = 0.0;    ///< max |error| (rad), sum of squares (rad^2) or sum of Huber's losses (rad^2)
   std::vector<Residual> residuals;
   long model_evaluations = 0;
   /// What the data can tell of each key (calibrationUncertainty): one standard deviation, in the key's unit, from the
