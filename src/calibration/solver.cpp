@@ -23,6 +23,7 @@ namespace {
 constexpr std::size_t kStarts = 6;
 constexpr double kDistinct = 0.15;           // scan points closer than this (in every key, unit cube) are one start
 constexpr int kIterations = 100, kCandidateIterations = 20;  // Levenberg-Marquardt's, as the fit and as a candidate
+constexpr double kNearlyExact = 1e-3;  // a minimax fit this far below its start's largest error is nearly exact
 constexpr double kTolerance = 1e-12;
 constexpr double kHuberK = 1.345, kMadToSigma = 1.4826;  // Huber's 95 %-efficient constant; MAD to sigma (normal)         // the local solvers' relative tolerances, as the old golden sections'
 
@@ -36,11 +37,18 @@ double halton(int i, int base) {
   return x;
 }
 
-// scanPoints(dims) points of the cube [0, 1]^dims: a grid for one dimension, a Halton sequence for more.
+// scanPoints(dims) points of the cube [0, 1]^dims: a grid for one dimension, a Halton sequence for more, with the
+// cube's corners (a Halton set never reaches a face, where a key such as a gap of 0 may have its optimum's basin).
+// Not the start parameters' point: the fit does not depend on where it starts.
 std::vector<Eigen::VectorXd> scanCube(std::size_t dims) {
   static constexpr int kPrimes[] = {2, 3, 5, 7, 11, 13, 17, 19, 23, 29, 31, 37};
   const int n = scanPoints(dims);
   std::vector<Eigen::VectorXd> points;
+  for (unsigned corner = 0; dims > 1 && corner < (1U << dims); ++corner) {
+    Eigen::VectorXd u(static_cast<Eigen::Index>(dims));
+    for (std::size_t k = 0; k < dims; ++k) u[static_cast<Eigen::Index>(k)] = (corner >> k) & 1U ? 1.0 : 0.0;
+    points.push_back(std::move(u));
+  }
   for (int i = 0; i < n; ++i) {
     Eigen::VectorXd u(static_cast<Eigen::Index>(dims));
     for (std::size_t k = 0; k < dims; ++k) {
@@ -55,38 +63,65 @@ std::vector<Eigen::VectorXd> scanCube(std::size_t dims) {
 // solved at each point of the others (a profile): every bend falls as mu rises, so along mu the objective is
 // quasi-convex, and its valley, a fraction of a decade wide in 7, falls between any coarse grid's points. A coarse
 // line of kMuLine points brackets it, a golden section to 1e-4 of the range finds it.
+// One point of the scan: @p v, the point of the keys other than mu where mu is profiled (@p m its index), else of
+// every key; mu, where profiled, solved along its line: every bend falls as mu rises, so along mu the objective is
+// quasi-convex, and its valley, a fraction of a decade wide in 7, falls between any coarse grid's points. A coarse line
+// of kMuLine points brackets it, a golden section to 1e-4 of the range finds it. The objective and the whole point.
+std::pair<double, Eigen::VectorXd> scanPoint(const FitProblem& problem, CalibrationObjective objective,
+                                             const Eigen::VectorXd& v, Eigen::Index m, bool profile,
+                                             ScanRecord* record) {
+  constexpr int kMuLine = 17;
+  Eigen::VectorXd u(static_cast<Eigen::Index>(problem.keyCount()));
+  if (profile) u << v.head(m), 0.0, v.tail(v.size() - m); else u = v;
+  auto at = [&](double x) {
+    if (profile) u[m] = x;
+    problem.report("scan");
+    Eigen::VectorXd e;
+    if (!problem.terms(u, e)) return std::numeric_limits<double>::infinity();
+    if (record) record->points.emplace_back(u, e);
+    return reduce(e, objective);
+  };
+  double best_x = 0.0, best = at(0.0);
+  for (int i = 1; profile && i < kMuLine; ++i) {
+    const double x = static_cast<double>(i) / (kMuLine - 1), value = at(x);
+    if (value < best) best = value, best_x = x;
+  }
+  if (profile && std::isfinite(best)) {
+    const double w = 1.0 / (kMuLine - 1);
+    const GoldenMinimum g = goldenSection(at, std::max(0.0, best_x - w), std::min(1.0, best_x + w), 40,
+                                          [](double a, double b, double, double) { return b - a > 1e-4; });
+    if (g.value < best) best = g.value, best_x = g.x;
+  }
+  if (profile) u[m] = best_x;
+  return {best, u};
+}
+
+// The scan's points, each with its objective: the cube's (scanCube), then, with two or more scanned dimensions, a
+// line of 41 points along each through the best of them (a basin narrow in one key, as the gas's by a face, is missed
+// by a sparse set and found along a line). The shear modulus, where it is fitted with other keys, is profiled.
 std::vector<std::pair<double, Eigen::VectorXd>> scan(const FitProblem& problem, CalibrationObjective objective,
                                                      ScanRecord* record) {
-  constexpr int kMuLine = 17;
   const auto& axes = problem.axes();
   const auto mu = std::find_if(axes.begin(), axes.end(), [](const SearchAxis& a) { return a.key == "shear_modulus_pa"; });
   const bool profile = mu != axes.end() && axes.size() > 1;
   const auto m = static_cast<Eigen::Index>(mu - axes.begin());
+  const auto dims = static_cast<Eigen::Index>(axes.size()) - (profile ? 1 : 0);
   std::vector<std::pair<double, Eigen::VectorXd>> scanned;
-  for (const Eigen::VectorXd& v : scanCube(axes.size() - (profile ? 1 : 0))) {
-    Eigen::VectorXd u(static_cast<Eigen::Index>(axes.size()));
-    if (profile) u << v.head(m), 0.0, v.tail(v.size() - m); else u = v;
-    auto at = [&](double x) {
-      if (profile) u[m] = x;
-      problem.report("scan");
-      Eigen::VectorXd e;
-      if (!problem.terms(u, e)) return std::numeric_limits<double>::infinity();
-      if (record) record->points.emplace_back(u, e);
-      return reduce(e, objective);
-    };
-    double best_x = 0.0, best = at(0.0);
-    for (int i = 1; profile && i < kMuLine; ++i) {
-      const double x = static_cast<double>(i) / (kMuLine - 1), value = at(x);
-      if (value < best) best = value, best_x = x;
+  double best = std::numeric_limits<double>::infinity();
+  Eigen::VectorXd best_v = Eigen::VectorXd::Zero(dims);
+  for (const Eigen::VectorXd& v : scanCube(static_cast<std::size_t>(dims))) {
+    auto point = scanPoint(problem, objective, v, m, profile, record);
+    if (point.first < best) best = point.first, best_v = v;
+    if (std::isfinite(point.first)) scanned.push_back(std::move(point));
+  }
+  constexpr int kLine = 41;
+  for (Eigen::Index d = 0; dims > 1 && std::isfinite(best) && d < dims; ++d) {
+    for (int i = 0; i < kLine; ++i) {
+      Eigen::VectorXd v = best_v;
+      v[d] = static_cast<double>(i) / (kLine - 1);
+      auto point = scanPoint(problem, objective, v, m, profile, record);
+      if (std::isfinite(point.first)) scanned.push_back(std::move(point));
     }
-    if (profile && std::isfinite(best)) {
-      const double w = 1.0 / (kMuLine - 1);
-      const GoldenMinimum g = goldenSection(at, std::max(0.0, best_x - w), std::min(1.0, best_x + w), 40,
-                                            [](double a, double b, double, double) { return b - a > 1e-4; });
-      if (g.value < best) best = g.value, best_x = g.x;
-    }
-    if (profile) u[m] = best_x;
-    if (std::isfinite(best)) scanned.emplace_back(best, u);
   }
   return scanned;
 }
@@ -214,7 +249,7 @@ FitSolution minimaxFrom(const FitProblem& problem, const Eigen::VectorXd& start,
   const std::vector<double> tolerances(2 * problem.termCount(), 0.0);
   opt.add_inequality_mconstraint(epigraphConstraints, &g, tolerances);
   opt.set_xtol_rel(kTolerance);
-  opt.set_maxeval(300);
+  opt.set_maxeval(100);
   std::vector<double> x(start.data(), start.data() + k);
   x.push_back(start_objective);
   std::vector<double> step(k + 1, 0.5 / (scanPoints(k) - 1));
@@ -236,27 +271,18 @@ int scanPoints(std::size_t keys) { return 41 + 32 * static_cast<int>(keys - 1); 
 namespace {
 
 // The local solves from one start, the best of them (least squares: Ceres; minimax: SLSQP and Ceres' least squares
-// measured by the largest error; then Subplex from the better).
+// measured by the largest error).
 FitSolution localSolve(const FitProblem& problem, CalibrationObjective objective, const Eigen::VectorXd& start,
                        double start_objective) {
-  // As a minimax's candidate, least squares has a few iterations: enough for exact data (zero residuals, where
-  // Levenberg-Marquardt converges quadratically), cheap where it is only a start.
-  const bool minimax = objective == CalibrationObjective::kMinimax;
-  FitSolution local = leastSquaresFrom(problem, start, minimax ? kCandidateIterations : kIterations);
-  if (minimax) {
-    // The least-squares point too, measured by the largest error: where the data are exact, minimax's optimum is
-    // degenerate (every term zero at once) and SLSQP's end game slow, while least squares reaches it exactly.
-    const FitSolution squares{local.u, problem.objective(local.u, objective)};
-    local = minimaxFrom(problem, start, start_objective);
-    if (squares.objective < local.objective) local = squares;
-  }
-  // Then Subplex, which needs no derivative, from there, where a key's step leaves the rows' shapes (its column is
-  // zero): the derivative solvers cannot move that key.
-  Eigen::VectorXd e;
-  Eigen::MatrixXd j;
-  if (!problem.termsAndJacobian(local.u, e, j) || (j.cwiseAbs().colwise().maxCoeff().array() == 0.0).any()) {
-    const FitSolution polished = derivativeFreeFrom(problem, local.u, objective);
-    if (polished.objective < local.objective) local = polished;
+  if (objective != CalibrationObjective::kMinimax) return leastSquaresFrom(problem, start, kIterations);
+  FitSolution local = minimaxFrom(problem, start, start_objective);
+  // Where the fit is nearly exact, minimax's optimum is degenerate (every term zero at once) and SLSQP's end game slow:
+  // least squares, measured by the largest error, reaches that point exactly (Levenberg-Marquardt converges
+  // quadratically on zero residuals, so a few iterations do).
+  if (local.objective < kNearlyExact * start_objective) {
+    const FitSolution squares = leastSquaresFrom(problem, local.u, kCandidateIterations);
+    const double largest = problem.objective(squares.u, objective);
+    if (largest < local.objective) local = {squares.u, largest};
   }
   FitSolution best{start, start_objective};
   return local.objective < best.objective ? local : best;
@@ -287,7 +313,11 @@ FitSolution fromTheBestOf(const FitProblem& problem, CalibrationObjective object
     const FitSolution local = localSolve(problem, objective, s->second, s->first);
     if (local.objective < best.objective) best = local;
   }
-  return best;
+  // Then Subplex, which needs no derivative, from the best: where a key's step leaves the rows' shapes (its column is
+  // zero) the derivative solvers cannot move it, and where the objective has kinks (a row that snaps between two
+  // neighbouring points) their steps stall.
+  const FitSolution polished = derivativeFreeFrom(problem, best.u, objective);
+  return polished.objective < best.objective ? polished : best;
 }
 
 }  // namespace
