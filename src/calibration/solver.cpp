@@ -23,7 +23,6 @@ namespace {
 constexpr std::size_t kStarts = 6;
 constexpr double kDistinct = 0.15;           // scan points closer than this (in every key, unit cube) are one start
 constexpr int kIterations = 100, kCandidateIterations = 20;  // Levenberg-Marquardt's, as the fit and as a candidate
-constexpr double kNearlyExact = 1e-3;  // a minimax fit this far below its start's largest error is nearly exact
 constexpr double kTolerance = 1e-12;
 constexpr double kHuberK = 1.345, kMadToSigma = 1.4826;  // Huber's 95 %-efficient constant; MAD to sigma (normal)         // the local solvers' relative tolerances, as the old golden sections'
 
@@ -98,7 +97,8 @@ std::pair<double, Eigen::VectorXd> scanPoint(const FitProblem& problem, Calibrat
 
 // The scan's points, each with its objective: the cube's (scanCube), then, with two or more scanned dimensions, a
 // line of 41 points along each through the best of them (a basin narrow in one key, as the gas's by a face, is missed
-// by a sparse set and found along a line). The shear modulus, where it is fitted with other keys, is profiled.
+// by a sparse set and found along a line), then a golden section along each. The shear modulus, where it is fitted
+// with other keys, is profiled.
 std::vector<std::pair<double, Eigen::VectorXd>> scan(const FitProblem& problem, CalibrationObjective objective,
                                                      ScanRecord* record) {
   const auto& axes = problem.axes();
@@ -121,7 +121,22 @@ std::vector<std::pair<double, Eigen::VectorXd>> scan(const FitProblem& problem, 
       v[d] = static_cast<double>(i) / (kLine - 1);
       auto point = scanPoint(problem, objective, v, m, profile, record);
       if (std::isfinite(point.first)) scanned.push_back(std::move(point));
+      if (point.first < best) best = point.first, best_v = v;
     }
+  }
+  // Then a golden section along each scanned key, a line's step either side of the best: a basin narrower than the
+  // step (a gap that lets one more row touch) lies between two points of a plateau.
+  for (Eigen::Index d = 0; dims > 0 && std::isfinite(best) && d < dims; ++d) {
+    Eigen::VectorXd v = best_v;
+    const auto along = [&](double x) {
+      v[d] = x;
+      auto point = scanPoint(problem, objective, v, m, profile, record);
+      if (std::isfinite(point.first)) scanned.push_back(point);
+      return point.first;
+    };
+    const double w = 1.0 / (kLine - 1);
+    goldenSection(along, std::max(0.0, best_v[d] - w), std::min(1.0, best_v[d] + w), 30,
+                  [](double a, double b, double, double) { return b - a > 1e-6; });
   }
   return scanned;
 }
@@ -270,20 +285,11 @@ int scanPoints(std::size_t keys) { return 41 + 32 * static_cast<int>(keys - 1); 
 
 namespace {
 
-// The local solves from one start, the best of them (least squares: Ceres; minimax: SLSQP and Ceres' least squares
-// measured by the largest error).
+// The local solve from one start: least squares by Ceres, a minimax by SLSQP.
 FitSolution localSolve(const FitProblem& problem, CalibrationObjective objective, const Eigen::VectorXd& start,
                        double start_objective) {
   if (objective != CalibrationObjective::kMinimax) return leastSquaresFrom(problem, start, kIterations);
   FitSolution local = minimaxFrom(problem, start, start_objective);
-  // Where the fit is nearly exact, minimax's optimum is degenerate (every term zero at once) and SLSQP's end game slow:
-  // least squares, measured by the largest error, reaches that point exactly (Levenberg-Marquardt converges
-  // quadratically on zero residuals, so a few iterations do).
-  if (local.objective < kNearlyExact * start_objective) {
-    const FitSolution squares = leastSquaresFrom(problem, local.u, kCandidateIterations);
-    const double largest = problem.objective(squares.u, objective);
-    if (largest < local.objective) local = {squares.u, largest};
-  }
   FitSolution best{start, start_objective};
   return local.objective < best.objective ? local : best;
 }
@@ -317,7 +323,16 @@ FitSolution fromTheBestOf(const FitProblem& problem, CalibrationObjective object
   // zero) the derivative solvers cannot move it, and where the objective has kinks (a row that snaps between two
   // neighbouring points) their steps stall.
   const FitSolution polished = derivativeFreeFrom(problem, best.u, objective);
-  return polished.objective < best.objective ? polished : best;
+  if (polished.objective < best.objective) best = polished;
+  if (objective == CalibrationObjective::kMinimax) {
+    // Where the fit is (nearly) exact, minimax's optimum is degenerate (every term zero at once) and SLSQP's end game
+    // slow: least squares from there, measured by the largest error, reaches it (Levenberg-Marquardt converges
+    // quadratically on zero residuals, so a few iterations do; elsewhere it is a candidate that loses).
+    const FitSolution squares = leastSquaresFrom(problem, best.u, kCandidateIterations);
+    const double largest = problem.objective(squares.u, objective);
+    if (largest < best.objective) best = {squares.u, largest};
+  }
+  return best;
 }
 
 }  // namespace

@@ -26,7 +26,7 @@ const std::vector<ParameterSpec> kSpecs = {
      "chamber height (wall length at rest); the wall bulges into an ellipse with one radius L/2"},
     {"wall_critical_height_m", "b", "m", 0.00575, 0, false, 0.5, ParameterShape::kPerChamber,
      "height of the wall's thinnest point, in (0, L]; L/2 for a uniform wall"},
-    {"chamber_gap_m", "c", "m", 4.964076170012396e-05, 0, true, 0.1, ParameterShape::kPerChamber,
+    {"chamber_gap_m", "c", "m", 4.9640761700127315e-05, 0, true, 0.1, ParameterShape::kPerChamber,
      "effective gap between facing walls of neighbouring chambers (calibrated)"},
     {"chamber_thickness_m", "d", "m", 0.005, 0, false, 0.5, ParameterShape::kPerChamber,
      "chamber size along the finger"},
@@ -36,10 +36,10 @@ const std::vector<ParameterSpec> kSpecs = {
      "joint-to-joint pitch of the segment that carries each chamber"},
     {"base_segment_length_m", "Z0", "m", 0.015, 0, false, 1.0, ParameterShape::kScalar,
      "length of the passive base segment, mount to joint 1"},
-    {"base_wall_share", "s0", "-", 0.31406024809367511, 0, true, 1.0, ParameterShape::kScalar,
+    {"base_wall_share", "s0", "-", 0.31406024809366295, 0, true, 1.0, ParameterShape::kScalar,
      "half angle the passive base segment's face adds to joint 1, as a share of chamber 1's: theta_0 = s0 theta_1 "
      "(0: an inert face; 1: a face that turns as a chamber wall does; effective, calibrated)"},
-    {"shear_modulus_pa", "mu", "Pa", 223531464.02035433, 0, false, 1e12, ParameterShape::kPerChamber,
+    {"shear_modulus_pa", "mu", "Pa", 223531464.02034336, 0, false, 1e12, ParameterShape::kPerChamber,
      "effective stiffness of the wall in the paper's energy balance (calibrated): a fitted number, not the "
      "elastomer's measured shear modulus (the paper law's fit is about 1000 times a silicone's; the membrane law's is "
      "close to it)"},
