@@ -8,7 +8,7 @@ each law is fitted with the package's calibration (pneumatic_finger.calibrate, t
  - on every row, with each row also predicted by a fit to the others (leave-one-out, what `--wall-law auto` compares);
  - on the rows of even index (pressures sorted), predicting the rows of odd index, which the fit never saw.
 Prints a Markdown table (docs/ACCURACY.md, "Other actuators" is its output) and draws the plot (default
-docs/accuracy_laws.png). Takes about fifteen minutes: each three-key leave-one-out is fifteen nested searches.
+docs/accuracy_laws.png). Takes seconds (docs/CALIBRATE.md, "The solver").
 """
 import csv
 import math

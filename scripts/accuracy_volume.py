@@ -26,7 +26,7 @@ Each is then driven by the measured volume of every row (evaluate_volume) and re
 held-out half: the bend error (deg) and the pressure error (%), and the two bends the ribbed segment has at one
 pressure; for the membrane law, also what the chambers' growth holds at the last row. A closing table sets the
 held-out half side by side: driven by pressure (the keys from pressure), driven by volume (the keys from volume),
-the keys fitted to both, and with the skin. Takes about fifteen minutes (the leave-one-out of the fits by volume,
+the keys fitted to both, and with the skin. Took about fifteen minutes with the old engine (the leave-one-out of the fits by volume,
 and a fit per skin share). Its output is
 docs/ACCURACY.md's "Volume as the input"; --plot draws bend and pressure against volume for both segments.
 """
