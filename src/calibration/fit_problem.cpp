@@ -7,6 +7,10 @@
 
 namespace pneumatic_finger {
 
+namespace {
+constexpr double kHuberK = 1.345, kMadToSigma = 1.4826;  // Huber's 95 %-efficient constant; MAD to sigma (normal)
+}  // namespace
+
 FitProblem::FitProblem(const FingerParameters& base, const std::vector<std::string>& keys,
                        const std::vector<Measurement>& data, CalibrationQuantity quantity, CalibrationProgress progress)
     : base_(base), data_(&data), quantity_(quantity), progress_(std::move(progress)) {
@@ -93,12 +97,32 @@ bool FitProblem::termsAndJacobian(const Eigen::VectorXd& u, Eigen::VectorXd& out
 double FitProblem::objective(const Eigen::VectorXd& u, CalibrationObjective objective) const {
   Eigen::VectorXd e;
   if (!terms(u, e)) return std::numeric_limits<double>::infinity();
-  return objective == CalibrationObjective::kMinimax ? e.cwiseAbs().maxCoeff() : e.squaredNorm();  // Huber: the solver
+  return reduce(e, objective);
 }
 
 void FitProblem::report(const std::string& step) const {
   // Every 64th call: the report's words cost more than a small data set's residuals.
   if (progress_ && ++reports_ % 64 == 0) progress_(step + ": " + std::to_string(evaluations_) + " model evaluations");
+}
+
+double reduce(const Eigen::VectorXd& terms, CalibrationObjective objective, double huber_scale) {
+  if (terms.size() == 0) return 0.0;
+  if (objective == CalibrationObjective::kMinimax) return terms.cwiseAbs().maxCoeff();
+  if (objective == CalibrationObjective::kLeastSquares) return terms.squaredNorm();
+  double sum = 0.0;
+  for (double e : terms) {
+    const double a = std::fabs(e);
+    sum += a <= huber_scale ? a * a : 2.0 * huber_scale * a - huber_scale * huber_scale;
+  }
+  return sum;
+}
+
+double huberScale(const Eigen::VectorXd& terms) {
+  if (terms.size() == 0) return 0.0;
+  std::vector<double> a(terms.data(), terms.data() + terms.size());
+  for (double& x : a) x = std::fabs(x);
+  std::nth_element(a.begin(), a.begin() + static_cast<long>(a.size() / 2), a.end());
+  return kHuberK * kMadToSigma * a[a.size() / 2];
 }
 
 }  // namespace pneumatic_finger

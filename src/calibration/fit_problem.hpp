@@ -13,6 +13,13 @@
 
 namespace pneumatic_finger {
 
+/// The objective over @p terms: the largest |term| (minimax), the sum of squares, or the sum of Huber's losses at
+/// @p huber_scale (e^2 within it, 2 s |e| - s^2 beyond).
+double reduce(const Eigen::VectorXd& terms, CalibrationObjective objective, double huber_scale = 0.0);
+
+/// Huber's scale for @p terms: 1.345 robust standard deviations, 1.4826 times the median |term| (0 for no terms).
+double huberScale(const Eigen::VectorXd& terms);
+
 /// The keys' search box, scaled to the unit cube: u_k in [0, 1] is axes[k].lo + u_k (hi - lo) in the key's search
 /// coordinate (log10 for mu and J_m). One scale for every key, so that one difference step and one tolerance serve all.
 class FitProblem {
@@ -37,7 +44,7 @@ class FitProblem {
   /// and where a step leaves the rows' shapes; zero where both do). False only where terms() is.
   bool termsAndJacobian(const Eigen::VectorXd& u, Eigen::VectorXd& out, Eigen::MatrixXd& jacobian,
                         bool squares = false) const;
-  /// The objective over the terms: max |term| or sum of squares; +inf where terms() is false.
+  /// reduce() of the terms (Huber's at no scale: its solver fixes one); +inf where terms() is false.
   double objective(const Eigen::VectorXd& u, CalibrationObjective objective) const;
 
   FingerParameters parametersAt(const Eigen::VectorXd& u) const;

@@ -23,8 +23,7 @@ namespace {
 constexpr std::size_t kStarts = 6;
 constexpr double kDistinct = 0.15;           // scan points closer than this (in every key, unit cube) are one start
 constexpr int kIterations = 100, kCandidateIterations = 20;  // Levenberg-Marquardt's, as the fit and as a candidate
-constexpr double kTolerance = 1e-12;
-constexpr double kHuberK = 1.345, kMadToSigma = 1.4826;  // Huber's 95 %-efficient constant; MAD to sigma (normal)         // the local solvers' relative tolerances, as the old golden sections'
+constexpr double kTolerance = 1e-12;  // the local solvers' relative tolerances, as the old golden sections'
 
 // The i-th point (from 1) of the Halton sequence in base @p base: well spread in any number of dimensions.
 double halton(int i, int base) {
@@ -337,25 +336,6 @@ FitSolution fromTheBestOf(const FitProblem& problem, CalibrationObjective object
 
 }  // namespace
 
-double reduce(const Eigen::VectorXd& terms, CalibrationObjective objective, double huber_scale) {
-  if (terms.size() == 0) return 0.0;
-  if (objective == CalibrationObjective::kMinimax) return terms.cwiseAbs().maxCoeff();
-  if (objective == CalibrationObjective::kLeastSquares) return terms.squaredNorm();
-  double sum = 0.0;
-  for (double e : terms) {
-    const double a = std::fabs(e);
-    sum += a <= huber_scale ? a * a : 2.0 * huber_scale * a - huber_scale * huber_scale;
-  }
-  return sum;
-}
-
-double huberScale(const Eigen::VectorXd& terms) {
-  if (terms.size() == 0) return 0.0;
-  std::vector<double> a(terms.data(), terms.data() + terms.size());
-  for (double& x : a) x = std::fabs(x);
-  std::nth_element(a.begin(), a.begin() + static_cast<long>(a.size() / 2), a.end());
-  return kHuberK * kMadToSigma * a[a.size() / 2];
-}
 
 FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective, ScanRecord* record) {
   if (objective == CalibrationObjective::kHuber) {

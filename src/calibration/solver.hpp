@@ -33,12 +33,7 @@ FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective, 
 FitSolution solveFold(const FitProblem& fold, CalibrationObjective objective, const ScanRecord& full,
                       std::size_t first_term, std::size_t terms);
 
-/// The objective over @p terms: the largest |term| (minimax), the sum of squares, or the sum of Huber's losses at
-/// @p huber_scale (e^2 within it, 2 s |e| - s^2 beyond).
-double reduce(const Eigen::VectorXd& terms, CalibrationObjective objective, double huber_scale = 0.0);
 
-/// Huber's scale for @p terms: 1.345 robust standard deviations, 1.4826 times the median |term| (0 for no terms).
-double huberScale(const Eigen::VectorXd& terms);
 
 /// How many scan points a fit of @p keys keys takes: 41 for one key, 32 more for each further one.
 int scanPoints(std::size_t keys);
