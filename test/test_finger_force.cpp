@@ -132,9 +132,8 @@ TEST(FingerForce, UnequalChambersBalanceTheChainWithTheTipHeld) {
   EXPECT_LT(std::fabs(tip_y(force, eps)), 1e-3 * std::fabs(tip_y(1.01 * force, eps)));
 }
 
-// Below contact the walls do not touch: no force, exactly. A vacuum likewise (+0, not -0). NaN in, NaN out. Beyond a
-// Neo-Hookean wall's limit point there is no free shape to flatten: NaN, not a number made up.
-TEST(FingerForce, NoContactVacuumNaNAndTheLimitPoint) {
+// Below contact the walls do not touch: no force, exactly. A vacuum likewise (+0, not -0). NaN in, NaN out.
+TEST(FingerForce, NoContactVacuumAndNaN) {
   const pf::FingerModel model(pf::FingerParameters::defaults());
   EXPECT_EQ(model.blockedTipForceN(0.0), 0.0);
   EXPECT_EQ(model.blockedTipForceN(0.999 * model.contactGaugePa()), 0.0);
@@ -143,13 +142,39 @@ TEST(FingerForce, NoContactVacuumNaNAndTheLimitPoint) {
   EXPECT_FALSE(std::signbit(model.blockedTipForceN(-5000.0)));
   EXPECT_EQ(model.blockedTipForceN(-5000.0), 0.0);
   EXPECT_TRUE(std::isnan(model.blockedTipForceN(std::numeric_limits<double>::quiet_NaN())));
-  const pf::FingerModel balloon(
-      parametersFrom("wall_law: membrane\nshear_modulus_pa: 2e4\nwall_thickness_m: 0.002\nwall_locking_jm: 0\n"));
-  EXPECT_GT(balloon.blockedTipForceN(0.99 * balloon.limitGaugePa()), 0.0);
-  EXPECT_TRUE(std::isnan(balloon.blockedTipForceN(1.01 * balloon.limitGaugePa())));
-  std::vector<double> moments(7);
-  balloon.straightJointMomentsNm(1.01 * balloon.limitGaugePa(), moments.data());
-  for (double m : moments) EXPECT_TRUE(std::isnan(m));
+}
+
+// At a wall's limit point the free wall snaps; a held one cannot, and the part of its balloon beyond the contact plane
+// is flattened: the whole wall, 2R tall, presses with P at the lever b. So the blocked force jumps at the limit point
+// to F = P (2R e b) sum(l w)/sum(l^2 w), by hand from the geometry, for a Neo-Hookean wall (which balloons without
+// bound) and for a Gent wall on its far branch (whose sphere's chord at the plane is past R as well).
+TEST(FingerForce, TheBlockedForceJumpsAtTheLimitPointToTheWholeWall) {
+  for (const char* lock : {"wall_locking_jm: 0\n", "wall_locking_jm: 50\n"}) {
+    const pf::FingerParameters p =
+        parametersFrom(std::string("wall_law: membrane\nshear_modulus_pa: 2e4\nwall_thickness_m: 0.002\n") + lock);
+    const pf::FingerModel balloon(p);
+    const double limit = balloon.limitGaugePa();
+    ASSERT_TRUE(std::isfinite(limit)) << lock;
+    std::vector<double> moments(7);
+    for (const double gauge_pa : {limit, 1.01 * limit, 2.0 * limit}) {
+      balloon.straightJointMomentsNm(gauge_pa, moments.data());
+      double lw = 0, l2w = 0, l = 0;
+      for (int j = 6; j >= 0; --j) {
+        const auto uj = static_cast<std::size_t>(j);
+        l += p.segment_length_m[uj];
+        const double w = j == 0 ? 1.0 + p.base_wall_share : 2.0;
+        lw += l * w;
+        l2w += l * l * w;
+        const double whole_wall = gauge_pa * p.chamber_height_m[uj] * p.chamber_width_m[uj] * p.wall_critical_height_m[uj];
+        EXPECT_NEAR(moments[uj], whole_wall, 1e-14 * whole_wall) << lock << gauge_pa;
+      }
+      const double expected = gauge_pa * p.chamber_height_m[0] * p.chamber_width_m[0] * p.wall_critical_height_m[0] * lw / l2w;
+      EXPECT_NEAR(balloon.blockedTipForceN(gauge_pa), expected, 1e-13 * expected) << lock << gauge_pa;
+    }
+    const double below = balloon.blockedTipForceN(0.999 * limit), at = balloon.blockedTipForceN(limit);
+    EXPECT_GT(below, 0.0) << lock;
+    EXPECT_GT(at, below) << lock << ": the strip, 2 min(a, R) just below the limit, is the whole wall at it";
+  }
 }
 
 namespace {

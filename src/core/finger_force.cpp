@@ -13,9 +13,16 @@
 
 namespace pneumatic_finger {
 
-// The free wall's bulge at @p gauge_pa (m): stages 1-3 of its law (NaN beyond the membrane law's limit point).
+// The free wall's bulge at @p gauge_pa (m): stages 1-3 of its law, on a rising pressure. At or beyond a membrane or
+// thick wall's limit point the free wall has snapped: to its far branch where it has one (a Gent wall), else it
+// balloons without bound (+inf). Either way a held wall's strip is then the whole wall (stripHeightM caps it at R), so
+// the held finger's force jumps where the free finger's bend does (docs/MODEL.md, "Force").
 double FingerModel::freeBulgeM(const ChamberGroup& g, double gauge_pa) const {
   if (!(gauge_pa > 0)) return 0.0;
+  if (membrane_ && gauge_pa >= g.membrane.limit_gauge_pa) {
+    const double far = membraneFarStretchExcess(g.membrane, gauge_pa);
+    return std::isnan(far) ? std::numeric_limits<double>::infinity() : membraneBulgeM(g.membrane, far);
+  }
   if (membrane_) return membraneBulgeM(g.membrane, membraneStretchExcess(g.membrane, gauge_pa));
   return bulge(stretchExcess(energyGroup(gauge_pa, parameters_.atmospheric_pressure_pa, g.shear_modulus_pa)),
                g.chamber_height_m);
@@ -25,7 +32,7 @@ double FingerModel::freeBulgeM(const ChamberGroup& g, double gauge_pa) const {
 // radius R = L/2: a sphere of radius R + h (membrane law), or half an ellipse of semi-axes R and R + h (paper law,
 // stage 3). The contact plane lies R + h_plane from its centre: h_plane = c for the straight finger, where the walls
 // first touch, and the bulge at its touch for a joint held since (docs/MODEL.md). a is the shape's half-chord there,
-// at most R (the wall is L tall). 0 up to the contact pressure and for a vacuum; NaN beyond the limit point.
+// at most R (the wall is L tall). 0 up to the contact pressure and for a vacuum; 2R beyond the limit point.
 double FingerModel::contactStripHeightM(const ChamberGroup& g, double gauge_pa, double plane_bulge_m) const {
   if (!(gauge_pa > g.contact_gauge_pa)) return 0.0;
   return stripHeightM(g, freeBulgeM(g, gauge_pa), plane_bulge_m);

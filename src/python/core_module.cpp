@@ -452,8 +452,9 @@ PYBIND11_MODULE(_core, m) {
            "shapes above)")
       .def("blocked_tip_force", &PyFingerModel::blockedTipForce, py::arg("gauge_pa"),
            "The blocked tip force (N) at a gauge pressure (Pa) or a 1-D array of them: the finger held straight by a "
-           "plate at its tip (docs/MODEL.md, Force); 0 before the walls touch and for a vacuum; ValueError for a "
-           "pressure that is not finite")
+           "plate at its tip (docs/MODEL.md, Force); 0 before the walls touch and for a vacuum; at and beyond the "
+           "limit point (a rising pressure) the whole wall presses: the force jumps where the free bend snaps; "
+           "ValueError for a pressure that is not finite")
       .def("gauge_for_tip_angle", &PyFingerModel::gaugeForTipAngle, py::arg("tip_angle_rad"),
            py::arg("max_gauge_pa") = py::none(),
            "The gauge pressure (Pa) for a tip angle (rad) or a 1-D array of them; ValueError when none up to "

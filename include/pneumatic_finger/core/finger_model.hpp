@@ -286,7 +286,8 @@ class FingerModel {
   /// The force model (docs/MODEL.md, "Force"; src/core/finger_force.cpp). The moment (N m) that the walls at each
   /// joint of the straight finger exert at @p gauge_pa, into @p moment_nm (N entries, joint 1 first): the chamber's
   /// pressure on the strip of its wall flattened against the neighbour's, at the lever b. 0 up to the contact pressure
-  /// and for a vacuum; NaN for a NaN pressure and beyond the membrane law's limit point.
+  /// and for a vacuum; NaN for a NaN pressure. At or beyond a membrane or thick wall's limit point (a rising pressure:
+  /// the free wall has snapped) the strip is the whole wall, so the moment jumps there as the free bend does.
   void straightJointMomentsNm(double gauge_pa, double* moment_nm) const;
 
   /// The moments (N m) at the joints of a finger whose joint j has been held since the pressure
@@ -373,7 +374,8 @@ class FingerModel {
   /// The force model's constants, computed once (finger_force.cpp): per joint its pushing walls, distance to the
   /// tip and compliance weight.
   void buildForceModel();
-  /// The free bulge h (m) of @p group's wall at @p gauge_pa (stages 1-3; 0 for P <= 0; NaN beyond the limit point).
+  /// The free bulge h (m) of @p group's wall at @p gauge_pa (stages 1-3; 0 for P <= 0; at or beyond the limit
+  /// point the far branch's, or +inf where the wall balloons without bound).
   double freeBulgeM(const ChamberGroup& group, double gauge_pa) const;
   /// The height 2a (m) of the strip of @p group's wall pressed flat against its neighbour's at @p gauge_pa, the
   /// contact plane at bulge @p plane_bulge_m.
