@@ -126,6 +126,27 @@ TEST(TipUncertainty, TheCalibrationsBarIsTheLargestOfFitLeaveOneOutAndTheFitsSca
   EXPECT_NEAR(hit.tip_angle_rad[0], std::sqrt(0.0008 / 3), 1e-15) << "the row the fit hits gets the scatter";
 }
 
+// A row whose pressure is beyond the fitted model's limit point has a measured bend and no model shape. It once made
+// the calibration throw ("entry 16 has neither tip_angle_rad nor tip_position_m") on a segment whose plateau passes
+// the limit (the cylindrical drawing with --wall-law auto). The model publishes no shape there, so no bar is written
+// at that pressure; the other rows keep theirs.
+TEST(TipUncertainty, ARowWhereTheModelHasNoShapeGetsNoBar) {
+  auto row = [](double p, double model_angle, double measured_angle) {
+    pf::Residual r{};
+    r.gauge_pa = p;
+    r.model_tip_angle_rad = model_angle;
+    r.measured_tip_angle_rad = measured_angle;
+    r.model_tip_x_m = r.model_tip_y_m = std::nan("");
+    r.measured_tip_x_m = r.measured_tip_y_m = std::nan("");
+    return r;
+  };
+  const std::vector<pf::Residual> fits = {row(1e5, 0.5, 0.6), row(2e5, std::nan(""), 1.4), row(3e5, 1.5, 1.45)};
+  const pf::TipUncertainty bar = pf::tipUncertainty(fits, fits, 0);
+  ASSERT_EQ(bar.gauge_pa, (std::vector<double>{1e5, 3e5}));
+  EXPECT_NEAR(bar.tip_angle_rad[0], 0.1, 1e-15);  // its own error, above the scatter sqrt((0.01 + 0.0025) / 2)
+  EXPECT_NEAR(bar.tip_angle_rad[1], std::sqrt(0.0125 / 2), 1e-15);
+}
+
 // With noise on the measured tip angles, the bar was once near 0 at a row the fit
 // happened to hit. The reference is the noise put in: tip angles of the package's finger with +1, -1 and 0 degrees
 // added in turn (RMS 0.82 degrees), which one fitted key cannot follow; the rows with none are hit, and their bar was

@@ -260,6 +260,9 @@ TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vecto
     const double x = std::max({fit[i].tip_position_error_m(), leave_one_out[i].tip_position_error_m(), position_floor});
     const double angle_bar = std::isnan(fit[i].tip_angle_error_rad()) ? std::nan("") : a;  // NaN: not measured
     const double position_bar = std::isnan(fit[i].tip_position_error_m()) ? std::nan("") : x;
+    // Neither bar: the row measured no tip, or the fitted model has no shape at its pressure (beyond its limit
+    // point, where it publishes none): no bar to write there.
+    if (std::isnan(angle_bar) && std::isnan(position_bar)) continue;
     if (!gauge.empty() && fit[i].gauge_pa == gauge.back()) {  // repeated pressure: keep the larger bar
       angle.back() = std::fmax(angle.back(), angle_bar);
       position.back() = std::fmax(position.back(), position_bar);
