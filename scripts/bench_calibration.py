@@ -66,6 +66,10 @@ CALIBRATIONS = [
         "compare": "tip_angle+gauge_pa", "keys": [MU, GAP, DEAD, SKIN], "objective": "least_squares"}),
     ("EPFL 7 chambers, its ramp through the snap (gauge_at_tip_angle)", "ACCURACY", {
         "data": EPFL, "config": EPFL_START, "compare": "gauge_at_tip_angle"}),
+    ("ribbed as drawn, --wall-law auto", "ACCURACY", {
+        "data": RIBBED, "config": "config/marchese2015_ribbed_drawing.yaml", "wall_law": "auto"}),
+    ("cylindrical as drawn, --wall-law auto", "ACCURACY", {
+        "data": CYLINDRICAL, "config": "config/marchese2015_cylindrical_drawing.yaml", "wall_law": "auto"}),
 ]
 
 RUN = """
