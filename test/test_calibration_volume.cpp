@@ -257,6 +257,30 @@ TEST(CalibrationByVolume, ARunWithoutPressuresIsDrivenByVolume) {
             "line 1: no gauge_pa to drive the finger by pressure (drive it by volume, or give the column)");
 }
 
+// Filled by volume with the pressure measured, and nothing named to compare: the run compares the bend and the
+// pressure together, so that mu, which the bend alone cannot fix under an incompressible fill, is fitted (before, the
+// default compared the bend alone and refused mu: a segment filled by volume could not be calibrated with --drive
+// volume and the default keys, nor with --wall-law auto). The truth's mu and c come back.
+TEST(CalibrationByVolume, ByVolumeWithPressuresTheDefaultComparesBendAndPressure) {
+  const pf::FingerParameters truth = pf_test::membraneFinger(0.0, "chamber_gap_m: 1e-3\n");
+  pf::MeasurementSet set;
+  set.rows = filledByVolume(truth, 0.9, true);
+  pf::CalibrationRequest request;
+  request.drive = "volume";
+  request.keys = {"shear_modulus_pa", "chamber_gap_m"};
+  request.leave_one_out = false;
+  pf::FingerParameters start = truth;
+  start.shear_modulus_pa.assign(start.shear_modulus_pa.size(), 3.0 * truth.shear_modulus_pa[0]);
+  start.chamber_gap_m.assign(start.chamber_gap_m.size(), 0.0);
+  const pf::CalibrationRun run = pf::runCalibration(start, set, request);
+  EXPECT_EQ(run.quantity, pf::CalibrationQuantity::kTipAngleAndGauge);
+  EXPECT_NEAR(run.best().fit.values[0], truth.shear_modulus_pa[0], 1e-6 * truth.shear_modulus_pa[0]);
+  EXPECT_NEAR(run.best().fit.values[1], 1e-3, 1e-3 * 1e-6);
+  for (pf::Measurement& m : set.rows) m.gauge_pa = NAN;  // without pressures: the bend alone, as before
+  request.keys = {"chamber_gap_m"};
+  EXPECT_EQ(pf::runCalibration(start, set, request).quantity, pf::CalibrationQuantity::kTipAngle);
+}
+
 // A header that cannot be read says what it probably meant, and data given as columns name their
 // rows as rows everywhere (before: "row 6" in one message, "line 1" in another).
 TEST(CalibrationData, RefusalsGiveTheLikelyCauseAndNameRowsOneWay) {

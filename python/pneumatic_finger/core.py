@@ -76,7 +76,8 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
     data: a CSV path, or a mapping of column names to arrays: gauge_pa and/or supplied_volume_m3, and any of
     joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m (None: the package's data). keys: the keys to fit (any number), a
     list or "a,b" (None: the tool's default). compare: "joints", "average", "joint_1", "tip_angle", "tip_position" or
-    "gauge_pa" (the model's pressure at each row's volume; needs drive="volume") (None: what the data has). drive:
+    "gauge_pa" (the model's pressure at each row's volume; needs drive="volume"), "tip_angle+gauge_pa" or
+    "gauge_at_tip_angle" (None: what the data has, as the CLI chooses; by volume with gauge_pa, "tip_angle+gauge_pa"). drive:
     "pressure" (each row set by its gauge_pa) or "volume" (by its supplied_volume_m3; the pressure is then an output)
     (None: pressure where the data has gauge_pa). wall_law: "auto" (fit each law, keep the best leave-one-out prediction), "paper", "membrane" or "thick" (None:
     the parameter file's).

@@ -29,10 +29,16 @@ FingerParameters calibrationBase(RawParameterMap raw, const std::string& wall_la
 
 namespace {
 
-CalibrationQuantity quantityFor(const CalibrationRequest& request, const std::vector<Measurement>& rows) {
+// Rows filled by volume with their pressure measured compare both by default: the bend alone leaves the modulus free
+// (an incompressible fill sets the shape by the volume, the modulus only the pressure), so a default of the bend alone
+// would refuse the usual fit (mu among the keys) that the measured pressure makes possible.
+CalibrationQuantity quantityFor(const CalibrationRequest& request, const std::vector<Measurement>& rows,
+                                bool by_volume) {
   if (!request.compare.empty()) return parseQuantity(request.compare);
   if (!request.average_column.empty()) return CalibrationQuantity::kOuterAverage;
-  return defaultQuantity(rows);
+  const CalibrationQuantity bend = defaultQuantity(rows);
+  const bool bend_alone = bend == CalibrationQuantity::kTipAngle || bend == CalibrationQuantity::kGaugeAtTipAngle;
+  return by_volume && bend_alone && rows.front().hasGauge() ? CalibrationQuantity::kTipAngleAndGauge : bend;
 }
 
 // One law without leave-one-out: the fit alone (Python's quick fit).
@@ -53,10 +59,10 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
                               const CalibrationRequest& request) {
   CalibrationRun run;
   run.objective = parseObjective(request.objective);
-  run.quantity = quantityFor(request, data.rows);
   MeasurementSet driven = data;
   const bool has_gauge = !data.rows.empty() && data.rows.front().hasGauge();
   run.by_volume = request.drive.empty() ? !has_gauge : parseDrive(request.drive);
+  run.quantity = quantityFor(request, data.rows, run.by_volume);
   driveByVolume(driven.rows, run.by_volume);
   checkMeasurementsPlausible(base, driven.rows);  // before any law's fit, so that its message names no law
   const std::vector<WallLaw> laws =

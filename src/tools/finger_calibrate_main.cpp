@@ -246,7 +246,8 @@ void addDataOptions(CLI::App& app, DataOptions& o) {
                  "relative error, 1 deg of bend weighing as 1.75 % of the pressure) or gauge_at_tip_angle (the "
                  "pressure that holds each measured bend, against the measured, in Pa: continuous through a snap); "
                  "default: joints if the file has them, else tip_position, else tip_angle, or gauge_at_tip_angle "
-                 "where the bend leaps (by a quarter of its range within 5 % of the pressures': a snap)");
+                 "where the bend leaps (by a quarter of its range within 5 % of the pressures': a snap); with --drive "
+                 "volume and gauge_pa measured, tip_angle+gauge_pa instead of the bend alone");
   app.add_option("--fit", o.fit_keys,
                  "parameter keys to fit (any number, each once), comma-separated; default: shear_modulus_pa,chamber_gap_m and, "
                  "when every joint is compared, base_wall_share (joint_1: base_wall_share alone)");
