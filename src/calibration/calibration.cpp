@@ -1,11 +1,15 @@
 #include "pneumatic_finger/calibration/calibration.hpp"
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
+#include <exception>
 #include <fstream>
 #include <functional>
 #include <limits>
+#include <mutex>
 #include <sstream>
+#include <thread>
 
 #include "fit_problem.hpp"
 #include "fit_space.hpp"
@@ -275,6 +279,35 @@ TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vecto
   return TipUncertainty::fromLists(gauge, angle, position, "calibration");
 }
 
+namespace {
+
+// Runs fold(i) for i in [0, count) on every core: each fold is a calibration of its own, deterministic and
+// independent of the others, so the answers are the same as one after another, only sooner. The first exception (by
+// fold) is rethrown once all have stopped.
+void forEachFold(std::size_t count, const std::function<void(std::size_t)>& fold) {
+  const std::size_t threads = std::max<std::size_t>(1, std::min<std::size_t>(std::thread::hardware_concurrency(), count));
+  std::atomic<std::size_t> next{0};
+  std::vector<std::exception_ptr> failed(count);
+  auto work = [&] {
+    for (std::size_t i = next++; i < count; i = next++) {
+      try {
+        fold(i);
+      } catch (...) {
+        failed[i] = std::current_exception();
+      }
+    }
+  };
+  std::vector<std::thread> pool;
+  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  for (const std::exception_ptr& e : failed) {
+    if (e) std::rethrow_exception(e);
+  }
+}
+
+}  // namespace
+
 std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vector<std::string>& keys,
                                   const std::vector<Measurement>& data, CalibrationObjective objective,
                                   CalibrationQuantity quantity, const CalibrationProgress& progress,
@@ -288,16 +321,20 @@ std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vecto
   checkKeysAndData(base, keys, data, quantity);
   const bool two_steps = std::count(keys.begin(), keys.end(), "base_wall_share") > 0 && keys.size() > 1 &&
                          quantity == CalibrationQuantity::kEveryJoint;
+  std::mutex heard_mutex;  // the folds report from several threads
   auto heard = [&](const std::string& prefix) {
-    return progress ? CalibrationProgress([&, prefix](const std::string& s) { progress(prefix + s); })
+    return progress ? CalibrationProgress([&, prefix](const std::string& s) {
+      const std::lock_guard<std::mutex> lock(heard_mutex);
+      progress(prefix + s);
+    })
                     : CalibrationProgress();
   };
   // One scan of every row, kept; each fold starts from its best points measured without the held-out row.
   const FitProblem full(base, keys, data, quantity, heard(step + ", the scan: "));
   ScanRecord record;
   if (!two_steps) solveFit(full, objective, &record);
-  std::vector<Residual> predicted;
-  for (std::size_t i = 0; i < data.size(); ++i) {
+  std::vector<Residual> predicted(data.size());
+  forEachFold(data.size(), [&](std::size_t i) {
     const std::string row = step + ", row " + std::to_string(i + 1) + " of " + std::to_string(data.size()) + ": ";
     std::vector<Measurement> others = data;
     others.erase(others.begin() + static_cast<long>(i));
@@ -308,8 +345,8 @@ std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vecto
       const FitProblem fold(base, keys, others, quantity, heard(row));
       without = fold.parametersAt(solveFold(fold, objective, record, full.firstTermOf(i), full.termCountOf(i)).u);
     }
-    predicted.push_back(residuals(without, {data[i]}, quantity)[0]);
-  }
+    predicted[i] = residuals(without, {data[i]}, quantity)[0];
+  });
   return predicted;
 }
 
