@@ -8,6 +8,7 @@ import pathlib
 import re
 import socket
 import subprocess
+import tempfile
 import time
 
 import pytest
@@ -21,11 +22,26 @@ def free_port():
         return s.getsockname()[1]
 
 
-def roslaunch(*args):
+def launched(seconds, *args):
+    """`roslaunch -p PORT pneumatic_finger ARGS` on a port of its own, stopped after @p seconds (exit 124).
+
+    Its output goes to files, not pipes: a launch that dies without stopping its master (roslaunch hung in its own
+    shutdown once in CI, and the timeout's SIGTERM ended it there) leaves rosmaster and rosout, each in a session of
+    its own, holding the pipes open, and subprocess.run then waits for ever. What still serves the port is stopped."""
     port = free_port()
     env = dict(os.environ, ROS_MASTER_URI=f"http://localhost:{port}", ROS_HOSTNAME="localhost")
-    return subprocess.run(["timeout", "90", "roslaunch", "-p", str(port), "pneumatic_finger", *args],
-                          capture_output=True, text=True, env=env)
+    with tempfile.TemporaryFile("w+") as out, tempfile.TemporaryFile("w+") as err:
+        done = subprocess.run(["timeout", "-k", "10", str(seconds), "roslaunch", "-p", str(port), "pneumatic_finger",
+                               *args], stdout=out, stderr=err, text=True, env=env)
+        out.seek(0)
+        err.seek(0)
+        result = subprocess.CompletedProcess(done.args, done.returncode, out.read(), err.read())
+    subprocess.run(["pkill", "-f", f"rosmaster --core -p {port} "], capture_output=True)
+    return result
+
+
+def roslaunch(*args):
+    return launched(90, *args)
 
 
 def test_a_prefix_that_makes_no_valid_node_name_is_refused_by_the_node_with_the_reason():
@@ -137,10 +153,7 @@ def test_a_calibrated_file_with_round_values_loads_in_finger_launch(tmp_path):
     assert fit.returncode == 0, fit.stderr
     text = out.read_text()
     assert "\nchamber_gap_m: 1.0e-05\n" in text and "\ndead_volume_m3: 1.0e-05\n" in text, text
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI=f"http://localhost:{port}", ROS_HOSTNAME="localhost")
-    done = subprocess.run(["timeout", "25", "roslaunch", "-p", str(port), "pneumatic_finger", "finger.launch",
-                           f"config:={out}", "rviz:=false"], capture_output=True, text=True, env=env)
+    done = launched(25, "finger.launch", f"config:={out}", "rviz:=false")
     log = done.stdout + done.stderr
     assert "/finger_node: 7 chambers" in log, log  # the node read the file and started
     assert "is not a number" not in log and "exit code" not in log, log
@@ -154,10 +167,7 @@ def test_finger_launch_reads_a_drawing_and_refuses_one_a_key_contradicts(tmp_pat
     assert "\n  chamber_count: 7\n" in text
     sibling = tmp_path / "five.yaml"
     sibling.write_text(text.replace("\n  chamber_count: 7\n", "\n  chamber_count: 5\n"))
-    port = free_port()
-    env = dict(os.environ, ROS_MASTER_URI=f"http://localhost:{port}", ROS_HOSTNAME="localhost")
-    done = subprocess.run(["timeout", "20", "roslaunch", "-p", str(port), "pneumatic_finger", "finger.launch",
-                           f"config:={sibling}", "rviz:=false"], capture_output=True, text=True, env=env)
+    done = launched(20, "finger.launch", f"config:={sibling}", "rviz:=false")
     log = done.stdout + done.stderr
     assert "/finger_node: 5 chambers" in log and done.returncode == 124, log
     contradicting = tmp_path / "contradicting.yaml"
