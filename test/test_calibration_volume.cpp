@@ -238,22 +238,37 @@ TEST(CalibrationByVolume, RefusesWhatTheDriveCannotGive) {
             "unknown drive 'syringe'; known: pressure (rows set by gauge_pa), volume (rows set by supplied_volume_m3)");
 }
 
+namespace {
+
+// A quick run (no leave-one-out) on a membrane finger with a 1 mm gap, the truth, filled by volume up to @p past
+// times its limit point's volume, with the rows' pressures or without; the start has no gap.
+struct VolumeRunCase {
+  pf::FingerParameters truth, start;
+  pf::MeasurementSet set;
+  pf::CalibrationRequest request;
+};
+VolumeRunCase volumeRunCase(double past, bool with_gauge) {
+  VolumeRunCase c;
+  c.truth = pf_test::membraneFinger(0.0, "chamber_gap_m: 1e-3\n");
+  c.set.rows = filledByVolume(c.truth, past, with_gauge);
+  c.request.leave_one_out = false;
+  c.start = c.truth;
+  c.start.chamber_gap_m.assign(c.start.chamber_gap_m.size(), 0.0);
+  return c;
+}
+
+}  // namespace
+
 // runCalibration (finger_calibrate, pf.calibrate): with no drive named, a file without gauge_pa is driven by volume.
 TEST(CalibrationByVolume, ARunWithoutPressuresIsDrivenByVolume) {
-  const pf::FingerParameters truth = pf_test::membraneFinger(0.0, "chamber_gap_m: 1e-3\n");
-  pf::MeasurementSet set;
-  set.rows = filledByVolume(truth, 2.0, false);
-  pf::CalibrationRequest request;
-  request.keys = {"chamber_gap_m"};
-  request.compare = "tip_angle";
-  request.leave_one_out = false;
-  pf::FingerParameters start = truth;
-  start.chamber_gap_m.assign(start.chamber_gap_m.size(), 0.0);
-  const pf::CalibrationRun run = pf::runCalibration(start, set, request);
+  VolumeRunCase c = volumeRunCase(2.0, false);
+  c.request.keys = {"chamber_gap_m"};
+  c.request.compare = "tip_angle";
+  const pf::CalibrationRun run = pf::runCalibration(c.start, c.set, c.request);
   EXPECT_TRUE(run.by_volume);
   EXPECT_NEAR(run.best().fit.values[0], 1e-3, 1e-3 * 1e-6);
-  request.drive = "pressure";
-  EXPECT_EQ(refusal([&] { pf::runCalibration(start, set, request); }),
+  c.request.drive = "pressure";
+  EXPECT_EQ(refusal([&] { pf::runCalibration(c.start, c.set, c.request); }),
             "line 1: no gauge_pa to drive the finger by pressure (drive it by volume, or give the column)");
 }
 
@@ -262,23 +277,18 @@ TEST(CalibrationByVolume, ARunWithoutPressuresIsDrivenByVolume) {
 // default compared the bend alone and refused mu: a segment filled by volume could not be calibrated with --drive
 // volume and the default keys, nor with --wall-law auto). The truth's mu and c come back.
 TEST(CalibrationByVolume, ByVolumeWithPressuresTheDefaultComparesBendAndPressure) {
-  const pf::FingerParameters truth = pf_test::membraneFinger(0.0, "chamber_gap_m: 1e-3\n");
-  pf::MeasurementSet set;
-  set.rows = filledByVolume(truth, 0.9, true);
-  pf::CalibrationRequest request;
-  request.drive = "volume";
-  request.keys = {"shear_modulus_pa", "chamber_gap_m"};
-  request.leave_one_out = false;
-  pf::FingerParameters start = truth;
-  start.shear_modulus_pa.assign(start.shear_modulus_pa.size(), 3.0 * truth.shear_modulus_pa[0]);
-  start.chamber_gap_m.assign(start.chamber_gap_m.size(), 0.0);
-  const pf::CalibrationRun run = pf::runCalibration(start, set, request);
+  VolumeRunCase c = volumeRunCase(0.9, true);
+  c.request.drive = "volume";
+  c.request.keys = {"shear_modulus_pa", "chamber_gap_m"};
+  const double mu = c.truth.shear_modulus_pa[0];
+  c.start.shear_modulus_pa.assign(c.start.shear_modulus_pa.size(), 3.0 * mu);
+  const pf::CalibrationRun run = pf::runCalibration(c.start, c.set, c.request);
   EXPECT_EQ(run.quantity, pf::CalibrationQuantity::kTipAngleAndGauge);
-  EXPECT_NEAR(run.best().fit.values[0], truth.shear_modulus_pa[0], 1e-6 * truth.shear_modulus_pa[0]);
+  EXPECT_NEAR(run.best().fit.values[0], mu, 1e-6 * mu);
   EXPECT_NEAR(run.best().fit.values[1], 1e-3, 1e-3 * 1e-6);
-  for (pf::Measurement& m : set.rows) m.gauge_pa = NAN;  // without pressures: the bend alone, as before
-  request.keys = {"chamber_gap_m"};
-  EXPECT_EQ(pf::runCalibration(start, set, request).quantity, pf::CalibrationQuantity::kTipAngle);
+  for (pf::Measurement& m : c.set.rows) m.gauge_pa = NAN;  // without pressures: the bend alone, as before
+  c.request.keys = {"chamber_gap_m"};
+  EXPECT_EQ(pf::runCalibration(c.start, c.set, c.request).quantity, pf::CalibrationQuantity::kTipAngle);
 }
 
 // A header that cannot be read says what it probably meant, and data given as columns name their

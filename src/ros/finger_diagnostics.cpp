@@ -15,23 +15,28 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("seconds since last pressure", r.age_s);
   status.add("last gauge pressure (Pa)", input_.lastGaugePa());
   status.add("validated range (Pa gauge)", "0.." + formatMessage(settings_.input.validated_max_gauge_pa));
-  // The input rules' counters, each with the name diagnostics give it.
-  const std::pair<const char*, long> counted[] = {
-      {"messages received", c.received},
-      {"refused: not finite", c.refused_not_finite},
-      {"refused: negative absolute pressure", c.refused_negative_absolute},
-      {"refused: stamp not newer than the last", c.refused_out_of_order},
-      {"zero stamps (receive time used)", c.zero_stamps},
-      {"stamps replaced by the receive time", c.far_stamps},
-      {"time jumps (new timeline)", c.time_jumps},
-      {"vacuum (straight finger published)", c.vacuum},
-      {"clamped to max_gauge_pa", c.clamped},
-      {"above the validated range", c.out_of_range},
-      {"solver failures (last state kept)", c.solver_failures},
-      {"beyond the limit point (last state kept)", c.beyond_limit_point},
-      {"skipped by max_rate_hz or same instant", c.throttled},
+  // The input rules' counters, each with the name diagnostics give it, in three groups: what arrived and when, what
+  // was refused, and what the accepted messages gave.
+  using Counted = std::pair<const char*, long>;
+  const Counted arrived[] = {{"messages received", c.received},
+                             {"zero stamps (receive time used)", c.zero_stamps},
+                             {"stamps replaced by the receive time", c.far_stamps},
+                             {"time jumps (new timeline)", c.time_jumps},
+                             {"skipped by max_rate_hz or same instant", c.throttled}};
+  const Counted refused[] = {{"refused: not finite", c.refused_not_finite},
+                             {"refused: negative absolute pressure", c.refused_negative_absolute},
+                             {"refused: stamp not newer than the last", c.refused_out_of_order}};
+  const Counted gave[] = {{"vacuum (straight finger published)", c.vacuum},
+                          {"clamped to max_gauge_pa", c.clamped},
+                          {"above the validated range", c.out_of_range},
+                          {"solver failures (last state kept)", c.solver_failures},
+                          {"beyond the limit point (last state kept)", c.beyond_limit_point}};
+  auto add = [&status](const auto& group) {
+    for (const auto& [name, count] : group) status.add(name, count);
   };
-  for (const auto& [name, count] : counted) status.add(name, count);
+  add(arrived);
+  add(refused);
+  add(gave);
   status.add("model evaluations (unchanged pressures reuse the last)", workspace_->computationCount());
   // The snap-through (membrane law, a Gent wall): which branch the walls are on, and how often they jumped.
   status.add("wall branch", on_far_branch_ ? "far (snapped through; back at or below " +
