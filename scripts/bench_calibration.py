@@ -9,7 +9,8 @@ nested one-dimensional searches; built in a scratch clone, as scripts/bench_comp
 tree's, both on this tree's data and parameter files, so that both engines solve the same problem. Printed for each:
 the wall time of each, and the objective each reached (the largest |error| for minimax, the sum of squares for least
 squares; lower is better). A run past --timeout seconds (default 900) is reported as "> S". --doc FILE writes the
-table into FILE's measured block (scripts/measured_block.py's markers).
+table into FILE's measured block (scripts/measured_block.py's markers); with --only, just those rows (a new one after
+the others), the rest as they were.
 """
 import argparse
 import json
@@ -68,8 +69,11 @@ CALIBRATIONS = [
         "data": EPFL, "config": EPFL_START, "compare": "gauge_at_tip_angle"}),
     ("ribbed as drawn, --wall-law auto", "ACCURACY", {
         "data": RIBBED, "config": "config/marchese2015_ribbed_drawing.yaml", "wall_law": "auto"}),
-    ("cylindrical as drawn, --wall-law auto", "ACCURACY", {
-        "data": CYLINDRICAL, "config": "config/marchese2015_cylindrical_drawing.yaml", "wall_law": "auto"}),
+    # Its bend leaps, so the default compares the pressure that holds each bend, which 5ec0fca's engine has not (the
+    # row above, by the bend, is the same drawing in the prose mapping's keys).
+    ("cylindrical as drawn, --wall-law auto (gauge_at_tip_angle)", "ACCURACY", {
+        "data": CYLINDRICAL, "config": "config/marchese2015_cylindrical_drawing.yaml", "wall_law": "auto",
+        "compare": "gauge_at_tip_angle"}),
 ]
 
 RUN = """
@@ -133,12 +137,18 @@ def table(rows, rev, timeout):
     return "\n".join(lines)
 
 
-def write_doc(path, text, command):
-    """Replaces FILE's measured block (scripts/measured_block.py's markers) with @p text."""
+def write_doc(path, text, command, only=False):
+    """Replaces FILE's measured block (scripts/measured_block.py's markers) with @p text; with @p only, just the rows
+    of @p text's calibrations, the others as they were."""
     begin, end = f"<!-- measured by {command}: begin -->", "<!-- measured: end -->"
     page = pathlib.Path(path).read_text()
     head, rest = page.split(begin, 1)
-    _, tail = rest.split(end, 1)
+    block, tail = rest.split(end, 1)
+    if only:
+        fresh = {line.split(" | ")[0]: line for line in text.splitlines()[2:] if line.startswith("| ")}
+        kept = [fresh.pop(line.split(" | ")[0], line) for line in block.strip("\n").splitlines()]
+        rows_end = max(i for i, line in enumerate(kept) if line.startswith("| ")) + 1
+        text = "\n".join(kept[:rows_end] + list(fresh.values()) + kept[rows_end:])
     pathlib.Path(path).write_text(f"{head}{begin}\n{text}\n{end}{tail}")
 
 
@@ -163,7 +173,7 @@ def main():
     text += f"\n\nMachine: {platform.node()}, {os.cpu_count()} cores, {platform.processor() or platform.machine()}."
     print(text)
     if a.doc:
-        write_doc(a.doc, text, "python3 scripts/bench_calibration.py")
+        write_doc(a.doc, text, "python3 scripts/bench_calibration.py", only=bool(a.only))
 
 
 if __name__ == "__main__":
