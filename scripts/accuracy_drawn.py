@@ -118,6 +118,15 @@ def bend_errors(residuals):
     return residuals["model_tip_angle_rad"] - residuals["measured_tip_angle_rad"]
 
 
+def fitted_value(key, value):
+    """A fitted key as the table shows it: mu in kPa, c in mm, the rest as they are."""
+    if key == "shear_modulus_pa":
+        return f"mu {value / 1e3:.1f} kPa"
+    if key == "chamber_gap_m":
+        return f"c {value * 1e3:.3f} mm"
+    return f"{SYMBOL.get(key, key)} {value:.3g}"
+
+
 def fitted(config, data, law):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
@@ -142,7 +151,7 @@ def fits_table():
         model = pf.FingerModel(config=str(ROOT / config))
         fit["material"] = {key: model.parameters[key] for key in MATERIAL}
         results[name] = fit
-        keys = ", ".join(SYMBOL.get(k, k) for k in fit["fitted"])
+        keys = ", ".join(fitted_value(k, v) for k, v in fit["fitted"].items())
         how = f"fitted on its bends ({keys}{'; --wall-law auto' if law == 'auto' else ''})"
         print(f"| {name} | {how} | {fit['wall_law']}; {fit['compared']} | {summary(bend_errors(fit['residuals']))} "
               f"| {summary(bend_errors(fit['leave_one_out']))} |")
