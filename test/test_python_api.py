@@ -329,6 +329,30 @@ def test_calibration_driven_by_volume_finds_the_gap_past_the_limit_point():
     assert fit["fitted"]["chamber_gap_m"] == pytest.approx(1e-3, rel=1e-6)
 
 
+def test_the_ribbed_membrane_by_volume_reaches_the_basin_six_starts_missed():
+    # docs/ACCURACY.md "Volume as the input": the ribbed segment's Gent membrane (mu, c, J_m) fitted to the even rows'
+    # bends against volume, least squares, with the gas its script fits first. The nested searches this engine replaced
+    # ended at the keys below; from its best six scan points the engine ended 4 % higher, in another basin. The
+    # reference is those keys' sum of squares, computed here by the model driven by volume.
+    root = pathlib.Path(__file__).resolve().parent.parent
+    lines = [line for line in open(root / "data/marchese2015_ribbed_bending.csv") if not line.startswith("#")]
+    rows = sorted(csv.DictReader(lines), key=lambda r: float(r["supplied_volume_m3"]))[0::2]
+    data = {k: numpy.array([float(r[k]) for r in rows]) for k in ("gauge_pa", "supplied_volume_m3", "bend_angle_rad")}
+    config = str(root / "config/marchese2015_ribbed.yaml")
+    start = {"shear_modulus_pa": 2.0679e4, "chamber_gap_m": 8.3146e-05, "wall_locking_jm": 11.169,
+             "dead_volume_m3": 1.2759e-4}
+    fit = pf.calibrate(data, ["shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"], "least_squares", config, start,
+                       compare="tip_angle", drive="volume", leave_one_out=False)
+    nested = {"shear_modulus_pa": 20968.58921022717, "chamber_gap_m": 2.8682269578839626e-05,
+              "wall_locking_jm": 1.163590227792789}
+    bend = pf.FingerModel(config, overrides={**start, **nested}).evaluate_volume(
+        data["supplied_volume_m3"], outputs=["tip_angle_rad"])["tip_angle_rad"]
+    nested_objective = float(numpy.sum((bend - data["bend_angle_rad"]) ** 2))
+    assert nested_objective == pytest.approx(0.0027252, rel=1e-4)  # the basin, not the six starts' 0.00283
+    assert fit["objective_value"] <= nested_objective * (1 + 1e-9)
+    assert fit["fitted"]["wall_locking_jm"] == pytest.approx(nested["wall_locking_jm"], rel=1e-4)
+
+
 MEMBRANE = {"wall_law": "membrane", "shear_modulus_pa": 2e4, "dead_volume_m3": 1e-5}
 
 MEMBRANE_ARGS = ["--set", "wall_law=membrane", "--set", "shear_modulus_pa=2e4", "--set", "dead_volume_m3=1e-5"]

@@ -147,6 +147,33 @@ TEST(TipUncertainty, ARowWhereTheModelHasNoShapeGetsNoBar) {
   EXPECT_NEAR(bar.tip_angle_rad[1], std::sqrt(0.0125 / 2), 1e-15);
 }
 
+// A row the leave-one-out cannot predict (the model fitted without it has no shape at its pressure) has only the fit's
+// error in its bar, which may be too small: the calibration says so, naming the rows, and says nothing otherwise.
+TEST(TipUncertainty, ARowTheLeaveOneOutCannotPredictIsNamed) {
+  auto row = [](double p, double model_angle, double measured_angle) {
+    pf::Residual r{};
+    r.gauge_pa = p;
+    r.model_tip_angle_rad = model_angle;
+    r.measured_tip_angle_rad = measured_angle;
+    r.model_tip_x_m = r.model_tip_y_m = std::nan("");
+    r.measured_tip_x_m = r.measured_tip_y_m = std::nan("");
+    return r;
+  };
+  const std::vector<pf::Residual> fit = {row(1e5, 0.5, 0.6), row(2e5, 1.0, 1.4), row(3e5, 1.5, 1.45)};
+  std::vector<pf::Residual> held_out = {row(1e5, 0.7, 0.6), row(2e5, std::nan(""), 1.4), row(3e5, 1.5, 1.45)};
+  // The bar at 2e5 Pa is the fit's error alone (0.4), the held-out NaN not counted.
+  EXPECT_NEAR(pf::tipUncertainty(fit, held_out, 0).tip_angle_rad[1], 0.4, 1e-15);
+  const std::string warning = pf::unpredictedRowsWarning(fit, held_out);
+  EXPECT_NE(warning.find("1 row(s) (gauge_pa 200000) have no prediction"), std::string::npos) << warning;
+  held_out[1].model_tip_angle_rad = 1.2;
+  EXPECT_EQ(pf::unpredictedRowsWarning(fit, held_out), "");
+  // A row the fit itself has no shape at gets no bar (above), and no warning: nothing was predicted by the fit either.
+  std::vector<pf::Residual> no_shape = fit;
+  no_shape[1].model_tip_angle_rad = std::nan("");
+  held_out[1].model_tip_angle_rad = std::nan("");
+  EXPECT_EQ(pf::unpredictedRowsWarning(no_shape, held_out), "");
+}
+
 // With noise on the measured tip angles, the bar was once near 0 at a row the fit
 // happened to hit. The reference is the noise put in: tip angles of the package's finger with +1, -1 and 0 degrees
 // added in turn (RMS 0.82 degrees), which one fitted key cannot follow; the rows with none are hit, and their bar was

@@ -279,6 +279,24 @@ TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vecto
   return TipUncertainty::fromLists(gauge, angle, position, "calibration");
 }
 
+std::string unpredictedRowsWarning(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out) {
+  const auto unpredicted = [](double fitted, double held_out) { return !std::isnan(fitted) && std::isnan(held_out); };
+  std::ostringstream rows;
+  std::size_t count = 0;
+  for (std::size_t i = 0; i < fit.size() && i < leave_one_out.size(); ++i) {
+    if (!(fit[i].gauge_pa > 0.0)) continue;
+    if (!unpredicted(fit[i].tip_angle_error_rad(), leave_one_out[i].tip_angle_error_rad()) &&
+        !unpredicted(fit[i].tip_position_error_m(), leave_one_out[i].tip_position_error_m())) {
+      continue;
+    }
+    rows << (count++ == 0 ? "" : ", ") << fit[i].gauge_pa;
+  }
+  if (count == 0) return "";
+  return "leave-one-out: " + std::to_string(count) + " row(s) (gauge_pa " + rows.str() +
+         ") have no prediction: the model fitted without each has no shape at its pressure (beyond its limit "
+         "point), so their tip error bars take the fit's error alone and may be too small there";
+}
+
 namespace {
 
 // Runs fold(i) for i in [0, count) on every core: each fold is a calibration of its own, deterministic and

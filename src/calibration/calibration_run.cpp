@@ -79,6 +79,10 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
   }
   run.warnings = data.notes;
   for (const std::string& w : run.best().fit.warnings) run.warnings.push_back(w);
+  if (!run.tip_uncertainty.empty()) {
+    const std::string unpredicted = unpredictedRowsWarning(run.best().fit.residuals, run.best().leave_one_out);
+    if (!unpredicted.empty()) run.warnings.push_back(unpredicted);
+  }
   return run;
 }
 

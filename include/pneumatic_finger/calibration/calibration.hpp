@@ -280,4 +280,9 @@ std::vector<WallLaw> parseWallLawChoice(const std::string& name);
 TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out,
                               std::size_t fitted_keys);
 
+/// The warning for rows the leave-one-out could not predict: the fit has a tip error there but the model fitted
+/// without the row has no shape at its pressure (beyond its limit point). Their error bars take the fit's error and
+/// the scatter alone, and may be too small there. Empty when every measured row was predicted.
+std::string unpredictedRowsWarning(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out);
+
 }  // namespace pneumatic_finger
