@@ -29,6 +29,17 @@ std::string refusal(const std::vector<double>& p, const std::vector<double>& a, 
   return "(accepted)";
 }
 
+// A calibration's residual at @p p: the tip angle, model and measured, and no tip position.
+pf::Residual row(double p, double model_angle, double measured_angle) {
+  pf::Residual r{};
+  r.gauge_pa = p;
+  r.model_tip_angle_rad = model_angle;
+  r.measured_tip_angle_rad = measured_angle;
+  r.model_tip_x_m = r.model_tip_y_m = std::nan("");
+  r.measured_tip_x_m = r.measured_tip_y_m = std::nan("");
+  return r;
+}
+
 }  // namespace
 
 TEST(TipUncertainty, LinearFromRestThroughTheCalibratedPressuresThenFlaggedAbove) {
@@ -131,15 +142,6 @@ TEST(TipUncertainty, TheCalibrationsBarIsTheLargestOfFitLeaveOneOutAndTheFitsSca
 // the limit (the cylindrical drawing with --wall-law auto). The model publishes no shape there, so no bar is written
 // at that pressure; the other rows keep theirs.
 TEST(TipUncertainty, ARowWhereTheModelHasNoShapeGetsNoBar) {
-  auto row = [](double p, double model_angle, double measured_angle) {
-    pf::Residual r{};
-    r.gauge_pa = p;
-    r.model_tip_angle_rad = model_angle;
-    r.measured_tip_angle_rad = measured_angle;
-    r.model_tip_x_m = r.model_tip_y_m = std::nan("");
-    r.measured_tip_x_m = r.measured_tip_y_m = std::nan("");
-    return r;
-  };
   const std::vector<pf::Residual> fits = {row(1e5, 0.5, 0.6), row(2e5, std::nan(""), 1.4), row(3e5, 1.5, 1.45)};
   const pf::TipUncertainty bar = pf::tipUncertainty(fits, fits, 0);
   ASSERT_EQ(bar.gauge_pa, (std::vector<double>{1e5, 3e5}));
@@ -150,15 +152,6 @@ TEST(TipUncertainty, ARowWhereTheModelHasNoShapeGetsNoBar) {
 // A row the leave-one-out cannot predict (the model fitted without it has no shape at its pressure) has only the fit's
 // error in its bar, which may be too small: the calibration says so, naming the rows, and says nothing otherwise.
 TEST(TipUncertainty, ARowTheLeaveOneOutCannotPredictIsNamed) {
-  auto row = [](double p, double model_angle, double measured_angle) {
-    pf::Residual r{};
-    r.gauge_pa = p;
-    r.model_tip_angle_rad = model_angle;
-    r.measured_tip_angle_rad = measured_angle;
-    r.model_tip_x_m = r.model_tip_y_m = std::nan("");
-    r.measured_tip_x_m = r.measured_tip_y_m = std::nan("");
-    return r;
-  };
   const std::vector<pf::Residual> fit = {row(1e5, 0.5, 0.6), row(2e5, 1.0, 1.4), row(3e5, 1.5, 1.45)};
   std::vector<pf::Residual> held_out = {row(1e5, 0.7, 0.6), row(2e5, std::nan(""), 1.4), row(3e5, 1.5, 1.45)};
   // The bar at 2e5 Pa is the fit's error alone (0.4), the held-out NaN not counted.
