@@ -1,0 +1,217 @@
+#!/usr/bin/env python3
+"""An independent reference for a drawn chamber: one cell of a row of cavities, by finite elements (CalculiX).
+
+The closed-form wall laws read a chamber as a sphere (docs/MODEL.md). A drawn cavity is a box, and in a row its
+neighbours press back on the walls between. This script asks a finite-element solver what such a row does, with no
+reading of the shape: one half pitch of the row, from the middle of a cavity to the middle of the wall after it,
+half the width, a neo-Hookean elastomer, under a pressure ramp.
+
+  - x along the finger, y across, z up from the strain-limiting layer (mm, N, MPa inside the solver);
+  - the plane x = 0 halves the cavity: a mirror (u_x = 0);
+  - the plane y = 0 halves the width: a mirror (u_y = 0);
+  - the face z = 0 is the strain-limiting layer: it neither lengthens nor narrows (u_x = u_y = 0), and it curves
+    freely (u_z free, but for the line under the cavity's middle);
+  - the plane x = X halves the wall between cavities. The next cell is this one mirrored, so that plane stays a
+    plane: a rigid body that turns about its bottom edge, which may rise or fall with the layer. Half the chamber's bend is its rotation.
+
+The ramp runs until the solver cannot hold the pressure: under pressure control that is the limit point, the
+snap. Needs `apt-get install calculix-ccx` (not a build or test dependency).
+
+  python3 scripts/fem_cell.py --config config/epfl_ecoflex30_c7_coupon.yaml [--size 0.5] [--bulk-ratio 100]
+"""
+import argparse
+import math
+import os
+import re
+import subprocess
+import sys
+import tempfile
+
+import yaml
+
+
+def axis(cuts, size):
+    """Grid lines through every cut, no farther apart than size."""
+    lines = [cuts[0]]
+    for a, b in zip(cuts, cuts[1:]):
+        n = max(1, math.ceil((b - a) / size - 1e-9))
+        lines += [a + (b - a) * (i + 1) / n for i in range(n)]
+    return lines
+
+
+class Cell:
+    """The half-pitch cell of a drawing, meshed in hexahedra (mm)."""
+
+    def __init__(self, drawing, size):
+        mm = 1000.0
+        self.cav_x = drawing["cavity_length_m"] * mm / 2
+        self.cav_y = drawing["cavity_width_m"] * mm / 2
+        floor = drawing.get("floor_height_m", 0.0) * mm
+        if floor != 0.0:
+            sys.exit("fem_cell: only a cavity floor on the strain-limiting layer (floor_height_m 0) is meshed")
+        self.cav_z = drawing["cavity_height_m"] * mm
+        wall = drawing["wall_thickness_m"] * mm
+        if drawing.get("gap_m", 0.0) != 0.0:
+            sys.exit("fem_cell: a split wall (gap_m) is not meshed")
+        roof = drawing.get("roof_thickness_m", drawing["wall_thickness_m"]) * mm
+        width = drawing.get("body_width_m", drawing["cavity_width_m"] + 2 * drawing["wall_thickness_m"]) * mm
+        self.X = self.cav_x + wall / 2
+        self.Y = width / 2
+        self.Z = self.cav_z + roof
+        self.xs = axis([0.0, self.cav_x, self.X], size / 2)
+        self.ys = axis([0.0, self.cav_y, self.Y], size)
+        self.zs = axis([0.0, self.cav_z, self.Z], size)
+
+    def grid(self):
+        """The node grid's lines: the cells' corners, and their edges' middles for 20-node elements."""
+        def refine(lines):
+            out = [lines[0]]
+            for a, b in zip(lines, lines[1:]):
+                out += [(a + b) / 2, b]
+            return out
+        return [refine(v) for v in (self.xs, self.ys, self.zs)]
+
+    def node(self, i, j, k):
+        """The node at (i, j, k) of the node grid (two steps per cell)."""
+        nx, ny = 2 * len(self.xs) - 1, 2 * len(self.ys) - 1
+        return 1 + i + nx * (j + ny * k)
+
+    def apex(self):
+        """The node at the middle of the cavity's roof."""
+        return self.node(0, 0, 2 * self.zs.index(self.cav_z))
+
+    def in_cavity(self, i, j, k):
+        """Whether the grid cell (i, j, k) lies in the cavity."""
+        return (self.xs[i + 1] <= self.cav_x + 1e-9 and self.ys[j + 1] <= self.cav_y + 1e-9
+                and self.zs[k + 1] <= self.cav_z + 1e-9)
+
+    def elements(self):
+        """(id, (i, j, k), node ids) of every solid cell: a 20-node brick in CalculiX's order."""
+        corners = [(0, 0, 0), (2, 0, 0), (2, 2, 0), (0, 2, 0), (0, 0, 2), (2, 0, 2), (2, 2, 2), (0, 2, 2)]
+        middles = [(1, 0, 0), (2, 1, 0), (1, 2, 0), (0, 1, 0), (1, 0, 2), (2, 1, 2), (1, 2, 2), (0, 1, 2),
+                   (0, 0, 1), (2, 0, 1), (2, 2, 1), (0, 2, 1)]
+        out, eid = [], 0
+        for k in range(len(self.zs) - 1):
+            for j in range(len(self.ys) - 1):
+                for i in range(len(self.xs) - 1):
+                    if self.in_cavity(i, j, k):
+                        continue
+                    eid += 1
+                    out.append((eid, (i, j, k), [self.node(2 * i + a, 2 * j + b, 2 * k + c)
+                                                  for a, b, c in corners + middles]))
+        return out
+
+    def pressure_faces(self, elements):
+        """(element, face) pairs that bound the cavity; a face is named by its corners: 6 is x-, 3 is y-, 1 is z-."""
+        faces = []
+        for eid, (i, j, k), _ in elements:
+            if i > 0 and self.in_cavity(i - 1, j, k):
+                faces.append((eid, 6))
+            if j > 0 and self.in_cavity(i, j - 1, k):
+                faces.append((eid, 3))
+            if k > 0 and self.in_cavity(i, j, k - 1):
+                faces.append((eid, 1))
+        return faces
+
+
+def write_sets(f, cell, coords, used):
+    """The node sets the boundary conditions name (see the module's comment)."""
+    def nset(name, pick):
+        members = [n for n in used if pick(*coords[n])]
+        f.write("*NSET,NSET=%s\n" % name)
+        for c in range(0, len(members), 12):
+            f.write(",".join(map(str, members[c:c + 12])) + "\n")
+    eps = 1e-9
+    wall = lambda x: abs(x - cell.X) < eps  # the rigid plane holds its own nodes
+    nset("MIDCAVITY", lambda x, y, z: abs(x) < eps)
+    nset("MIDWIDTH", lambda x, y, z: abs(y) < eps and not wall(x))
+    nset("LAYER", lambda x, y, z: abs(z) < eps and not wall(x))
+    nset("LAYERMID", lambda x, y, z: abs(z) < eps and abs(x) < eps)
+    nset("MIDWALL", lambda x, y, z: wall(x))
+
+
+def write_input(cell, shear_pa, bulk_ratio, top_pa, step_pa, path):
+    """CalculiX's input for the cell under a pressure ramp to top_pa in increments of at most step_pa; returns the
+    element count."""
+    elements = cell.elements()
+    used = sorted({n for _, _, ns in elements for n in ns})
+    gx, gy, gz = cell.grid()
+    coords = {cell.node(i, j, k): (x, y, z)
+              for k, z in enumerate(gz) for j, y in enumerate(gy) for i, x in enumerate(gx)}
+    ref, rot = len(coords) + 1, len(coords) + 2  # the rigid plane's reference and rotation nodes
+    mu = shear_pa * 1e-6
+    with open(path, "w") as f:
+        f.write("*NODE\n")
+        for n in used:
+            f.write("%d,%.9g,%.9g,%.9g\n" % ((n,) + coords[n]))
+        f.write("%d,%.9g,0,0\n%d,%.9g,0,0\n" % (ref, cell.X, rot, cell.X))
+        f.write("*ELEMENT,TYPE=C3D20R,ELSET=BODY\n")
+        for eid, _, ns in elements:  # at most 16 entries a line
+            f.write("%d,%s,\n%s\n" % (eid, ",".join(map(str, ns[:15])), ",".join(map(str, ns[15:]))))
+        write_sets(f, cell, coords, used)
+        f.write("*NSET,NSET=ROTNODE\n%d\n*NSET,NSET=APEX\n%d\n" % (rot, cell.apex()))
+        f.write("*MATERIAL,NAME=ELASTOMER\n*HYPERELASTIC,NEO HOOKE\n%.9g,%.9g\n" % (mu / 2, 2.0 / (bulk_ratio * mu)))
+        f.write("*SOLID SECTION,ELSET=BODY,MATERIAL=ELASTOMER\n")
+        f.write("*RIGID BODY,NSET=MIDWALL,REF NODE=%d,ROT NODE=%d\n" % (ref, rot))
+        f.write("*BOUNDARY\nMIDCAVITY,1,1\nMIDWIDTH,2,2\nLAYER,1,2\nLAYERMID,3,3\n")
+        f.write("%d,1,2\n%d,1,1\n%d,3,3\n" % (ref, rot, rot))  # the plane turns about y alone
+        # the pressure follows the deformed faces; the solver halves an increment that does not converge
+        f.write("*STEP,NLGEOM,INC=2000\n*STATIC\n%.9g,1.0,1e-6,%.9g\n*DLOAD\n" % (step_pa / top_pa, step_pa / top_pa))
+        for eid, face in cell.pressure_faces(elements):
+            f.write("%d,P%d,%.9g\n" % (eid, face, top_pa * 1e-6))
+        f.write("*NODE PRINT,NSET=ROTNODE\nU\n*NODE PRINT,NSET=APEX\nU\n*END STEP\n")
+    return len(elements)
+
+
+def read_table(dat_path):
+    """(load fraction, the rotation node's rotation about y in rad, the roof's rise in mm) of every converged
+    increment. The solver prints the rotation node's rotations as its "displacements"."""
+    rows, time, which = [], None, None
+    for line in open(dat_path):
+        m = re.search(r"displacements.*set (\w+).*time\s+([0-9.Ee+-]+)", line)
+        if m:
+            which, time = m.group(1), float(m.group(2))
+            continue
+        parts = line.split()
+        if which is None or len(parts) != 4:
+            continue
+        if which == "ROTNODE":
+            rows.append([time, float(parts[2]), math.nan])
+        elif rows and rows[-1][0] == time:
+            rows[-1][2] = float(parts[3])
+        which = None
+    return [tuple(r) for r in rows]
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    ap.add_argument("--config", required=True, help="a parameter file with a drawing: section and the material")
+    ap.add_argument("--size", type=float, default=0.5, help="element size, mm (along the finger, half of it)")
+    ap.add_argument("--bulk-ratio", type=float, default=100.0, help="bulk over shear modulus (near incompressible)")
+    ap.add_argument("--top-kpa", type=float, default=60.0, help="the ramp's end, kPa")
+    ap.add_argument("--step-kpa", type=float, default=0.6, help="the ramp's largest increment, kPa")
+    ap.add_argument("--keep", help="a directory to keep the solver's files in")
+    args = ap.parse_args()
+    with open(args.config) as f:
+        params = yaml.safe_load(f)
+    if "drawing" not in params:
+        sys.exit("fem_cell: %s has no drawing: section" % args.config)
+    cell = Cell(params["drawing"], args.size)
+    work = args.keep or tempfile.mkdtemp(prefix="fem_cell_")
+    os.makedirs(work, exist_ok=True)
+    count = write_input(cell, params["shear_modulus_pa"], args.bulk_ratio, args.top_kpa * 1e3,
+                        args.step_kpa * 1e3, os.path.join(work, "cell.inp"))
+    print("# %d elements, cell %.3g x %.3g x %.3g mm, mu %.4g Pa, bulk/shear %g; files in %s"
+          % (count, cell.X, cell.Y, cell.Z, params["shear_modulus_pa"], args.bulk_ratio, work), flush=True)
+    subprocess.run(["ccx", "-i", "cell"], cwd=work, stdout=open(os.path.join(work, "ccx.log"), "w"),
+                   env=dict(os.environ, OMP_NUM_THREADS=str(os.cpu_count() or 1)))
+    count_chambers = params["drawing"]["chamber_count"]
+    print("gauge_kpa,chamber_bend_deg,finger_bend_deg,roof_rise_mm")
+    for t, r, rise in read_table(os.path.join(work, "cell.dat")):
+        chamber = 2 * abs(r)
+        print("%.3f,%.4f,%.3f,%.4f" % (t * args.top_kpa, math.degrees(chamber), math.degrees(count_chambers * chamber),
+                                       rise))
+
+
+if __name__ == "__main__":
+    main()
