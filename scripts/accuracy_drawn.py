@@ -16,6 +16,11 @@ each way of getting its material, from the parameter file as shipped:
 
 --fits prints the second table instead: each actuator as drawn, calibrated on its own bends (pf.calibrate, the code
 of finger_calibrate, with leave-one-out), and the material of one Marchese segment carried to the other's drawing.
+
+--solid [--plot PNG] prints the third: the EPFL drawing as a solid by finite elements (the table
+data/fem_epfl_ecoflex30_c7_cell.csv that scripts/fem_cell.py wrote) beside the thick wall law, each with the coupon's
+modulus and with one modulus fitted on the ramp's bends up to 20 kPa, the rest predicted, as far as the solid
+reaches.
 """
 import math
 import pathlib
@@ -46,6 +51,13 @@ DRAWN = [
      None),
 ]
 MATERIAL = ("wall_law", "shear_modulus_pa", "wall_locking_jm")
+# --solid: the finite-element cell of the drawing (scripts/fem_cell.py with this file's coupon modulus), and the ramp's
+# first part, on which one modulus is fitted for the rest to be predicted
+SOLID = "data/fem_epfl_ecoflex30_c7_cell.csv"
+SOLID_CONFIG = "config/epfl_ecoflex30_c7_coupon.yaml"
+RAMP_START_PA = 10e3  # where the source zeroed the ramp's bends
+FIT_TOP_PA = 20e3
+SOLID_NAME = "the solid cell (fem_cell.py)"
 SYMBOL = {"shear_modulus_pa": "mu", "chamber_gap_m": "c", "wall_locking_jm": "J_m", "base_wall_share": "s0"}
 
 
@@ -77,13 +89,13 @@ def errors(model, rows, zero_pa=None):
     return angle - rows[:, 1]
 
 
-def summary(e):
+def summary(e, miss="with no usable shape"):
     good = e[~numpy.isnan(e)]
     if good.size == 0:
-        return "no usable row"
+        return "no usable row" if miss == "with no usable shape" else f"none: every row {miss}"
     text = f"{numpy.max(numpy.abs(good)) * DEG:.1f} / {math.sqrt(numpy.mean(good * good)) * DEG:.1f}"
     misses = int(numpy.isnan(e).sum())
-    return text + (f" ({misses} of {e.size} rows with no usable shape)" if misses else "")
+    return text + (f" ({misses} of {e.size} rows {miss})" if misses else "")
 
 
 def force_summary(model, blocked):
@@ -163,8 +175,89 @@ def fits_table():
               f"({fit['wall_law']}), on this drawing | {fit['wall_law']}; tip_angle | {summary(e)} | - |")
 
 
+def solid_bends(solid, coupon_mu_pa, mu_pa, pressures):
+    """The solid cell's bends at @p pressures with shear modulus @p mu_pa, zeroed at the ramp's start (rad); NaN
+    beyond its reach. Neo-Hookean, its bend at P with mu is its bend at P mu0/mu with its own mu0."""
+    k = coupon_mu_pa / mu_pa
+    scaled = numpy.asarray(pressures) * k
+    bend = numpy.interp(scaled, solid[:, 0], solid[:, 1])
+    bend[scaled > solid[-1, 0]] = math.nan
+    return bend - numpy.interp(RAMP_START_PA * k, solid[:, 0], solid[:, 1])
+
+
+def thick_bends(config, mu_pa, pressures):
+    """The wall law's bends along @p pressures as one path, zeroed at the ramp's start (rad); NaN with no shape."""
+    model = pf.FingerModel(config=str(ROOT / config), overrides={"shear_modulus_pa": mu_pa})
+    rows = numpy.column_stack([pressures, numpy.zeros(len(pressures))])
+    return errors(model, rows, zero_pa=RAMP_START_PA)
+
+
+def best_mu(bends, rows):
+    """The shear modulus (Pa, on a 0.1 kPa grid from 10 to 80 kPa) whose bends have the least rms error on @p rows."""
+    def rms(mu):
+        e = bends(mu, rows[:, 0]) - rows[:, 1]
+        return math.inf if numpy.isnan(e).any() else float(numpy.mean(e * e))
+    return min(numpy.arange(10e3, 80e3 + 1, 100.0), key=rms)
+
+
+def solid_table():
+    """The drawn cell as a solid (fem_cell.py) and as the thick wall law, each with the coupon's modulus and with a
+    modulus fitted on the ramp's first part, against the ramp: fitted rows and the rows after them."""
+    ramp = table("data/epfl_ecoflex30_c7_bending.csv")
+    solid = table(SOLID)
+    coupon = pf.FingerModel(config=str(ROOT / SOLID_CONFIG)).parameters["shear_modulus_pa"]
+    fit_rows = ramp[ramp[:, 0] <= FIT_TOP_PA]
+    curves = {SOLID_NAME: lambda mu, p: solid_bends(solid, coupon, mu, p),
+              "the thick wall law": lambda mu, p: thick_bends(SOLID_CONFIG, mu, p)}
+    fitted_mu = {name: best_mu(bends, fit_rows) for name, bends in curves.items()}
+    reach = solid[-1, 0] * min(fitted_mu.values()) / coupon
+    after = ramp[(ramp[:, 0] > FIT_TOP_PA) & (ramp[:, 0] <= reach)]
+    print(f"| model of the drawn actuator | mu (kPa) | bends {RAMP_START_PA / 1e3:.0f} to {FIT_TOP_PA / 1e3:.0f} kPa: "
+          f"largest / rms (deg) | {FIT_TOP_PA / 1e3:.0f} to {reach / 1e3:.1f} kPa: largest / rms (deg) |")
+    print("|---|---|---|---|")
+    for name, bends in curves.items():
+        for how, mu in (("the coupon's", coupon), (f"fitted on the bends to {FIT_TOP_PA / 1e3:.0f} kPa",
+                                                     fitted_mu[name])):
+            first = bends(mu, fit_rows[:, 0]) - fit_rows[:, 1]
+            rest = bends(mu, after[:, 0]) - after[:, 1]
+            miss = "beyond its solver's reach" if bends is curves[SOLID_NAME] else "with no usable shape"
+            print(f"| {name} | {mu / 1e3:.1f}, {how} | {summary(first, miss)} | {summary(rest, miss)} |")
+    return ramp, solid, coupon, curves, fitted_mu
+
+
+def plot_solid(path, ramp, solid, coupon, curves, fitted_mu):
+    """The ramp and the four curves of solid_table, whole (left) and before the snap (right)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    fig, axes = plt.subplots(1, 2, figsize=(11, 4.8))
+    p = numpy.linspace(RAMP_START_PA, ramp[-1, 0], 400)
+    for ax, top in zip(axes, (120, 14)):
+        ax.plot(ramp[:, 0] / 1e3, ramp[:, 1] * DEG, "k.", ms=4, label="measured ramp (zeroed at 10 kPa)")
+        for (name, bends), color, width in zip(curves.items(), ("C0", "C3"), (4, 1.5)):
+            for mu, style, how in ((coupon, "--", "the coupon's"), (fitted_mu[name], "-", "fitted to 20 kPa")):
+                ax.plot(p / 1e3, bends(mu, p) * DEG, style, color=color, lw=width, alpha=0.6 if width > 2 else 1,
+                        label=f"{name}, mu {mu / 1e3:.1f} kPa ({how})")
+        ax.axvline(FIT_TOP_PA / 1e3, color="0.6", lw=0.8)
+        ax.set(xlabel="gauge pressure (kPa)", ylabel="bend (deg)", ylim=(-2 * top / 120, top))
+    axes[1].set_xlim(RAMP_START_PA / 1e3, 31)
+    axes[0].set_title("the whole ramp")
+    axes[1].set_title("before the snap (the solid ends where its solver stops)", fontsize=10)
+    axes[0].legend(fontsize=7.5, loc="upper left")
+    fig.suptitle("EPFL Ecoflex 00-30 PneuNet, 7 chambers, as drawn: the solid cell and the thick wall law")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+
+
 def main():
-    fits_table() if "--fits" in sys.argv[1:] else snap_table()
+    if "--fits" in sys.argv[1:]:
+        fits_table()
+    elif "--solid" in sys.argv[1:]:
+        curves = solid_table()
+        if "--plot" in sys.argv[1:]:
+            plot_solid(sys.argv[sys.argv.index("--plot") + 1], *curves)
+    else:
+        snap_table()
 
 
 if __name__ == "__main__":

@@ -12,12 +12,20 @@ half the width, a neo-Hookean elastomer, under a pressure ramp.
   - the face z = 0 is the strain-limiting layer: it neither lengthens nor narrows (u_x = u_y = 0), and it curves
     freely (u_z free, but for the line under the cavity's middle);
   - the plane x = X halves the wall between cavities. The next cell is this one mirrored, so that plane stays a
-    plane: a rigid body that turns about its bottom edge, which may rise or fall with the layer. Half the chamber's bend is its rotation.
+    plane: a rigid body that turns about its bottom edge, which may rise or fall with the layer. Its rotation is
+    half the chamber's bend.
 
-The ramp runs until the solver cannot hold the pressure: under pressure control that is the limit point, the
-snap. Needs `apt-get install calculix-ccx` (not a build or test dependency).
+The rigid plane also keeps its own shape, a mild stiffening: the section through the middle of a wall carries no net
+force or moment (the cavities on either side are closed), so it is barely strained.
 
-  python3 scripts/fem_cell.py --config config/epfl_ecoflex30_c7_coupon.yaml [--size 0.5] [--bulk-ratio 100]
+The ramp runs to --top-kpa or until the solver stops converging. A limit point would stop it, and so does a mesh
+too distorted at the cavity's corners; a stop where the bend's slope is still finite is the mesh's. So this
+reference covers the bends before a snap, not the snap. The geometry and the material enter only as the drawing
+and P / mu (neo-Hookean: the bends at pressure P and modulus mu are those at P k and mu k).
+
+Needs `apt-get install calculix-ccx` (not a build or test dependency; its tests, test/test_fem_cell.py, need none).
+
+  python3 scripts/fem_cell.py --config config/epfl_ecoflex30_c7_coupon.yaml [--size 1] [--top-kpa 30] > table.csv
 """
 import argparse
 import math
@@ -26,6 +34,7 @@ import re
 import subprocess
 import sys
 import tempfile
+import time
 
 import yaml
 
@@ -183,12 +192,38 @@ def read_table(dat_path):
     return [tuple(r) for r in rows]
 
 
+def header(args, cell, count, params, seconds, rows):
+    """The comment lines that say where the table comes from, as the data files' do."""
+    ended = rows[-1][0] * args.top_kpa if rows else 0.0
+    stop = ("the solver stopped converging at %.3g kPa (at a limit point, or where the mesh\n# is too distorted:"
+            " fem_cell.py says how to tell)" % ended if ended < args.top_kpa * (1 - 1e-9) else "it reached its end")
+    return "\n".join([
+        "# Written by: python3 scripts/fem_cell.py %s" % " ".join(sys.argv[1:]),
+        "# One half-pitch cell of the drawing's row of cavities by finite elements (CalculiX %s, %d 20-node bricks,"
+        % (ccx_version(), count),
+        "# cell %.3g x %.3g x %.3g mm), neo-Hookean, mu %.6g Pa, bulk/shear %g; %.0f s on %s." % (
+            cell.X, cell.Y, cell.Z, params["shear_modulus_pa"], args.bulk_ratio, seconds, machine()),
+        "# The pressure ramp: %s." % stop,
+        "# bend_angle_rad is the finger's, chamber_count times the chamber's; roof_rise_m, the cavity roof's middle."])
+
+
+def ccx_version():
+    out = subprocess.run(["ccx", "-v"], capture_output=True, text=True).stdout
+    m = re.search(r"Version\s+(\S+)", out)
+    return m.group(1) if m else "?"
+
+
+def machine():
+    cpu = next((line.split(":", 1)[1].strip() for line in open("/proc/cpuinfo") if line.startswith("model name")), "?")
+    return "%d x %s" % (os.cpu_count() or 1, cpu)
+
+
 def main():
     ap = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     ap.add_argument("--config", required=True, help="a parameter file with a drawing: section and the material")
-    ap.add_argument("--size", type=float, default=0.5, help="element size, mm (along the finger, half of it)")
+    ap.add_argument("--size", type=float, default=1.0, help="element size, mm (along the finger, half of it)")
     ap.add_argument("--bulk-ratio", type=float, default=100.0, help="bulk over shear modulus (near incompressible)")
-    ap.add_argument("--top-kpa", type=float, default=60.0, help="the ramp's end, kPa")
+    ap.add_argument("--top-kpa", type=float, default=30.0, help="the ramp's end, kPa")
     ap.add_argument("--step-kpa", type=float, default=0.6, help="the ramp's largest increment, kPa")
     ap.add_argument("--keep", help="a directory to keep the solver's files in")
     args = ap.parse_args()
@@ -201,16 +236,17 @@ def main():
     os.makedirs(work, exist_ok=True)
     count = write_input(cell, params["shear_modulus_pa"], args.bulk_ratio, args.top_kpa * 1e3,
                         args.step_kpa * 1e3, os.path.join(work, "cell.inp"))
-    print("# %d elements, cell %.3g x %.3g x %.3g mm, mu %.4g Pa, bulk/shear %g; files in %s"
-          % (count, cell.X, cell.Y, cell.Z, params["shear_modulus_pa"], args.bulk_ratio, work), flush=True)
-    subprocess.run(["ccx", "-i", "cell"], cwd=work, stdout=open(os.path.join(work, "ccx.log"), "w"),
-                   env=dict(os.environ, OMP_NUM_THREADS=str(os.cpu_count() or 1)))
-    count_chambers = params["drawing"]["chamber_count"]
-    print("gauge_kpa,chamber_bend_deg,finger_bend_deg,roof_rise_mm")
-    for t, r, rise in read_table(os.path.join(work, "cell.dat")):
-        chamber = 2 * abs(r)
-        print("%.3f,%.4f,%.3f,%.4f" % (t * args.top_kpa, math.degrees(chamber), math.degrees(count_chambers * chamber),
-                                       rise))
+    start = time.monotonic()
+    with open(os.path.join(work, "ccx.log"), "w") as log:
+        threads = str(os.cpu_count() or 1)
+        subprocess.run(["ccx", "-i", "cell"], cwd=work, stdout=log, env=dict(os.environ, OMP_NUM_THREADS=threads))
+    rows = sorted(dict((t, (t, r, rise)) for t, r, rise in read_table(os.path.join(work, "cell.dat"))).values())
+    print(header(args, cell, count, params, time.monotonic() - start, rows))
+    print("gauge_pa,bend_angle_rad,chamber_bend_rad,roof_rise_m")
+    for t, r, rise in [(0.0, 0.0, 0.0)] + rows:
+        chamber = 2 * abs(r)  # the cell is half a chamber
+        print("%.6g,%.6g,%.6g,%.6g" % (t * args.top_kpa * 1e3, params["drawing"]["chamber_count"] * chamber, chamber,
+                                       rise * 1e-3))
 
 
 if __name__ == "__main__":

@@ -36,7 +36,7 @@ def test_the_cell_is_half_a_pitch_of_the_body_less_a_quarter_of_the_cavity(mesh)
     for _, _, nodes in elements:
         (x0, x1), (y0, y1), (z0, z1) = box(coords, nodes)
         volume += (x1 - x0) * (y1 - y0) * (z1 - z0)
-    # half of the 2 mm cavity and half of the 7 mm wall; half of the 8 + 2 x 7 mm body; the cavity's 8 mm and the roof's 7
+    # half the 2 mm cavity and half the 7 mm wall; half the 8 + 2 x 7 mm body; the 8 mm cavity and the 7 mm roof
     assert (cell.X, cell.Y, cell.Z) == pytest.approx((4.5, 11.0, 15.0), abs=1e-12)
     assert volume == pytest.approx(4.5 * 11 * 15 - 1 * 4 * 8, rel=1e-12)
 
@@ -51,7 +51,8 @@ def test_the_pressure_lies_on_the_cavitys_three_walls(mesh):
         plane = {0: 1.0, 1: 4.0, 2: 8.0}[normal_axis]  # the cavity's quarter: x < 1, y < 4, z < 8 mm
         assert all(p[normal_axis] == pytest.approx(plane, abs=1e-12) for p in pts)
         a, b = [ax for ax in range(3) if ax != normal_axis]
-        area[face] += (max(p[a] for p in pts) - min(p[a] for p in pts)) * (max(p[b] for p in pts) - min(p[b] for p in pts))
+        span = lambda ax: max(p[ax] for p in pts) - min(p[ax] for p in pts)
+        area[face] += span(a) * span(b)
     assert area[6] == pytest.approx(4 * 8, rel=1e-12)  # the face of the wall between cavities
     assert area[3] == pytest.approx(1 * 8, rel=1e-12)  # the side wall
     assert area[1] == pytest.approx(1 * 4, rel=1e-12)  # the roof
