@@ -20,7 +20,7 @@ of finger_calibrate, with leave-one-out), and the material of one Marchese segme
 --solid [--plot PNG] prints the third: the EPFL drawing as a solid by finite elements (the table
 data/fem_epfl_ecoflex30_c7_cell.csv that scripts/fem_cell.py wrote) beside the thick wall law, each with the coupon's
 modulus and with one modulus fitted on the ramp's bends up to 20 kPa, the rest predicted, as far as the solid
-reaches.
+reaches. --walls prints the fourth: the same drawing with other walls between cavities, solid against law.
 """
 import math
 import pathlib
@@ -58,6 +58,11 @@ SOLID_CONFIG = "config/epfl_ecoflex30_c7_coupon.yaml"
 RAMP_START_PA = 10e3  # where the source zeroed the ramp's bends
 FIT_TOP_PA = 20e3
 SOLID_NAME = "the solid cell (fem_cell.py)"
+# --walls: the same cell with other walls between cavities (fem_cell.py --set drawing/wall_thickness_m=...), compared
+# with the law up to a pressure every one of them reaches
+WALLS = [(3, "data/fem_epfl_ecoflex30_c7_wall_3mm.csv"), (5, "data/fem_epfl_ecoflex30_c7_wall_5mm.csv"), (7, SOLID),
+         (10, "data/fem_epfl_ecoflex30_c7_wall_10mm.csv")]
+WALLS_TOP_PA = 12e3
 SYMBOL = {"shear_modulus_pa": "mu", "chamber_gap_m": "c", "wall_locking_jm": "J_m", "base_wall_share": "s0"}
 
 
@@ -225,6 +230,40 @@ def solid_table():
     return ramp, solid, coupon, curves, fitted_mu
 
 
+def modulus_factor(solid, wall_m):
+    """The factor on the coupon's modulus at which the thick wall law, on the drawing with @p wall_m, bends as the
+    solid cell does at its pressures (least squares; a 0.2 % grid from 0.5 to 5), and the rms left (rad)."""
+    model = pf.FingerModel(config=str(ROOT / SOLID_CONFIG), overrides={"drawing/wall_thickness_m": wall_m})
+    coupon = model.parameters["shear_modulus_pa"]
+
+    def rms(k):
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            law = pf.FingerModel(config=str(ROOT / SOLID_CONFIG),
+                                 overrides={"drawing/wall_thickness_m": wall_m, "shear_modulus_pa": coupon * k})
+            bend = law.path().evaluate(solid[:, 0], outputs=["tip_angle_rad"])["tip_angle_rad"]
+        return math.sqrt(numpy.mean((bend - solid[:, 1]) ** 2))
+    factor = min(numpy.exp(numpy.linspace(math.log(0.5), math.log(5.0), 1152)), key=rms)
+    return factor, rms(factor), model
+
+
+def walls_table():
+    """The thick wall law against the solid cell for the EPFL drawing with other walls between cavities, each with
+    the coupon's modulus: the factor on the modulus that makes the law bend as the solid does."""
+    print(f"| wall between cavities (mm) | solid's bend at {WALLS_TOP_PA / 1e3:.0f} kPa (deg) | the law's (deg) "
+          "| the law bends as the solid at (x the modulus) | rms left (deg) | the law's limit point (kPa) |")
+    print("|---|---|---|---|---|---|")
+    for wall_mm, path in WALLS:
+        solid = table(path)
+        solid = solid[(solid[:, 0] > 0) & (solid[:, 0] <= WALLS_TOP_PA)]
+        factor, left, model = modulus_factor(solid, wall_mm * 1e-3)
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            law = model.path().evaluate([WALLS_TOP_PA], outputs=["tip_angle_rad"])["tip_angle_rad"][0]
+        print(f"| {wall_mm:g} | {solid[-1, 1] * DEG:.2f} | {law * DEG:.2f} | {factor:.2f} | {left * DEG:.3f} "
+              f"| {model.limit_gauge_pa / 1e3:.1f} |")
+
+
 def plot_solid(path, ramp, solid, coupon, curves, fitted_mu):
     """The ramp and the four curves of solid_table, whole (left) and before the snap (right)."""
     import matplotlib
@@ -252,6 +291,8 @@ def plot_solid(path, ramp, solid, coupon, curves, fitted_mu):
 def main():
     if "--fits" in sys.argv[1:]:
         fits_table()
+    elif "--walls" in sys.argv[1:]:
+        walls_table()
     elif "--solid" in sys.argv[1:]:
         curves = solid_table()
         if "--plot" in sys.argv[1:]:

@@ -39,6 +39,11 @@ import time
 import yaml
 
 
+# the drawing's keys this cell meshes (docs/DRAWING.md); chamber_count only scales the finger's bend
+DRAWING_KEYS = ("chamber_count", "cavity_height_m", "cavity_width_m", "cavity_length_m", "wall_thickness_m",
+                "roof_thickness_m", "body_width_m")
+
+
 def axis(cuts, size):
     """Grid lines through every cut, no farther apart than size."""
     lines = [cuts[0]]
@@ -225,12 +230,20 @@ def main():
     ap.add_argument("--bulk-ratio", type=float, default=100.0, help="bulk over shear modulus (near incompressible)")
     ap.add_argument("--top-kpa", type=float, default=30.0, help="the ramp's end, kPa")
     ap.add_argument("--step-kpa", type=float, default=0.6, help="the ramp's largest increment, kPa")
+    ap.add_argument("--set", action="append", default=[], metavar="drawing/KEY=VALUE",
+                    help="change a key of the drawing, as finger_model --set does (m)")
     ap.add_argument("--keep", help="a directory to keep the solver's files in")
     args = ap.parse_args()
     with open(args.config) as f:
         params = yaml.safe_load(f)
     if "drawing" not in params:
         sys.exit("fem_cell: %s has no drawing: section" % args.config)
+    for item in args.set:
+        key, _, value = item.partition("=")
+        if not key.startswith("drawing/") or key[8:] not in DRAWING_KEYS or not value:
+            sys.exit("fem_cell: --set %s: expected drawing/KEY=VALUE with KEY one of %s"
+                     % (item, ", ".join(DRAWING_KEYS)))
+        params["drawing"][key[8:]] = float(value)
     cell = Cell(params["drawing"], args.size)
     work = args.keep or tempfile.mkdtemp(prefix="fem_cell_")
     os.makedirs(work, exist_ok=True)

@@ -93,3 +93,11 @@ def test_the_rotation_and_the_roofs_rise_are_read_from_the_solvers_table(tmp_pat
 def test_the_apex_is_the_middle_of_the_roof(mesh):
     cell, _, coords = mesh
     assert coords[cell.apex()] == pytest.approx((0.0, 0.0, 8.0), abs=1e-12)
+
+
+def test_a_change_it_cannot_make_is_refused_by_name(monkeypatch):
+    config = os.path.join(os.path.dirname(__file__), "..", "config", "epfl_ecoflex30_c7_coupon.yaml")
+    for bad in ("wall_thickness_m=0.003", "drawing/floor=1", "drawing/wall_thickness_m="):
+        monkeypatch.setattr(sys, "argv", ["fem_cell.py", "--config", config, "--set", bad])
+        with pytest.raises(SystemExit, match="expected drawing/KEY=VALUE with KEY one of chamber_count"):
+            fem_cell.main()
