@@ -247,12 +247,24 @@ def modulus_factor(solid, wall_m):
     return factor, rms(factor), model
 
 
+def beam_bend(model, gauge_pa):
+    """One chamber's bend (rad) by small-strain beam theory: the pressure's moment on the cavity's face, P h w (h/2),
+    over the pitch Z, against the section through the cavity about the strain-limiting layer, E = 3 mu (the floor on
+    the layer, as fem_cell.py meshes it)."""
+    p, drawing = model.parameters, model.parameters["drawing"]
+    h, w, top = p["chamber_height_m"], p["chamber_width_m"], p["wall_critical_height_m"]
+    width = drawing.get("body_width_m", drawing["cavity_width_m"] + 2 * drawing["wall_thickness_m"])
+    second_moment = (width * top ** 3 - w * h ** 3) / 3
+    return gauge_pa * h * w * (h / 2) * p["segment_length_m"] / (3 * p["shear_modulus_pa"] * second_moment)
+
+
 def walls_table():
     """The thick wall law against the solid cell for the EPFL drawing with other walls between cavities, each with
     the coupon's modulus: the factor on the modulus that makes the law bend as the solid does."""
     print(f"| wall between cavities (mm) | solid's bend at {WALLS_TOP_PA / 1e3:.0f} kPa (deg) | the law's (deg) "
-          "| the law bends as the solid at (x the modulus) | rms left (deg) | the law's limit point (kPa) |")
-    print("|---|---|---|---|---|---|")
+          "| the law bends as the solid at (x the modulus) | rms left (deg) | the law's limit point (kPa) "
+          "| the solid's first step over the beam's |")
+    print("|---|---|---|---|---|---|---|")
     for wall_mm, path in WALLS:
         solid = table(path)
         solid = solid[(solid[:, 0] > 0) & (solid[:, 0] <= WALLS_TOP_PA)]
@@ -260,8 +272,9 @@ def walls_table():
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
             law = model.path().evaluate([WALLS_TOP_PA], outputs=["tip_angle_rad"])["tip_angle_rad"][0]
+        first = table(path, "chamber_bend_rad")[1]  # the ramp's first step, near rest
         print(f"| {wall_mm:g} | {solid[-1, 1] * DEG:.2f} | {law * DEG:.2f} | {factor:.2f} | {left * DEG:.3f} "
-              f"| {model.limit_gauge_pa / 1e3:.1f} |")
+              f"| {model.limit_gauge_pa / 1e3:.1f} | {first[1] / beam_bend(model, first[0]):.2f} |")
 
 
 def plot_solid(path, ramp, solid, coupon, curves, fitted_mu):
