@@ -19,7 +19,7 @@ The rigid plane also keeps its own shape, a mild stiffening: the section through
 force or moment (the cavities on either side are closed), so it is barely strained.
 
 The ramp runs to --top-kpa or until the solver stops converging. A limit point would stop it, and so does a mesh
-too distorted at the cavity's corners; a stop where the bend's slope is still finite is the mesh's. So this
+too distorted at the cavity's edges; a stop where the bend's slope is still finite is not a limit point. So this
 reference covers the bends before a snap, not the snap. The geometry and the material enter only as the drawing
 and P / mu (neo-Hookean: the bends at pressure P and modulus mu are those at P k and mu k).
 
@@ -49,7 +49,7 @@ def axis(cuts, size):
     lines = [cuts[0]]
     for a, b in zip(cuts, cuts[1:]):
         n = max(1, math.ceil((b - a) / size - 1e-9))
-        lines += [a + (b - a) * (i + 1) / n for i in range(n)]
+        lines += [a + (b - a) * (i + 1) / n for i in range(n - 1)] + [b]  # each cut exactly
     return lines
 
 
