@@ -31,6 +31,9 @@ import numpy
 
 import pneumatic_finger.core as pf
 
+sys.path.insert(0, str(pathlib.Path(__file__).resolve().parent))
+import fem_cell  # noqa: E402  (the solid cell's geometry, for the beam beside it)
+
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DEG = 180.0 / math.pi
 CASES = [
@@ -225,7 +228,7 @@ def solid_table():
                                                      fitted_mu[name])):
             first = bends(mu, fit_rows[:, 0]) - fit_rows[:, 1]
             rest = bends(mu, after[:, 0]) - after[:, 1]
-            miss = "beyond its solver's reach" if bends is curves[SOLID_NAME] else "with no usable shape"
+            miss = "beyond its solver's reach" if name == SOLID_NAME else "with no usable shape"
             print(f"| {name} | {mu / 1e3:.1f}, {how} | {summary(first, miss)} | {summary(rest, miss)} |")
     return ramp, solid, coupon, curves, fitted_mu
 
@@ -251,9 +254,9 @@ def beam_bend(model, gauge_pa):
     """One chamber's bend (rad) by small-strain beam theory: the pressure's moment on the cavity's face, P h w (h/2),
     over the pitch Z, against the section through the cavity about the strain-limiting layer, E = 3 mu (the floor on
     the layer, as fem_cell.py meshes it)."""
-    p, drawing = model.parameters, model.parameters["drawing"]
+    p = model.parameters
     h, w, top = p["chamber_height_m"], p["chamber_width_m"], p["wall_critical_height_m"]
-    width = drawing.get("body_width_m", drawing["cavity_width_m"] + 2 * drawing["wall_thickness_m"])
+    width = 2 * fem_cell.Cell(p["drawing"], 1.0).Y * 1e-3  # the body's width as the cell has it (mm to m)
     second_moment = (width * top ** 3 - w * h ** 3) / 3
     return gauge_pa * h * w * (h / 2) * p["segment_length_m"] / (3 * p["shear_modulus_pa"] * second_moment)
 
