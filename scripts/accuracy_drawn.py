@@ -60,7 +60,10 @@ SOLID = "data/fem_epfl_ecoflex30_c7_cell.csv"
 SOLID_CONFIG = "config/epfl_ecoflex30_c7_coupon.yaml"
 RAMP_START_PA = 10e3  # where the source zeroed the ramp's bends
 FIT_TOP_PA = 20e3
+STEEP_FROM_PA = 30e3  # where the ramp's bend starts to steepen toward its snap (1.6 deg/kPa, 4.6 at 33 kPa)
 SOLID_NAME = "the solid cell (fem_cell.py)"
+# the same cell with a thicker roof (fem_cell.py --set drawing/roof_thickness_m=0.010), to 12 kPa
+ROOF, ROOF_M, ROOF_AT_PA = "data/fem_epfl_ecoflex30_c7_roof_10mm.csv", 0.010, 12e3
 # --walls: the same cell with other walls between cavities (fem_cell.py --set drawing/wall_thickness_m=...), compared
 # with the law up to a pressure every one of them reaches
 WALLS = [(3, "data/fem_epfl_ecoflex30_c7_wall_3mm.csv"), (5, "data/fem_epfl_ecoflex30_c7_wall_5mm.csv"), (7, SOLID),
@@ -210,7 +213,8 @@ def best_mu(bends, rows):
 
 def solid_table():
     """The drawn cell as a solid (fem_cell.py) and as the thick wall law, each with the coupon's modulus and with a
-    modulus fitted on the ramp's first part, against the ramp: fitted rows and the rows after them."""
+    modulus fitted on the ramp's first part, against the ramp: the fitted rows, the rows after them up to the measured
+    snap, and those above it as far as the solid reaches; and where each has its limit point."""
     ramp = table("data/epfl_ecoflex30_c7_bending.csv")
     solid = table(SOLID)
     coupon = pf.FingerModel(config=str(ROOT / SOLID_CONFIG)).parameters["shear_modulus_pa"]
@@ -218,19 +222,70 @@ def solid_table():
     curves = {SOLID_NAME: lambda mu, p: solid_bends(solid, coupon, mu, p),
               "the thick wall law": lambda mu, p: thick_bends(SOLID_CONFIG, mu, p)}
     fitted_mu = {name: best_mu(bends, fit_rows) for name, bends in curves.items()}
+    snap = measured_snap(ramp)
     reach = solid[-1, 0] * min(fitted_mu.values()) / coupon
-    after = ramp[(ramp[:, 0] > FIT_TOP_PA) & (ramp[:, 0] <= reach)]
+    p = ramp[:, 0]
+    parts = (ramp[(p > FIT_TOP_PA) & (p <= STEEP_FROM_PA)], ramp[(p > STEEP_FROM_PA) & (p < snap)],
+             ramp[(p > snap) & (p <= reach)])
     print(f"| model of the drawn actuator | mu (kPa) | bends {RAMP_START_PA / 1e3:.0f} to {FIT_TOP_PA / 1e3:.0f} kPa: "
-          f"largest / rms (deg) | {FIT_TOP_PA / 1e3:.0f} to {reach / 1e3:.1f} kPa: largest / rms (deg) |")
-    print("|---|---|---|---|")
+          f"largest / rms (deg) | {FIT_TOP_PA / 1e3:.0f} to {STEEP_FROM_PA / 1e3:.0f} kPa | {STEEP_FROM_PA / 1e3:.0f} "
+          f"kPa to the snap ({snap / 1e3:.2f}) | the snap to {reach / 1e3:.1f} kPa | limit point (kPa) |")
+    print("|---|---|---|---|---|---|---|")
     for name, bends in curves.items():
         for how, mu in (("the coupon's", coupon), (f"fitted on the bends to {FIT_TOP_PA / 1e3:.0f} kPa",
                                                      fitted_mu[name])):
-            first = bends(mu, fit_rows[:, 0]) - fit_rows[:, 1]
-            rest = bends(mu, after[:, 0]) - after[:, 1]
             miss = "beyond its solver's reach" if name == SOLID_NAME else "with no usable shape"
-            print(f"| {name} | {mu / 1e3:.1f}, {how} | {summary(first, miss)} | {summary(rest, miss)} |")
+            cells = [summary(bends(mu, rows[:, 0]) - rows[:, 1], miss) for rows in (fit_rows,) + parts]
+            print(f"| {name} | {mu / 1e3:.1f}, {how} | {' | '.join(cells)} | {limit_point(name, solid, coupon, mu)} |")
+    print()
+    print(solid_sentences(ramp, solid, coupon, fitted_mu[SOLID_NAME]))
+    print()
+    print(law_sentences(ramp, solid, coupon, curves, fitted_mu))
     return ramp, solid, coupon, curves, fitted_mu
+
+
+def solid_sentences(ramp, solid, coupon_mu_pa, fitted_mu_pa):
+    """What the solid says in numbers: how much more it bends than the actuator with the coupon's modulus, to its
+    solver's stop; the factor on the modulus; and how much less a thicker roof makes it bend, against that factor."""
+    top = solid[-1, 0]
+    measured = numpy.interp(top, ramp[:, 0], ramp[:, 1]) - numpy.interp(RAMP_START_PA, ramp[:, 0], ramp[:, 1])
+    ratio = solid_bends(solid, coupon_mu_pa, coupon_mu_pa, numpy.array([top]))[0] / measured
+    roof = table(ROOF)
+    at = numpy.array([ROOF_AT_PA])
+    thicker = numpy.interp(ROOF_AT_PA, roof[:, 0], roof[:, 1]) / numpy.interp(ROOF_AT_PA, solid[:, 0], solid[:, 1])
+    stiffer = numpy.interp(ROOF_AT_PA * coupon_mu_pa / fitted_mu_pa, solid[:, 0], solid[:, 1]) / numpy.interp(
+        at, solid[:, 0], solid[:, 1])[0]
+    return (f"With the coupon's modulus the solid bends {ratio:.2f} times as much as the actuator from "
+            f"{RAMP_START_PA / 1e3:.0f} to {top / 1e3:.1f} kPa (its solver's stop). The fitted modulus is "
+            f"{fitted_mu_pa / coupon_mu_pa:.2f} times the coupon's: a law exact for this solid, given the coupon, puts "
+            f"every pressure at {coupon_mu_pa / fitted_mu_pa:.2f} of the actuator's. A roof of "
+            f"{ROOF_M * 1e3:.0f} mm instead of the default (`{ROOF}`) makes the solid bend {100 * (1 - thicker):.0f} % "
+            f"less at {ROOF_AT_PA / 1e3:.0f} kPa; the fitted modulus, {100 * (1 - stiffer):.0f} % less.")
+
+
+def law_sentences(ramp, solid, coupon_mu_pa, curves, fitted_mu):
+    """The thick wall law against the solid, each at its fitted modulus: how far apart their bends are, as far as the
+    solid reaches, and the law's limit point at the solid's modulus and at its own."""
+    law, solid_mu = fitted_mu["the thick wall law"], fitted_mu[SOLID_NAME]
+    p = numpy.linspace(RAMP_START_PA, solid[-1, 0] * solid_mu / coupon_mu_pa, 200)
+    apart = numpy.nanmax(numpy.abs(curves["the thick wall law"](law, p) - curves[SOLID_NAME](solid_mu, p)))
+    snap = measured_snap(ramp)
+
+    def limit(mu):
+        model = pf.FingerModel(config=str(ROOT / SOLID_CONFIG), overrides={"shear_modulus_pa": mu})
+        return f"{model.limit_gauge_pa / 1e3:.1f} kPa ({100 * (model.limit_gauge_pa / snap - 1):+.0f} %)"
+    return (f"Fitted the same way, the thick wall law takes {law / 1e3:.1f} kPa, {law / solid_mu:.2f} times the "
+            f"solid's, and its bends then stay within {apart * DEG:.2f}° of the solid's as far as the solid reaches "
+            f"({p[-1] / 1e3:.1f} kPa). Its limit point is {limit(solid_mu)} at the solid's modulus and {limit(law)} "
+            "at its own.")
+
+
+def limit_point(name, solid, coupon_mu_pa, mu_pa):
+    """The thick wall law's limit point at @p mu_pa (kPa), or, for the solid cell, how far its ramp shows none."""
+    if name != SOLID_NAME:
+        model = pf.FingerModel(config=str(ROOT / SOLID_CONFIG), overrides={"shear_modulus_pa": mu_pa})
+        return f"{model.limit_gauge_pa / 1e3:.1f}"
+    return f"none below {solid[-1, 0] * mu_pa / coupon_mu_pa / 1e3:.1f}, its solver's stop"
 
 
 def modulus_factor(solid, wall_m):
@@ -287,7 +342,7 @@ def plot_solid(path, ramp, solid, coupon, curves, fitted_mu):
     import matplotlib.pyplot as plt
     fig, axes = plt.subplots(1, 2, figsize=(11, 4.8))
     p = numpy.linspace(RAMP_START_PA, ramp[-1, 0], 400)
-    for ax, top in zip(axes, (120, 14)):
+    for ax, top in zip(axes, (120, 30)):
         ax.plot(ramp[:, 0] / 1e3, ramp[:, 1] * DEG, "k.", ms=4, label="measured ramp (zeroed at 10 kPa)")
         for (name, bends), color, width in zip(curves.items(), ("C0", "C3"), (4, 1.5)):
             for mu, style, how in ((coupon, "--", "the coupon's"), (fitted_mu[name], "-", "fitted to 20 kPa")):
@@ -295,9 +350,9 @@ def plot_solid(path, ramp, solid, coupon, curves, fitted_mu):
                         label=f"{name}, mu {mu / 1e3:.1f} kPa ({how})")
         ax.axvline(FIT_TOP_PA / 1e3, color="0.6", lw=0.8)
         ax.set(xlabel="gauge pressure (kPa)", ylabel="bend (deg)", ylim=(-2 * top / 120, top))
-    axes[1].set_xlim(RAMP_START_PA / 1e3, 31)
+    axes[1].set_xlim(RAMP_START_PA / 1e3, measured_snap(ramp) / 1e3)
     axes[0].set_title("the whole ramp")
-    axes[1].set_title("before the snap (the solid ends where its solver stops)", fontsize=10)
+    axes[1].set_title("up to the measured snap (each solid curve ends where its solver stops)", fontsize=10)
     axes[0].legend(fontsize=7.5, loc="upper left")
     fig.suptitle("EPFL Ecoflex 00-30 PneuNet, 7 chambers, as drawn: the solid cell and the thick wall law")
     fig.tight_layout()

@@ -20,7 +20,8 @@ force or moment (the cavities on either side are closed), so it is barely strain
 
 The ramp runs to --top-kpa or until the solver stops converging. A limit point would stop it, and so does a mesh
 too distorted at the cavity's edges; a stop where the bend's slope is still finite is not a limit point. So this
-reference covers the bends before a snap, not the snap. The geometry and the material enter only as the drawing
+reference says where the solid has no snap (below its stop), not what a snap does. The bricks integrate fully by
+default: the reduced ones (--element reduced) stall near P / mu = 0.9, where the full ones go on smoothly. The geometry and the material enter only as the drawing
 and P / mu (neo-Hookean: the bends at pressure P and modulus mu are those at P k and mu k).
 
 Needs `apt-get install calculix-ccx` (not a build or test dependency; its tests, test/test_fem_cell.py, need none).
@@ -40,6 +41,9 @@ import yaml
 
 
 # the drawing's keys this cell meshes (docs/DRAWING.md); chamber_count only scales the finger's bend
+# the 20-node bricks: full integration (27 points), or reduced (8 points), which bends about 2 % more on this cell
+# but stalls near P / mu = 0.9, where the full one goes on smoothly: that stall is the reduced brick's, not the solid's
+ELEMENTS = {"full": "C3D20", "reduced": "C3D20R"}
 DRAWING_KEYS = ("chamber_count", "cavity_height_m", "cavity_width_m", "cavity_length_m", "wall_thickness_m",
                 "roof_thickness_m", "body_width_m")
 
@@ -144,9 +148,9 @@ def write_sets(f, cell, coords, used):
     nset("MIDWALL", lambda x, y, z: wall(x))
 
 
-def write_input(cell, shear_pa, bulk_ratio, top_pa, step_pa, path):
-    """CalculiX's input for the cell under a pressure ramp to top_pa in increments of at most step_pa; returns the
-    element count."""
+def write_input(cell, shear_pa, bulk_ratio, top_pa, step_pa, path, element="C3D20"):
+    """CalculiX's input for the cell under a pressure ramp to top_pa in increments of at most step_pa, in 20-node
+    bricks of the given type (ELEMENTS); returns the element count."""
     elements = cell.elements()
     used = sorted({n for _, _, ns in elements for n in ns})
     gx, gy, gz = cell.grid()
@@ -159,7 +163,7 @@ def write_input(cell, shear_pa, bulk_ratio, top_pa, step_pa, path):
         for n in used:
             f.write("%d,%.9g,%.9g,%.9g\n" % ((n,) + coords[n]))
         f.write("%d,%.9g,0,0\n%d,%.9g,0,0\n" % (ref, cell.X, rot, cell.X))
-        f.write("*ELEMENT,TYPE=C3D20R,ELSET=BODY\n")
+        f.write("*ELEMENT,TYPE=%s,ELSET=BODY\n" % element)
         for eid, _, ns in elements:  # at most 16 entries a line
             f.write("%d,%s,\n%s\n" % (eid, ",".join(map(str, ns[:15])), ",".join(map(str, ns[15:]))))
         write_sets(f, cell, coords, used)
@@ -203,13 +207,24 @@ def header(args, cell, count, params, seconds, rows):
     stop = ("the solver stopped converging at %.3g kPa (at a limit point, or where the mesh\n# is too distorted:"
             " fem_cell.py says how to tell)" % ended if ended < args.top_kpa * (1 - 1e-9) else "it reached its end")
     return "\n".join([
-        "# Written by: python3 scripts/fem_cell.py %s" % " ".join(sys.argv[1:]),
-        "# One half-pitch cell of the drawing's row of cavities by finite elements (CalculiX %s, %d 20-node bricks,"
-        % (ccx_version(), count),
+        "# Written by: python3 scripts/fem_cell.py %s" % " ".join(command_arguments(sys.argv[1:])),
+        "# One half-pitch cell of the drawing's row of cavities by finite elements (CalculiX %s, %d 20-node bricks %s,"
+        % (ccx_version(), count, ELEMENTS[args.element]),
         "# cell %.3g x %.3g x %.3g mm), neo-Hookean, mu %.6g Pa, bulk/shear %g; %.0f s on %s." % (
             cell.X, cell.Y, cell.Z, params["shear_modulus_pa"], args.bulk_ratio, seconds, machine()),
         "# The pressure ramp: %s." % stop,
         "# bend_angle_rad is the finger's, chamber_count times the chamber's; roof_rise_m, the cavity roof's middle."])
+
+
+def command_arguments(argv):
+    """The command's arguments less --keep DIR, which changes where the solver's files go, not the table."""
+    out, skip = [], False
+    for arg in argv:
+        if skip or arg == "--keep" or arg.startswith("--keep="):
+            skip = arg == "--keep"
+            continue
+        out.append(arg)
+    return out
 
 
 def ccx_version():
@@ -230,6 +245,8 @@ def main():
     ap.add_argument("--bulk-ratio", type=float, default=100.0, help="bulk over shear modulus (near incompressible)")
     ap.add_argument("--top-kpa", type=float, default=30.0, help="the ramp's end, kPa")
     ap.add_argument("--step-kpa", type=float, default=0.6, help="the ramp's largest increment, kPa")
+    ap.add_argument("--element", choices=sorted(ELEMENTS), default="full",
+                    help="the bricks' integration (full: C3D20; reduced: C3D20R, which stalls sooner)")
     ap.add_argument("--set", action="append", default=[], metavar="drawing/KEY=VALUE",
                     help="change a key of the drawing, as finger_model --set does (m)")
     ap.add_argument("--keep", help="a directory to keep the solver's files in")
@@ -248,7 +265,7 @@ def main():
     work = args.keep or tempfile.mkdtemp(prefix="fem_cell_")
     os.makedirs(work, exist_ok=True)
     count = write_input(cell, params["shear_modulus_pa"], args.bulk_ratio, args.top_kpa * 1e3,
-                        args.step_kpa * 1e3, os.path.join(work, "cell.inp"))
+                        args.step_kpa * 1e3, os.path.join(work, "cell.inp"), ELEMENTS[args.element])
     start = time.monotonic()
     with open(os.path.join(work, "ccx.log"), "w") as log:
         threads = str(os.cpu_count() or 1)

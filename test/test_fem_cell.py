@@ -101,3 +101,21 @@ def test_a_change_it_cannot_make_is_refused_by_name(monkeypatch):
         monkeypatch.setattr(sys, "argv", ["fem_cell.py", "--config", config, "--set", bad])
         with pytest.raises(SystemExit, match="expected drawing/KEY=VALUE with KEY one of chamber_count"):
             fem_cell.main()
+
+
+@pytest.mark.parametrize("integration, element", [("full", "C3D20"), ("reduced", "C3D20R")])
+def test_the_input_names_the_bricks_integration_and_lists_each_brick_once(tmp_path, mesh, integration, element):
+    cell, elements, _ = mesh
+    path = tmp_path / "cell.inp"
+    count = fem_cell.write_input(cell, 20.8e3, 100.0, 30e3, 600.0, str(path), fem_cell.ELEMENTS[integration])
+    text = path.read_text()
+    assert count == len(elements)
+    assert text.count("*ELEMENT,TYPE=%s,ELSET=BODY\n" % element) == 1
+    assert text.count("*ELEMENT") == 1
+    body = text.split("*ELEMENT,TYPE=%s,ELSET=BODY\n" % element)[1].split("*")[0].splitlines()
+    assert [int(line.split(",")[0]) for line in body[::2]] == [eid for eid, _, _ in elements]
+
+
+def test_the_tables_command_leaves_out_where_the_solvers_files_went():
+    argv = ["--config", "c.yaml", "--keep", "/tmp/k", "--top-kpa", "40", "--keep=/tmp/j", "--size", "1"]
+    assert fem_cell.command_arguments(argv) == ["--config", "c.yaml", "--top-kpa", "40", "--size", "1"]
