@@ -21,6 +21,8 @@ of finger_calibrate, with leave-one-out), and the material of one Marchese segme
 data/fem_epfl_ecoflex30_c7_cell.csv that scripts/fem_cell.py wrote) beside the thick wall law, each with the coupon's
 modulus and with one modulus fitted on the ramp's bends up to 20 kPa, the rest predicted, as far as the solid
 reaches. --walls prints the fourth: the same drawing with other walls between cavities, solid against law.
+--skins prints the fifth: the solid with other roofs and side walls, each with a modulus fitted as --solid fits it,
+against the ramp up to and across the measured snap.
 """
 import math
 import pathlib
@@ -62,6 +64,11 @@ RAMP_START_PA = 10e3  # where the source zeroed the ramp's bends
 FIT_TOP_PA = 20e3
 STEEP_FROM_PA = 30e3  # where the ramp's bend starts to steepen toward its snap (1.6 deg/kPa, 4.6 at 33 kPa)
 SOLID_NAME = "the solid cell (fem_cell.py)"
+# --skins: the same cell with the skins around the cavities changed (fem_cell.py --set drawing/...)
+SKINS = [("as drawn (roof and side walls 7 mm, the defaults)", SOLID),
+         ("roof 3 mm", "data/fem_epfl_ecoflex30_c7_roof_3mm.csv"),
+         ("roof 10 mm", "data/fem_epfl_ecoflex30_c7_roof_10mm.csv"),
+         ("side walls 2 mm (body 12 mm wide)", "data/fem_epfl_ecoflex30_c7_body_12mm.csv")]
 # the same cell with a thicker roof (fem_cell.py --set drawing/roof_thickness_m=0.010), to 12 kPa
 ROOF, ROOF_M, ROOF_AT_PA = "data/fem_epfl_ecoflex30_c7_roof_10mm.csv", 0.010, 12e3
 # --walls: the same cell with other walls between cavities (fem_cell.py --set drawing/wall_thickness_m=...), compared
@@ -288,6 +295,33 @@ def limit_point(name, solid, coupon_mu_pa, mu_pa):
     return f"none below {solid[-1, 0] * mu_pa / coupon_mu_pa / 1e3:.1f}, its solver's stop"
 
 
+def skins_table():
+    """The solid cell with the drawing's skins changed (the roof, the side walls through the body's width), each
+    with the modulus that gives it the ramp's bends to 20 kPa: what it then predicts before and across the snap."""
+    ramp = table("data/epfl_ecoflex30_c7_bending.csv")
+    coupon = pf.FingerModel(config=str(ROOT / SOLID_CONFIG)).parameters["shear_modulus_pa"]
+    snap = measured_snap(ramp)
+    p = ramp[:, 0]
+    before = ramp[(p > FIT_TOP_PA) & (p <= STEEP_FROM_PA)]
+    print(f"| the drawing's skins | mu fitted on the bends to {FIT_TOP_PA / 1e3:.0f} kPa (x the coupon's) "
+          f"| bends {FIT_TOP_PA / 1e3:.0f} to {STEEP_FROM_PA / 1e3:.0f} kPa: largest / rms (deg) "
+          f"| bend at {snap / 1e3 - 0.25:.1f} kPa: solid / measured (deg) "
+          f"| the solid's stop at that modulus (kPa) |")
+    print("|---|---|---|---|---|")
+    at = numpy.array([snap - 250.0])
+    for name, path in SKINS:
+        solid = table(path)
+        bends = lambda mu, q, solid=solid: solid_bends(solid, coupon, mu, q)  # noqa: E731
+        mu = best_mu(bends, ramp[ramp[:, 0] <= FIT_TOP_PA])
+        measured = numpy.interp(at, ramp[:, 0], ramp[:, 1])[0]
+        there = bends(mu, at)[0]
+        there = "beyond its solver's reach" if math.isnan(there) else f"{there * DEG:.1f}"
+        miss = "beyond its solver's reach"
+        first = summary(bends(mu, before[:, 0]) - before[:, 1], miss)
+        print(f"| {name} | {mu / 1e3:.1f} ({mu / coupon:.2f}) | {first} | {there} / {measured * DEG:.1f} "
+              f"| {solid[-1, 0] * mu / coupon / 1e3:.1f} |")
+
+
 def modulus_factor(solid, wall_m):
     """The factor on the coupon's modulus at which the thick wall law, on the drawing with @p wall_m, bends as the
     solid cell does at its pressures (least squares; a 0.2 % grid from 0.5 to 5), and the rms left (rad)."""
@@ -362,6 +396,8 @@ def plot_solid(path, ramp, solid, coupon, curves, fitted_mu):
 def main():
     if "--fits" in sys.argv[1:]:
         fits_table()
+    elif "--skins" in sys.argv[1:]:
+        skins_table()
     elif "--walls" in sys.argv[1:]:
         walls_table()
     elif "--solid" in sys.argv[1:]:

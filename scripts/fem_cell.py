@@ -21,8 +21,9 @@ force or moment (the cavities on either side are closed), so it is barely strain
 The ramp runs to --top-kpa or until the solver stops converging. A limit point would stop it, and so does a mesh
 too distorted at the cavity's edges; a stop where the bend's slope is still finite is not a limit point. So this
 reference says where the solid has no snap (below its stop), not what a snap does. The bricks integrate fully by
-default: the reduced ones (--element reduced) stall near P / mu = 0.9, where the full ones go on smoothly. The geometry and the material enter only as the drawing
-and P / mu (neo-Hookean: the bends at pressure P and modulus mu are those at P k and mu k).
+default: the reduced ones (--element reduced) stall near P / mu = 0.9, where the full ones go on smoothly. The
+geometry and the material enter only as the drawing and P / mu (neo-Hookean: the bends at pressure P and modulus mu
+are those at P k and mu k).
 
 Needs `apt-get install calculix-ccx` (not a build or test dependency; its tests, test/test_fem_cell.py, need none).
 
