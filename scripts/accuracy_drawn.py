@@ -69,7 +69,7 @@ SKINS = [("as drawn (roof and side walls 7 mm, the defaults)", SOLID),
          ("roof 3 mm", "data/fem_epfl_ecoflex30_c7_roof_3mm.csv"),
          ("roof 10 mm", "data/fem_epfl_ecoflex30_c7_roof_10mm.csv"),
          ("side walls 2 mm (body 12 mm wide)", "data/fem_epfl_ecoflex30_c7_body_12mm.csv")]
-# the same cell with a thicker roof (fem_cell.py --set drawing/roof_thickness_m=0.010), to 12 kPa
+# the same cell with a thicker roof (fem_cell.py --set drawing/roof_thickness_m=0.010), and where the two are compared
 ROOF, ROOF_M, ROOF_AT_PA = "data/fem_epfl_ecoflex30_c7_roof_10mm.csv", 0.010, 12e3
 # --walls: the same cell with other walls between cavities (fem_cell.py --set drawing/wall_thickness_m=...), compared
 # with the law up to a pressure every one of them reaches
@@ -258,10 +258,9 @@ def solid_sentences(ramp, solid, coupon_mu_pa, fitted_mu_pa):
     measured = numpy.interp(top, ramp[:, 0], ramp[:, 1]) - numpy.interp(RAMP_START_PA, ramp[:, 0], ramp[:, 1])
     ratio = solid_bends(solid, coupon_mu_pa, coupon_mu_pa, numpy.array([top]))[0] / measured
     roof = table(ROOF)
-    at = numpy.array([ROOF_AT_PA])
-    thicker = numpy.interp(ROOF_AT_PA, roof[:, 0], roof[:, 1]) / numpy.interp(ROOF_AT_PA, solid[:, 0], solid[:, 1])
-    stiffer = numpy.interp(ROOF_AT_PA * coupon_mu_pa / fitted_mu_pa, solid[:, 0], solid[:, 1]) / numpy.interp(
-        at, solid[:, 0], solid[:, 1])[0]
+    drawn = numpy.interp(ROOF_AT_PA, solid[:, 0], solid[:, 1])
+    thicker = numpy.interp(ROOF_AT_PA, roof[:, 0], roof[:, 1]) / drawn
+    stiffer = numpy.interp(ROOF_AT_PA * coupon_mu_pa / fitted_mu_pa, solid[:, 0], solid[:, 1]) / drawn
     return (f"With the coupon's modulus the solid bends {ratio:.2f} times as much as the actuator from "
             f"{RAMP_START_PA / 1e3:.0f} to {top / 1e3:.1f} kPa (its solver's stop). The fitted modulus is "
             f"{fitted_mu_pa / coupon_mu_pa:.2f} times the coupon's: a law exact for this solid, given the coupon, puts "
@@ -279,19 +278,22 @@ def law_sentences(ramp, solid, coupon_mu_pa, curves, fitted_mu):
     snap = measured_snap(ramp)
 
     def limit(mu):
-        model = pf.FingerModel(config=str(ROOT / SOLID_CONFIG), overrides={"shear_modulus_pa": mu})
-        return f"{model.limit_gauge_pa / 1e3:.1f} kPa ({100 * (model.limit_gauge_pa / snap - 1):+.0f} %)"
+        return f"{law_limit_pa(mu) / 1e3:.1f} kPa ({100 * (law_limit_pa(mu) / snap - 1):+.0f} %)"
     return (f"Fitted the same way, the thick wall law takes {law / 1e3:.1f} kPa, {law / solid_mu:.2f} times the "
             f"solid's, and its bends then stay within {apart * DEG:.2f}° of the solid's as far as the solid reaches "
             f"({p[-1] / 1e3:.1f} kPa). Its limit point is {limit(solid_mu)} at the solid's modulus and {limit(law)} "
             "at its own.")
 
 
+def law_limit_pa(mu_pa):
+    """The thick wall law's limit point on the drawing of --solid with shear modulus @p mu_pa (Pa)."""
+    return pf.FingerModel(config=str(ROOT / SOLID_CONFIG), overrides={"shear_modulus_pa": mu_pa}).limit_gauge_pa
+
+
 def limit_point(name, solid, coupon_mu_pa, mu_pa):
     """The thick wall law's limit point at @p mu_pa (kPa), or, for the solid cell, how far its ramp shows none."""
     if name != SOLID_NAME:
-        model = pf.FingerModel(config=str(ROOT / SOLID_CONFIG), overrides={"shear_modulus_pa": mu_pa})
-        return f"{model.limit_gauge_pa / 1e3:.1f}"
+        return f"{law_limit_pa(mu_pa) / 1e3:.1f}"
     return f"none below {solid[-1, 0] * mu_pa / coupon_mu_pa / 1e3:.1f}, its solver's stop"
 
 
@@ -303,12 +305,11 @@ def skins_table():
     snap = measured_snap(ramp)
     p = ramp[:, 0]
     before = ramp[(p > FIT_TOP_PA) & (p <= STEEP_FROM_PA)]
+    at = ramp[p < snap][-1:, 0]  # the ramp's last row below the snap
     print(f"| the drawing's skins | mu fitted on the bends to {FIT_TOP_PA / 1e3:.0f} kPa (x the coupon's) "
           f"| bends {FIT_TOP_PA / 1e3:.0f} to {STEEP_FROM_PA / 1e3:.0f} kPa: largest / rms (deg) "
-          f"| bend at {snap / 1e3 - 0.25:.1f} kPa: solid / measured (deg) "
-          f"| the solid's stop at that modulus (kPa) |")
+          f"| bend at {at[0] / 1e3:.1f} kPa: solid / measured (deg) | the solid's stop at that modulus (kPa) |")
     print("|---|---|---|---|---|")
-    at = numpy.array([snap - 250.0])
     for name, path in SKINS:
         solid = table(path)
         bends = lambda mu, q, solid=solid: solid_bends(solid, coupon, mu, q)  # noqa: E731
