@@ -62,7 +62,7 @@ SOLID = "data/fem_epfl_ecoflex30_c7_cell.csv"
 SOLID_CONFIG = "config/epfl_ecoflex30_c7_coupon.yaml"
 RAMP_START_PA = 10e3  # where the source zeroed the ramp's bends
 FIT_TOP_PA = 20e3
-STEEP_FROM_PA = 30e3  # where the ramp's bend starts to steepen toward its snap (1.6 deg/kPa, 4.6 at 33 kPa)
+STEEP_FROM_PA = 30e3  # about where the ramp's bend starts to steepen toward its snap (a round figure, read off it)
 SOLID_NAME = "the solid cell (fem_cell.py)"
 # --skins: the same cell with the skins around the cavities changed (fem_cell.py --set drawing/...)
 SKINS = [("as drawn (roof and side walls 7 mm, the defaults)", SOLID),
