@@ -5,14 +5,15 @@ usage: python3 scripts/accuracy_drawn.py      (the package's Python API on PYTHO
 Prints a Markdown table, the same on every run (update_docs.py puts it into docs/ACCURACY.md). For each actuator and
 each way of getting its material, from the parameter file as shipped:
 - the snap: the model's limit point (limit_gauge_pa) against the measured one, the pressure midway across the largest
-  rise of the bend between two neighbouring rows of the ramp;
+  rise of the bend between two neighbouring rows of the ramp; a model whose wall rises steeply without folding (no
+  limit point) has its snap read as the measured one is, from its own bends along the same ramp;
 - the bends along the ramp, evaluated as one path in order (the model follows its snap), below and above the measured
   snap: the largest and the rms error in degrees. The ramp's bends were zeroed where it starts, so the model's are
   taken from the same pressure. Rows where the model gives no shape (beyond its limit point) or meets itself count as
   misses, and are named;
 - the stepwise loading's bends (not zeroed), the same way;
-- the blocked tip force along the blocked test's pressures: where it jumps (the model's: its limit point) and the
-  largest error below and above the measured jump.
+- the blocked tip force along the blocked test's pressures: where it jumps (the model's: its limit point, or its own
+  largest rise) and the largest error below and above the measured jump.
 
 --fits prints the second table instead: each actuator as drawn, calibrated on its own bends (pf.calibrate, the code
 of finger_calibrate, with leave-one-out), and the material of one Marchese segment carried to the other's drawing.
@@ -41,19 +42,22 @@ DEG = 180.0 / math.pi
 CASES = [
     ("EPFL Ecoflex 00-30, 7 chambers", "zero-shot: drawing + coupon", "config/epfl_ecoflex30_c7_coupon.yaml",
      "data/epfl_ecoflex30_c7_bending.csv", "data/epfl_ecoflex30_c7_bending_stepwise.csv"),
-    ("EPFL Ecoflex 00-30, 7 chambers", "fitted on its ramp (mu, c; gauge_at_tip_angle)",
+    ("EPFL Ecoflex 00-30, 7 chambers", "fitted on its ramp (mu, J_m, kappa, c; tip_angle)",
      "config/epfl_ecoflex30_c7.yaml", "data/epfl_ecoflex30_c7_bending.csv",
      "data/epfl_ecoflex30_c7_bending_stepwise.csv"),
 ]
 BLOCKED = "data/epfl_ecoflex30_c7_blocked_force.csv"
-# name, drawing, bends, wall law (None: --wall-law auto)
+# name, drawing, bends, wall law ("auto": --wall-law auto; None: the file's), and the calibration's other arguments
+# (none: the tool's defaults). The EPFL actuator's are the shipped fit's (config/epfl_ecoflex30_c7.yaml's command,
+# docs/ACCURACY.md).
+EPFL_FIT = {"keys": "shear_modulus_pa,wall_locking_jm,wall_bulge_share,chamber_gap_m", "compare": "tip_angle"}
 DRAWN = [
     ("Marchese ribbed, 13 channels", "config/marchese2015_ribbed_drawing.yaml", "data/marchese2015_ribbed_bending.csv",
-     "auto"),
+     "auto", {}),
     ("Marchese cylindrical, 1 channel", "config/marchese2015_cylindrical_drawing.yaml",
-     "data/marchese2015_cylindrical_bending.csv", "auto"),
+     "data/marchese2015_cylindrical_bending.csv", "auto", {}),
     ("EPFL Ecoflex 00-30, 7 chambers", "config/epfl_ecoflex30_c7_coupon.yaml", "data/epfl_ecoflex30_c7_bending.csv",
-     None),
+     None, EPFL_FIT),
 ]
 MATERIAL = ("wall_law", "shear_modulus_pa", "wall_locking_jm")
 # --solid: the finite-element cell of the drawing (scripts/fem_cell.py with this file's coupon modulus), and the ramp's
@@ -76,7 +80,8 @@ ROOF, ROOF_M, ROOF_AT_PA = "data/fem_epfl_ecoflex30_c7_roof_10mm.csv", 0.010, 12
 WALLS = [(3, "data/fem_epfl_ecoflex30_c7_wall_3mm.csv"), (5, "data/fem_epfl_ecoflex30_c7_wall_5mm.csv"), (7, SOLID),
          (10, "data/fem_epfl_ecoflex30_c7_wall_10mm.csv")]
 WALLS_TOP_PA = 12e3
-SYMBOL = {"shear_modulus_pa": "mu", "chamber_gap_m": "c", "wall_locking_jm": "J_m", "base_wall_share": "s0"}
+SYMBOL = {"shear_modulus_pa": "mu", "chamber_gap_m": "c", "wall_locking_jm": "J_m", "base_wall_share": "s0",
+          "wall_bulge_share": "kappa"}
 
 
 def table(path, value="bend_angle_rad"):
@@ -116,14 +121,21 @@ def summary(e, miss="with no usable shape"):
     return text + (f" ({misses} of {e.size} rows {miss})" if misses else "")
 
 
+def model_snap(model, pressures, values):
+    """The model's snap: its limit point where its wall has one, else read as the measured one is, midway across the
+    largest rise of @p values (the model's, at @p pressures) between neighbouring pressures (Pa)."""
+    limit = model.limit_gauge_pa
+    return limit if math.isfinite(limit) else measured_snap(numpy.column_stack((pressures, values)))
+
+
 def force_summary(model, blocked):
     """Where the blocked force jumps, model / measured (kPa), and the largest error below and above the measured jump."""
     jump = measured_snap(blocked)
     force = model.blocked_tip_force(blocked[:, 0])
     e = force - blocked[:, 1]
     below, above = blocked[:, 0] < jump, blocked[:, 0] > jump
-    return (f"{model.limit_gauge_pa / 1e3:.1f} / {jump / 1e3:.1f}; {numpy.max(numpy.abs(e[below])):.2f} / "
-            f"{numpy.max(numpy.abs(e[above])):.2f} N")
+    return (f"{model_snap(model, blocked[:, 0], force) / 1e3:.1f} / {jump / 1e3:.1f}; "
+            f"{numpy.max(numpy.abs(e[below])):.2f} / {numpy.max(numpy.abs(e[above])):.2f} N")
 
 
 def snap_table():
@@ -135,12 +147,52 @@ def snap_table():
         model = pf.FingerModel(config=str(ROOT / config))
         ramp, steps = table(ramp_file), table(step_file)
         snap = measured_snap(ramp)
-        limit = model.limit_gauge_pa
         e = errors(model, ramp, zero_pa=ramp[0, 0])
+        limit = model_snap(model, ramp[:, 0], e + ramp[:, 1])
         below, above = ramp[:, 0] < snap, ramp[:, 0] > snap
         print(f"| {name} | {how} | {limit / 1e3:.1f} / {snap / 1e3:.2f} ({100 * (limit / snap - 1):+.0f} %) "
               f"| {summary(e[below])} | {summary(e[above])} | {summary(errors(model, steps))} "
               f"| {force_summary(model, table(BLOCKED, 'blocked_force_n'))} |")
+    print()
+    print(fitted_sentences(CASES[-1][2]))
+    print()
+    print(ramp_against_steps(*CASES[-1][2:]))
+
+
+def fitted_sentences(config):
+    """The fitted file's wall: the lock J_m at which it would fold (a limit point), and where its walls first touch."""
+    model = pf.FingerModel(config=str(ROOT / config))
+    jm = model.parameters["wall_locking_jm"]
+
+    def folds(x):
+        return math.isfinite(pf.FingerModel(config=str(ROOT / config), overrides={"wall_locking_jm": x}).limit_gauge_pa)
+
+    lo, hi = jm, 2.0 * jm
+    while not folds(hi):
+        lo, hi = hi, 2.0 * hi
+    while hi - lo > 1e-3 * hi:
+        mid = 0.5 * (lo + hi)
+        lo, hi = (lo, mid) if folds(mid) else (mid, hi)
+    return (f"The fitted wall's lock is J_m = {jm:.1f}; from J_m = {hi:.1f} on, the same wall would fold (a limit point)"
+            f". Its limit_gauge_pa is {model.limit_gauge_pa}, and its walls first touch at "
+            f"{model.contact_gauge_pa / 1e3:.1f} kPa.")
+
+
+def ramp_against_steps(config, ramp_file, step_file):
+    """A sentence: the two loadings' own disagreement. The ramp, zeroed where it starts, is put on the stepwise
+    loading's absolute scale by the fitted model's bend there, and read at the stepwise pressures by interpolation."""
+    ramp, steps = table(ramp_file), table(step_file)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        start = float(pf.FingerModel(config=str(ROOT / config)).evaluate(ramp[0, 0])["tip_angle_rad"])
+    inside = steps[:, 0] <= ramp[-1, 0]
+    gap = numpy.interp(steps[inside, 0], ramp[:, 0], ramp[:, 1]) + start - steps[inside, 1]
+    k = int(numpy.argmax(numpy.abs(gap)))
+    return (f"The two loadings differ from each other: the ramp, read at the stepwise pressures (and put on their "
+            f"absolute scale by the fitted model's {start * DEG:.1f} deg at {ramp[0, 0] / 1e3:.0f} kPa, where the ramp "
+            f"was zeroed), bends up to {abs(gap[k]) * DEG:.1f} deg {'more' if gap[k] > 0 else 'less'} than the "
+            f"stepwise loading (at {steps[inside][k, 0] / 1e3:.0f} kPa; {math.sqrt(numpy.mean(gap * gap)) * DEG:.1f} deg "
+            f"rms).")
 
 
 def bend_errors(residuals):
@@ -157,10 +209,10 @@ def fitted_value(key, value):
     return f"{SYMBOL.get(key, key)} {value:.3g}"
 
 
-def fitted(config, data, law):
+def fitted(config, data, law, how):
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return pf.calibrate(data=str(ROOT / data), config=str(ROOT / config), wall_law=law)
+        return pf.calibrate(data=str(ROOT / data), config=str(ROOT / config), wall_law=law, **how)
 
 
 def transferred(fit, config, data):
@@ -176,8 +228,8 @@ def fits_table():
     print("| actuator, as drawn | how | wall law; compared | bends: largest / rms (deg) | leave-one-out: largest / rms (deg) |")
     print("|---|---|---|---|---|")
     results = {}
-    for name, config, data, law in DRAWN:
-        fit = fitted(config, data, law)
+    for name, config, data, law, how in DRAWN:
+        fit = fitted(config, data, law, how)
         model = pf.FingerModel(config=str(ROOT / config))
         fit["material"] = {key: model.parameters[key] for key in MATERIAL}
         results[name] = fit
@@ -186,7 +238,7 @@ def fits_table():
         print(f"| {name} | {how} | {fit['wall_law']}; {fit['compared']} | {summary(bend_errors(fit['residuals']))} "
               f"| {summary(bend_errors(fit['leave_one_out']))} |")
     for source, target in ((0, 1), (1, 0)):
-        name, config, data, _ = DRAWN[target]
+        name, config, data, _, _ = DRAWN[target]
         fit = results[DRAWN[source][0]]
         e = transferred(fit, config, data)
         print(f"| {name} | the material fitted on the {DRAWN[source][0].split(',')[0].split()[-1]} segment "

@@ -256,7 +256,8 @@ void expectMembraneBatchMatchesEvaluate(const pf::FingerParameters& params) {
 TEST(Batch, TheMembranesPacksAnswerTheBitsOfEvaluateAlongThePath) {
   // Gent with a far branch (J_m = 50), Neo-Hookean (no far branch: past the limit nothing), Gent without a limit
   // point (J_m = 6: P rises to the lock), a finger whose walls touch early (a narrow gap); the thick wall, Gent and
-  // Neo-Hookean, and bent by its inner face (the packs' own bulge, not the outer face's lane by lane).
+  // Neo-Hookean, and bent by its inner face (the packs' own bulge, not the outer face's lane by lane); a share of the
+  // bulge below 1 (wall_bulge_share), on a thick wall near its fold and on a thin one.
   struct Finger {
     double jm;
     const char* extra;
@@ -266,7 +267,9 @@ TEST(Batch, TheMembranesPacksAnswerTheBitsOfEvaluateAlongThePath) {
                           Finger{6, "", pf::WallLaw::kMembrane},
                           Finger{50, "chamber_gap_m: 0.0002\n", pf::WallLaw::kMembrane},
                           Finger{50, "", pf::WallLaw::kThick}, Finger{0, "", pf::WallLaw::kThick},
-                          Finger{50, "wall_flexion_face: inner\n", pf::WallLaw::kThick}}) {
+                          Finger{50, "wall_flexion_face: inner\n", pf::WallLaw::kThick},
+                          Finger{26, "wall_bulge_share: 0.2\n", pf::WallLaw::kThick},
+                          Finger{6, "wall_bulge_share: 0.3\n", pf::WallLaw::kMembrane}}) {
     SCOPED_TRACE(std::string(pf::wallLawName(f.law)) + " J_m " + std::to_string(f.jm) + " " + f.extra);
     pf::FingerParameters params = pf_test::membraneFinger(f.jm, f.extra);
     params.wall_law = f.law;

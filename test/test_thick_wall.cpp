@@ -226,3 +226,45 @@ TEST(ThickWall, TheInnerFaceBendsTheFingerByTheChambersOwnGrowth) {
   pf::FingerWorkspace by_volume(inner);
   EXPECT_LT(std::fabs(inner.evaluateVolume(inner.suppliedVolumeAt(p), by_volume).gauge_pa - p) / p, 1e-12);
 }
+
+// wall_bulge_share kappa: the wall's law is the same (the same stretch, to the bit), but only kappa times the bending
+// face's bulge tilts the wall, and Wang's half angle follows from that (the quad reference's). A thick Gent wall
+// (J_m = 26, B/A = 2) bent by its outer face, at pressures below 0.75 mu; the contact pressure is where kappa times that
+// face's bulge crosses the gap; the volume input returns its pressure. A share outside (0, 1] is refused by name.
+TEST(ThickWall, ABulgeShareTiltsTheWallByThatShareOfItsBulge) {
+  const double kappa = 0.2;
+  const pf::FingerParameters whole_params = thickFinger(kHeight / 2, 26.0);
+  const pf::FingerParameters share_params = thickFinger(kHeight / 2, 26.0, "wall_bulge_share: 0.2\n");
+  EXPECT_EQ(share_params.wall_bulge_share, kappa);
+  const pf::FingerModel whole(whole_params), share(share_params);
+  pf::FingerWorkspace whole_ws(whole), share_ws(share);
+  EXPECT_EQ(share.limitGaugePa(), whole.limitGaugePa());
+  for (double p : {2e3, 6e3, 10e3, 14e3}) {
+    const pf::FingerState& s = share.evaluate(p, share_ws);
+    ASSERT_EQ(s.status, pf::EvaluationStatus::kOk) << p;
+    const double delta = s.stretch[0] - 1.0;
+    EXPECT_EQ(delta, whole.evaluate(p, whole_ws).stretch[0] - 1.0) << p;
+    EXPECT_LT(std::fabs(referenceGauge(delta, kHeight / 2, 26.0) - p) / p, 1e-12) << p;
+    const quad la = 1 + quad(delta), lb = cbrtq(1 + (la * la * la - 1) / 8);  // B/A = 2
+    const double h = static_cast<double>(quad(kappa) * quad(kHeight) * (lb - 1));
+    EXPECT_NEAR(s.bulge_m[0], h, 1e-18) << p;
+    const double theta =
+        reference::halfAngleForBulge(h, share_params.chamber_gap_m[0], share_params.wall_critical_height_m[0]);
+    EXPECT_NEAR(s.half_angle_rad[0], theta, 1e-12) << p;
+  }
+  // The walls touch where kappa B (lambda_b - 1) = c: lambda_b from the gap, lambda_a from the wall's volume.
+  const quad lb = 1 + quad(share_params.chamber_gap_m[0]) / (quad(kappa) * quad(kHeight));
+  const double touch_delta = static_cast<double>(cbrtq(1 + 8 * (lb * lb * lb - 1)) - 1);
+  EXPECT_LT(std::fabs(referenceGauge(touch_delta, kHeight / 2, 26.0) / share.contactGaugePa() - 1.0), 1e-12);
+  const double p = 12e3;
+  pf::FingerWorkspace by_volume(share);
+  EXPECT_LT(std::fabs(share.evaluateVolume(share.suppliedVolumeAt(p), by_volume).gauge_pa - p) / p, 1e-12);
+  for (const char* bad : {"wall_bulge_share: 0\n", "wall_bulge_share: 1.5\n"}) {
+    try {
+      thickFinger(kHeight / 2, 26.0, bad);
+      ADD_FAILURE() << bad << " was accepted";
+    } catch (const pf::ParameterError& e) {
+      EXPECT_NE(std::string(e.what()).find("'wall_bulge_share'"), std::string::npos) << e.what();
+    }
+  }
+}

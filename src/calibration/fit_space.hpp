@@ -20,7 +20,7 @@ struct SearchAxis {
 
 inline constexpr const char* kFittable[] = {"shear_modulus_pa", "chamber_gap_m",   "wall_critical_height_m",
                                             "chamber_height_m", "base_wall_share", "wall_locking_jm",
-                                            "dead_volume_m3",   "chamber_growth_ratio"};
+                                            "dead_volume_m3",   "chamber_growth_ratio", "wall_bulge_share"};
 
 inline SearchAxis axisFor(const std::string& key, const FingerParameters& base) {
   // mu: the paper law's effective modulus over [1e5, 1e12] Pa; the membrane's and the thick wall's is a silicone's,
@@ -35,16 +35,20 @@ inline SearchAxis axisFor(const std::string& key, const FingerParameters& base) 
   if (key == "dead_volume_m3") return {key, false, 0.0, 1e-3};
   // r_V logarithmically over [1, 100]: from the walls' growth alone to a skin that takes a hundred times it.
   if (key == "chamber_growth_ratio") return {key, true, 0.0, 2.0};
+  // kappa logarithmically over [1e-3, 1]: from a wall that tilts by a thousandth of the sphere's bulge to all of it.
+  if (key == "wall_bulge_share") return {key, true, -3.0, 0.0};
   const double l = *std::max_element(base.chamber_height_m.begin(), base.chamber_height_m.end());
   if (key == "chamber_gap_m") return {key, false, 0.0, l};
   return {key, false, 1e-3 * l, (key == "chamber_height_m" ? 4.0 : 1.0) * l};
 }
 
 inline void setKey(FingerParameters& p, const std::string& key, double value) {
-  if (key == "base_wall_share" || key == "wall_locking_jm" || key == "dead_volume_m3" || key == "chamber_growth_ratio") {
+  if (key == "base_wall_share" || key == "wall_locking_jm" || key == "dead_volume_m3" || key == "chamber_growth_ratio" ||
+      key == "wall_bulge_share") {
     (key == "base_wall_share"        ? p.base_wall_share
      : key == "wall_locking_jm"      ? p.wall_locking_jm
      : key == "dead_volume_m3"       ? p.dead_volume_m3
+     : key == "wall_bulge_share"     ? p.wall_bulge_share
                                      : p.chamber_growth_ratio) = value;
     return;
   }

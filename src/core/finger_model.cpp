@@ -91,7 +91,7 @@ void FingerModel::addGroup(ChamberGroup g) {
   if (membrane_) {
     g.membrane = membraneWall(g.shear_modulus_pa, g.wall_thickness_m, g.chamber_height_m, parameters_.wall_locking_jm,
                               parameters_.wall_law == WallLaw::kThick,
-                              parameters_.wall_flexion_face == FlexionFace::kOuter);
+                              parameters_.wall_flexion_face == FlexionFace::kOuter, parameters_.wall_bulge_share);
     if (options_.wall_inverse) buildRisingInverse(g.membrane);
     const double p = membraneGaugeForBulge(g.membrane, g.chamber_gap_m);
     g.contact_gauge_pa = std::isnan(p) ? std::numeric_limits<double>::infinity() : p;

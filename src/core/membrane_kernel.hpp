@@ -120,12 +120,12 @@ inline void membraneStretchAndBulgePack(const MembraneWall& w, T p, T& delta, T&
     const T p_in = tabulated & (p > zero) ? p : zero;  // +0 at rest, as the Newton steps give
     T outer = zero;
     delta = risingInversePack(w, p_in, w.outer_face_bends ? &outer : nullptr);
-    h = w.outer_face_bends ? (0.5 * w.chamber_height_m * w.outer_inner_ratio) * outer : (0.5 * w.chamber_height_m) * delta;
+    h = w.bulge_per_stretch_m * (w.outer_face_bends ? outer : delta);
     if (!anyOf(~tabulated)) return;
   }
   const T newton = newtonStretchPack(w, p, ~tabulated);
   delta = tabulated ? delta : newton;
-  T newton_h = (0.5 * w.chamber_height_m) * newton;  // membraneBulgeM
+  T newton_h = w.bulge_per_stretch_m * newton;  // membraneBulgeM
   if (w.outer_face_bends) {
     for (int i = 0; i < lanesOf<T>(); ++i) newton_h[i] = membraneBulgeM(w, newton[i]);
   }

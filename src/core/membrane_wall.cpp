@@ -61,7 +61,7 @@ void buildGuess(MembraneWall& w) {
 }  // namespace
 
 MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, double chamber_height_m,
-                          double locking_jm, bool thick, bool outer_face_bends) {
+                          double locking_jm, bool thick, bool outer_face_bends, double bulge_share) {
   MembraneWall w;
   w.chamber_height_m = chamber_height_m;
   w.thick = thick;
@@ -72,6 +72,8 @@ MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, doub
     w.inner_outer_volume_ratio = 1.0 / (w.outer_inner_ratio * w.outer_inner_ratio * w.outer_inner_ratio);
   }
   w.decay_scale_pa = thick ? 4.0 * shear_modulus_pa * w.outer_inner_ratio : w.pressure_scale_pa;
+  w.bulge_per_stretch_m = (w.outer_face_bends ? 0.5 * chamber_height_m * w.outer_inner_ratio : 0.5 * chamber_height_m) *
+                          bulge_share;
   w.locking_jm = locking_jm;
   w.locking_stretch_excess = kInf;
   if (locking_jm > 0.0) {
@@ -213,14 +215,14 @@ double membraneGaugeForBulge(const MembraneWall& w, double bulge_m) {
 }
 
 double membraneBulgeM(const MembraneWall& w, double delta) {
-  if (!w.outer_face_bends) return 0.5 * w.chamber_height_m * delta;
+  if (!w.outer_face_bends) return w.bulge_per_stretch_m * delta;
   return outerFaceBulgeM(w, thickOuterStretchExcess(w, delta));
 }
 
 double membraneStretchForBulge(const MembraneWall& w, double bulge_m) {
-  if (!w.outer_face_bends) return 2.0 * bulge_m / w.chamber_height_m;
+  if (!w.outer_face_bends) return bulge_m / w.bulge_per_stretch_m;
   // The outer face's stretch excess, then lambda_a^3 - 1 = (lambda_b^3 - 1) (B/A)^3.
-  const double db = 2.0 * bulge_m / (w.chamber_height_m * w.outer_inner_ratio);
+  const double db = bulge_m / w.bulge_per_stretch_m;
   const double ub = db * (3.0 + db * (3.0 + db));
   return std::expm1(std::log1p(ub / w.inner_outer_volume_ratio) / 3.0);
 }

@@ -67,6 +67,12 @@ const std::vector<ParameterSpec> kSpecs = {
      "wall: chambers in a row) or 'inner' (the chamber's own face, as the thin membrane's: a channel whose own growth "
      "lengthens the finger). The other laws do not use it",
      "outer|inner"},
+    // docs/MODEL.md "The thick wall": the laws' sphere moves its face further than a flat wall between box-shaped
+    // cavities does; kappa is the share of that bulge which tilts the wall. Effective, calibrated; 1: as derived.
+    {"wall_bulge_share", "kappa", "-", 1, 0, false, 1, ParameterShape::kScalar,
+     "membrane and thick laws: the share of the bending face's bulge that tilts the wall (Wang's h): 1, the sphere's "
+     "whole bulge, as derived; below 1, a wall that moves less than the sphere's face, as a flat wall between "
+     "box-shaped cavities does (effective, calibrated; the paper law does not use it)"},
     // docs/MODEL.md "Volume": the gas the supply compresses besides growing the chambers. Up to a cubic metre: a
     // lab's cylinder, tubes and reservoir, with a unit mistake (mL for m^3) refused.
     {"dead_volume_m3", "V_g", "m^3", 0, 0, true, 1.0, ParameterShape::kScalar,
@@ -258,6 +264,7 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& given) {
   p.wall_thickness_m = perChamber(spec("wall_thickness_m"), raw, n);
   p.wall_locking_jm = scalar(spec("wall_locking_jm"), raw);
   p.wall_flexion_face = static_cast<FlexionFace>(static_cast<int>(scalar(spec("wall_flexion_face"), raw)));
+  p.wall_bulge_share = scalar(spec("wall_bulge_share"), raw);
   p.dead_volume_m3 = scalar(spec("dead_volume_m3"), raw);
   p.chamber_growth_ratio = scalar(spec("chamber_growth_ratio"), raw);
   // docs/MODEL.md stage 3-4: under the paper law b is a height on the wall, so it cannot exceed the wall (chamber)
@@ -298,6 +305,7 @@ RawParameterMap FingerParameters::toRaw() const {
   put_list("wall_thickness_m", wall_thickness_m);
   raw["wall_locking_jm"] = {{wall_locking_jm}, false};
   raw["wall_flexion_face"] = {{static_cast<double>(wall_flexion_face)}, false};
+  raw["wall_bulge_share"] = {{wall_bulge_share}, false};
   raw["dead_volume_m3"] = {{dead_volume_m3}, false};
   raw["chamber_growth_ratio"] = {{chamber_growth_ratio}, false};
   // Drawn, the drawing is what re-creates it: its entries, not the model keys it makes (so that a changed drawing

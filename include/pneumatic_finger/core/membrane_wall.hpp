@@ -31,6 +31,10 @@ struct MembraneWall {
   /// The bulge that bends the finger is the outer face's (a thick wall with wall_flexion_face: outer); false: the
   /// inner face's, (L/2) delta (the thin membrane's one face, or a thick wall's chamber itself).
   bool outer_face_bends = false;
+  /// Wang's bulge h per unit stretch excess of the face that bends the finger (m): kappa L/2 for the inner face,
+  /// kappa B/A L/2 for the outer one's delta_b; kappa the share of the sphere's bulge that tilts the wall
+  /// (wall_bulge_share, 1 as derived).
+  double bulge_per_stretch_m = 0.0;
   /// Past the limit point |dP/ddelta| <= decay_scale_pa / lambda^2 (the supplied volume's snap search ends by it):
   /// 4 mu t/L for the membrane, 4 mu B/A for the thick wall.
   double decay_scale_pa = 0.0;
@@ -72,9 +76,11 @@ struct MembraneWall {
 
 /// The membrane of a wall of height @p chamber_height_m (L), thickness @p wall_thickness_m (t), shear modulus
 /// @p shear_modulus_pa (mu) and Gent locking invariant @p locking_jm (J_m, 0 for none), with its limit point.
-/// @p thick: the thick wall; @p outer_face_bends: its outer face's bulge bends the finger, else its inner face's.
+/// @p thick: the thick wall; @p outer_face_bends: its outer face's bulge bends the finger, else its inner face's;
+/// @p bulge_share: kappa, the share of that face's bulge that tilts the wall.
 MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, double chamber_height_m,
-                          double locking_jm, bool thick = false, bool outer_face_bends = true);
+                          double locking_jm, bool thick = false, bool outer_face_bends = true,
+                          double bulge_share = 1.0);
 
 /// Builds @p wall's inverse (MembraneWall::inverse_*, docs/MODEL.md "The wall's inverse") from its law and starting
 /// table: 4 to 64 pieces, each checked against the law's Newton root at its Chebyshev extrema, the count doubling
@@ -83,13 +89,13 @@ MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, doub
 /// Newton steps, as without it).
 void buildRisingInverse(MembraneWall& wall);
 
-/// A thick wall's outer face's bulge B (lambda_b - 1) (m) from its stretch excess @p outer_stretch_excess.
+/// A thick wall's outer face's bulge kappa B (lambda_b - 1) (m) from its stretch excess @p outer_stretch_excess.
 inline double outerFaceBulgeM(const MembraneWall& wall, double outer_stretch_excess) {
-  return 0.5 * wall.chamber_height_m * wall.outer_inner_ratio * outer_stretch_excess;
+  return wall.bulge_per_stretch_m * outer_stretch_excess;
 }
 
-/// The bulge h (m) that bends the finger at stretch excess @p delta: (L/2) delta for the membrane (and a thick wall's
-/// inner face), B (lambda_b - 1) for a thick wall's outer face.
+/// The bulge h (m) that bends the finger at stretch excess @p delta: kappa (L/2) delta for the membrane (and a thick
+/// wall's inner face), kappa B (lambda_b - 1) for a thick wall's outer face.
 double membraneBulgeM(const MembraneWall& wall, double delta);
 
 /// The stretch excess at which the bulge that bends the finger is @p bulge_m (>= 0): membraneBulgeM inverted.

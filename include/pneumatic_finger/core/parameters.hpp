@@ -97,6 +97,7 @@ struct FingerParameters {
   std::vector<double> wall_thickness_m;          ///< t_n: the membrane law's wall thickness at rest
   double wall_locking_jm = 0.0;                  ///< J_m: the membrane's Gent locking invariant (0: Neo-Hookean)
   FlexionFace wall_flexion_face = FlexionFace::kOuter;  ///< the thick wall's face whose bulge bends the finger
+  double wall_bulge_share = 1.0;                 ///< kappa: the share of that face's bulge that tilts the wall
   double dead_volume_m3 = 0.0;                   ///< V_g: gas at rest in the drive (0: incompressible fluid)
   double chamber_growth_ratio = 1.0;             ///< r_V: a chamber's volume growth over its walls' (1: theirs alone)
   RawParameterMap drawing;  ///< the drawing it was made from, as "drawing/KEY" entries (drawing.hpp); empty: none
