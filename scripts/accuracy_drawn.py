@@ -4,16 +4,16 @@ usage: python3 scripts/accuracy_drawn.py      (the package's Python API on PYTHO
 
 Prints a Markdown table, the same on every run (update_docs.py puts it into docs/ACCURACY.md). For each actuator and
 each way of getting its material, from the parameter file as shipped:
-- the snap: the model's limit point (limit_gauge_pa) against the measured one, the pressure midway across the largest
-  rise of the bend between two neighbouring rows of the ramp; a model whose wall rises steeply without folding (no
-  limit point) has its snap read as the measured one is, from its own bends along the same ramp;
+- the snap: the model's (snap_gauge_pa: its limit point where its wall folds, else where its bend rises fastest)
+  against the measured one, the pressure midway across the largest rise of the bend between two neighbouring rows of
+  the ramp;
 - the bends along the ramp, evaluated as one path in order (the model follows its snap), below and above the measured
   snap: the largest and the rms error in degrees. The ramp's bends were zeroed where it starts, so the model's are
   taken from the same pressure. Rows where the model gives no shape (beyond its limit point) or meets itself count as
   misses, and are named;
 - the stepwise loading's bends (not zeroed), the same way;
-- the blocked tip force along the blocked test's pressures: where it jumps (the model's: its limit point, or its own
-  largest rise) and the largest error below and above the measured jump.
+- the blocked tip force along the blocked test's pressures: where it jumps (the model's: its snap) and the largest
+  error below and above the measured jump.
 
 --fits prints the second table instead: each actuator as drawn, calibrated on its own bends (pf.calibrate, the code
 of finger_calibrate, with leave-one-out), and the material of one Marchese segment carried to the other's drawing.
@@ -121,20 +121,13 @@ def summary(e, miss="with no usable shape"):
     return text + (f" ({misses} of {e.size} rows {miss})" if misses else "")
 
 
-def model_snap(model, pressures, values):
-    """The model's snap: its limit point where its wall has one, else read as the measured one is, midway across the
-    largest rise of @p values (the model's, at @p pressures) between neighbouring pressures (Pa)."""
-    limit = model.limit_gauge_pa
-    return limit if math.isfinite(limit) else measured_snap(numpy.column_stack((pressures, values)))
-
-
 def force_summary(model, blocked):
     """Where the blocked force jumps, model / measured (kPa), and the largest error below and above the measured jump."""
     jump = measured_snap(blocked)
     force = model.blocked_tip_force(blocked[:, 0])
     e = force - blocked[:, 1]
     below, above = blocked[:, 0] < jump, blocked[:, 0] > jump
-    return (f"{model_snap(model, blocked[:, 0], force) / 1e3:.1f} / {jump / 1e3:.1f}; "
+    return (f"{model.snap_gauge_pa / 1e3:.1f} / {jump / 1e3:.1f}; "
             f"{numpy.max(numpy.abs(e[below])):.2f} / {numpy.max(numpy.abs(e[above])):.2f} N")
 
 
@@ -148,9 +141,9 @@ def snap_table():
         ramp, steps = table(ramp_file), table(step_file)
         snap = measured_snap(ramp)
         e = errors(model, ramp, zero_pa=ramp[0, 0])
-        limit = model_snap(model, ramp[:, 0], e + ramp[:, 1])
+        limit = model.snap_gauge_pa
         below, above = ramp[:, 0] < snap, ramp[:, 0] > snap
-        print(f"| {name} | {how} | {limit / 1e3:.1f} / {snap / 1e3:.2f} ({100 * (limit / snap - 1):+.0f} %) "
+        print(f"| {name} | {how} | {limit / 1e3:.1f} / {snap / 1e3:.2f} ({100 * (limit / snap - 1):+.1f} %) "
               f"| {summary(e[below])} | {summary(e[above])} | {summary(errors(model, steps))} "
               f"| {force_summary(model, table(BLOCKED, 'blocked_force_n'))} |")
     print()

@@ -629,3 +629,9 @@ def test_the_shipped_calibrated_epfl_file_is_the_commands(tmp_path):
     model = pf.FingerModel(config=str(root / "config" / "epfl_ecoflex30_c7.yaml"))
     assert model.parameters["drawing"]["chamber_count"] == 7 and model.validated_max_gauge_pa == 45000.0
     assert 0.0 < model.parameters["wall_bulge_share"] < 1.0
+    # Its wall does not fold: no limit point, and it snaps where the bend rises fastest, within 5 % of the measured
+    # snap (midway across the ramp's largest rise between two rows: 35.25 kPa).
+    ramp = numpy.loadtxt(root / "data" / "epfl_ecoflex30_c7_bending.csv", delimiter=",", comments="#", skiprows=10)
+    k = int(numpy.argmax(numpy.diff(ramp[:, 1])))
+    assert 0.5 * (ramp[k, 0] + ramp[k + 1, 0]) == 35250.0
+    assert math.isinf(model.limit_gauge_pa) and abs(model.snap_gauge_pa / 35250.0 - 1.0) < 0.05

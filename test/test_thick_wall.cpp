@@ -268,3 +268,43 @@ TEST(ThickWall, ABulgeShareTiltsTheWallByThatShareOfItsBulge) {
     }
   }
 }
+
+// The snap point (docs/MODEL.md, "Where it snaps"). A thick Gent wall that locks before it folds (B/A = 2.75,
+// J_m = 24.9, bent by a share 0.22 of its outer face's bulge: the EPFL fit's wall) has no limit point, and snaps
+// where it is softest: there the quad reference's pressure per bulge, dP/dh by central differences of its pressure
+// and of its outer face's bulge, is less than a thousandth of delta to either side, and the pressure is the
+// reference's. Along a ramp the tip angle rises fastest there. A wall that folds snaps at its limit point; the paper
+// law never snaps.
+TEST(ThickWall, AWallThatDoesNotFoldSnapsWhereItIsSoftest) {
+  const double thickness = 1.75 * kHeight / 2, kappa = 0.22, jm = 24.9;
+  const pf::FingerModel model(thickFinger(thickness, jm, "wall_bulge_share: 0.22\nchamber_gap_m: 0\n"));
+  ASSERT_TRUE(std::isinf(model.limitGaugePa()));
+  const double p_snap = model.snapGaugePa();
+  ASSERT_TRUE(std::isfinite(p_snap));
+  const quad ratio = (quad(kHeight) / 2 + quad(thickness)) / (quad(kHeight) / 2);  // B/A
+  auto bulge = [&](double delta) {
+    const quad la = 1 + quad(delta), lb = cbrtq(1 + (la * la * la - 1) / (ratio * ratio * ratio));
+    return quad(kappa) * quad(kHeight) / 2 * ratio * (lb - 1);
+  };
+  auto per_bulge = [&](double delta) {
+    const double step = 1e-5 * delta;
+    const quad dp = quad(referenceGauge(delta + step, thickness, jm)) - quad(referenceGauge(delta - step, thickness, jm));
+    return static_cast<double>(dp / (bulge(delta + step) - bulge(delta - step)));
+  };
+  pf::FingerWorkspace ws(model);
+  const double delta = model.evaluate(p_snap, ws).stretch[0] - 1.0;
+  EXPECT_LT(std::fabs(referenceGauge(delta, thickness, jm) - p_snap) / p_snap, 1e-12);
+  EXPECT_LT(per_bulge(delta), per_bulge(0.999 * delta));
+  EXPECT_LT(per_bulge(delta), per_bulge(1.001 * delta));
+  // The tip angle's steepest rise between neighbouring pressures of a fine ramp brackets the snap.
+  double steepest_pa = 0.0, steepest = 0.0, last = model.evaluate(0.5 * p_snap, ws).tip_angle_rad;
+  for (double p = 0.5 * p_snap + 10.0; p < 1.5 * p_snap; p += 10.0) {
+    const double angle = model.evaluate(p, ws).tip_angle_rad;
+    if (angle - last > steepest) steepest = angle - last, steepest_pa = p - 5.0;
+    last = angle;
+  }
+  EXPECT_NEAR(steepest_pa, p_snap, 0.01 * p_snap);
+  const pf::FingerModel folds(thickFinger(kHeight / 2, 50.0));
+  EXPECT_EQ(folds.snapGaugePa(), folds.limitGaugePa());
+  EXPECT_TRUE(std::isinf(pf::FingerModel(pf::FingerParameters::defaults()).snapGaugePa()));  // the paper law
+}

@@ -43,7 +43,7 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
                          "does not have; use the robust or the table solver with wall_law: membrane");
   }
   group_of_chamber_.resize(static_cast<std::size_t>(n));
-  contact_gauge_pa_ = limit_gauge_pa_ = std::numeric_limits<double>::infinity();
+  contact_gauge_pa_ = limit_gauge_pa_ = snap_gauge_pa_ = std::numeric_limits<double>::infinity();
   for (int i = 0; i < n; ++i) {
     const auto k = static_cast<std::size_t>(i);
     ChamberGroup g{parameters_.chamber_height_m[k], parameters_.wall_critical_height_m[k],
@@ -62,6 +62,7 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
     group_of_chamber_[k] = static_cast<int>(it - groups_.begin());
     contact_gauge_pa_ = std::min(contact_gauge_pa_, it->contact_gauge_pa);
     limit_gauge_pa_ = std::min(limit_gauge_pa_, membrane_ ? it->membrane.limit_gauge_pa : limit_gauge_pa_);
+    snap_gauge_pa_ = std::min(snap_gauge_pa_, membrane_ ? it->membrane.snap_gauge_pa : snap_gauge_pa_);
   }
   far_turning_gauge_pa_ = -std::numeric_limits<double>::infinity();
   for (const ChamberGroup& g : groups_) {

@@ -112,6 +112,7 @@ MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, doub
       w.far_turning_gauge_pa = membraneGaugeForStretchExcess(w, w.far_turning_stretch_excess);
     }
   }
+  setSnapPoint(w);
   buildGuess(w);
   return w;
 }

@@ -312,6 +312,7 @@ class PyFingerModel {
   double maxGaugePa() const { return range_.max_gauge_pa; }
   double validatedMaxGaugePa() const { return range_.validated_max_gauge_pa; }
   double limitGaugePa() const { return model_->limitGaugePa(); }
+  double snapGaugePa() const { return model_->snapGaugePa(); }
   double volumeLimitM3() const { return model_->volumeLimitM3(); }
   double farTurning() const { return model_->farTurningGaugePa(); }
   py::object suppliedVolume(const py::object& gauge_pa) const {
@@ -471,6 +472,10 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("limit_gauge_pa", &PyFingerModel::limitGaugePa,
                              "the membrane wall's limit point (Pa gauge): at or above it the status is 'beyond limit "
                              "point' and no shape is given; inf under the paper law")
+      .def_property_readonly("snap_gauge_pa", &PyFingerModel::snapGaugePa,
+                             "where a rising pressure bends the finger fastest (Pa gauge): the limit point where a wall "
+                             "folds, else where a Gent wall that locks first is softest (its bend rises steeply but "
+                             "continuously); inf under the paper law or where every wall only stiffens")
       .def_property_readonly("far_turning_gauge_pa", [](const PyFingerModel& self) { return self.farTurning(); },
                              "the pressure (Pa gauge) at or below which a wall on its far branch snaps back to the near "
                              "one (the largest over the chamber groups); inf where no wall has a far branch")

@@ -245,6 +245,12 @@ class FingerModel {
   /// the paper law, or for a Gent wall that locks before any maximum.
   double limitGaugePa() const { return limit_gauge_pa_; }
 
+  /// Where a rising pressure bends the finger fastest (Pa gauge; docs/MODEL.md, "Where it snaps"): the lowest of the
+  /// chambers' snap points, each its wall's limit point where it folds, else where the wall is softest (a Gent wall
+  /// that locks before it folds: its bend rises steeply but continuously). +inf under the paper law, or where every
+  /// wall only stiffens from rest.
+  double snapGaugePa() const { return snap_gauge_pa_; }
+
   /// The table's measured error on its check grid (rad): the largest |theta_table - theta_robust|, and for identical
   /// chambers, whose table holds the backbone, also the largest point error divided by the finger's length (the
   /// turn at the base that moves the tip as far). 0 for other solvers.
@@ -430,6 +436,7 @@ class FingerModel {
   double contact_gauge_pa_ = 0.0;
   double limit_gauge_pa_ = 0.0;
   double far_turning_gauge_pa_ = 0.0;  // farTurningGaugePa()
+  double snap_gauge_pa_ = 0.0;  // snapGaugePa()
   // The force model (buildForceModel): per joint, the chambers whose walls push at it (joint 1: chamber 1 and the
   // base face, so both are chamber 0), its distance to the tip (m) and its compliance weight; per chamber e b (m^2),
   // the strip's width times its lever. For identical chambers the tip force is one product with

@@ -52,6 +52,11 @@ struct MembraneWall {
   /// lower turning point. +inf for both when there is no far branch (Neo-Hookean: the wall balloons without bound).
   double far_turning_stretch_excess;  ///< delta at the pressure minimum past the limit point
   double far_turning_gauge_pa;        ///< P there (Pa): the far branch holds down to it, then snaps back
+  /// Where the wall snaps under a rising pressure (docs/MODEL.md, "Where it snaps"): its limit point where it folds;
+  /// else, a Gent wall that locks first, where the pressure per bulge of the bending face is least (the bend rises
+  /// fastest); +inf for a wall that only stiffens from rest.
+  double snap_stretch_excess;  ///< delta there
+  double snap_gauge_pa;        ///< P there (Pa)
   /// Where the rising branch's Newton steps start (membraneStretchExcess): P and dP/ddelta at kGuessNodes + 1
   /// stretches from rest to the limit point (or the lock), closer together towards both ends. Empty (has_guess
   /// false) where P rises without a limit or a lock.
@@ -88,6 +93,9 @@ MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, doub
 /// often (ModelOptions::wall_inverse). Leaves inverse_pieces 0 where no count holds (membraneStretchExcess then takes
 /// Newton steps, as without it).
 void buildRisingInverse(MembraneWall& wall);
+
+/// Sets @p wall's snap point (MembraneWall::snap_*) from its law and limit point (src/core/wall_snap.cpp).
+void setSnapPoint(MembraneWall& wall);
 
 /// A thick wall's outer face's bulge kappa B (lambda_b - 1) (m) from its stretch excess @p outer_stretch_excess.
 inline double outerFaceBulgeM(const MembraneWall& wall, double outer_stretch_excess) {
