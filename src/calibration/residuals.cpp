@@ -146,6 +146,7 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
                                 CalibrationQuantity quantity) {
   ModelOptions options;
   options.wall_inverse = false;  // one model per candidate, a few dozen rows each: the inverse's build would dominate
+  options.snap_point = false;    // nor is its snap asked
   FingerModel model(parameters, options);
   FingerWorkspace ws(model), inverse(model);
   std::vector<Residual> out;

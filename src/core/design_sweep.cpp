@@ -32,6 +32,7 @@ std::vector<DesignRefusal> sweepDesigns(const FingerParameters& base, const Mode
   RawParameterMap raw = base.toRaw();
   ModelOptions design_options = options;
   design_options.wall_inverse = false;  // one pressure per design: the wall's inverse would cost more than it saves
+  design_options.snap_point = false;    // nor is a design's snap asked
   std::vector<DesignRefusal> refused;
   const bool wants_shape = out.tip_angle_rad || out.tip_x_m || out.tip_y_m || out.status;
   const bool wants_points = out.tip_x_m || out.tip_y_m;

@@ -62,7 +62,8 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
     group_of_chamber_[k] = static_cast<int>(it - groups_.begin());
     contact_gauge_pa_ = std::min(contact_gauge_pa_, it->contact_gauge_pa);
     limit_gauge_pa_ = std::min(limit_gauge_pa_, membrane_ ? it->membrane.limit_gauge_pa : limit_gauge_pa_);
-    snap_gauge_pa_ = std::min(snap_gauge_pa_, membrane_ ? it->membrane.snap_gauge_pa : snap_gauge_pa_);
+    if (membrane_ && !options_.snap_point) snap_gauge_pa_ = std::numeric_limits<double>::quiet_NaN();
+    if (membrane_ && options_.snap_point) snap_gauge_pa_ = std::min(snap_gauge_pa_, it->membrane.snap_gauge_pa);
   }
   far_turning_gauge_pa_ = -std::numeric_limits<double>::infinity();
   for (const ChamberGroup& g : groups_) {
@@ -94,6 +95,7 @@ void FingerModel::addGroup(ChamberGroup g) {
                               parameters_.wall_law == WallLaw::kThick,
                               parameters_.wall_flexion_face == FlexionFace::kOuter, parameters_.wall_bulge_share);
     if (options_.wall_inverse) buildRisingInverse(g.membrane);
+    if (options_.snap_point) setSnapPoint(g.membrane);
     const double p = membraneGaugeForBulge(g.membrane, g.chamber_gap_m);
     g.contact_gauge_pa = std::isnan(p) ? std::numeric_limits<double>::infinity() : p;
   } else {

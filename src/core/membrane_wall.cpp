@@ -112,7 +112,7 @@ MembraneWall membraneWall(double shear_modulus_pa, double wall_thickness_m, doub
       w.far_turning_gauge_pa = membraneGaugeForStretchExcess(w, w.far_turning_stretch_excess);
     }
   }
-  setSnapPoint(w);
+  w.snap_stretch_excess = w.snap_gauge_pa = std::numeric_limits<double>::quiet_NaN();  // setSnapPoint, when asked
   buildGuess(w);
   return w;
 }

@@ -51,6 +51,10 @@ struct ModelOptions {
   /// and the pressure's rounding), for 20 to 300 microseconds more per wall at construction. The calibration and
   /// the design sweep, which build a model per candidate and evaluate it a few times, build none.
   bool wall_inverse = true;
+  /// Under the membrane and thick wall laws, find where each wall snaps (snapGaugePa(); a wall that does not fold
+  /// needs about 200 evaluations of its law's slope). The calibration and the design sweep, which do not ask, find
+  /// none: snapGaugePa() is then NaN.
+  bool snap_point = true;
 };
 
 /// Everything the model says about the finger at one pressure. Sized once for N chambers.
@@ -248,7 +252,7 @@ class FingerModel {
   /// Where a rising pressure bends the finger fastest (Pa gauge; docs/MODEL.md, "Where it snaps"): the lowest of the
   /// chambers' snap points, each its wall's limit point where it folds, else where the wall is softest (a Gent wall
   /// that locks before it folds: its bend rises steeply but continuously). +inf under the paper law, or where every
-  /// wall only stiffens from rest.
+  /// wall only stiffens from rest; NaN for a model built without it (ModelOptions::snap_point false).
   double snapGaugePa() const { return snap_gauge_pa_; }
 
   /// The table's measured error on its check grid (rad): the largest |theta_table - theta_robust|, and for identical

@@ -54,7 +54,7 @@ struct MembraneWall {
   double far_turning_gauge_pa;        ///< P there (Pa): the far branch holds down to it, then snaps back
   /// Where the wall snaps under a rising pressure (docs/MODEL.md, "Where it snaps"): its limit point where it folds;
   /// else, a Gent wall that locks first, where the pressure per bulge of the bending face is least (the bend rises
-  /// fastest); +inf for a wall that only stiffens from rest.
+  /// fastest); +inf for a wall that only stiffens from rest. NaN until setSnapPoint (a model built to say it).
   double snap_stretch_excess;  ///< delta there
   double snap_gauge_pa;        ///< P there (Pa)
   /// Where the rising branch's Newton steps start (membraneStretchExcess): P and dP/ddelta at kGuessNodes + 1
