@@ -15,6 +15,7 @@ each way of getting its material, from the parameter file as shipped:
 - the blocked tip force along the blocked test's pressures: where it jumps (the model's: its snap) and the largest
   error below and above the measured jump.
 
+--plot PNG draws the first table's models against the ramp, the stepwise loading and the blocked force instead.
 --fits prints the second table instead: each actuator as drawn, calibrated on its own bends (pf.calibrate, the code
 of finger_calibrate, with leave-one-out), and the material of one Marchese segment carried to the other's drawing.
 
@@ -439,8 +440,47 @@ def plot_solid(path, ramp, solid, coupon, curves, fitted_mu):
     fig.savefig(path, dpi=100)
 
 
+def plot_snap(path):
+    """The first table's models against the ramp, the stepwise loading (left) and the blocked force (right)."""
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+    ramp, steps = table(CASES[0][3]), table(CASES[0][4])
+    blocked = table(BLOCKED, "blocked_force_n")
+    fig, (bend_ax, force_ax) = plt.subplots(1, 2, figsize=(11, 4.6))
+    bend_ax.plot(ramp[:, 0] / 1e3, ramp[:, 1] * DEG, "k.", ms=4, label="measured: slow ramp (zeroed at 10 kPa)")
+    bend_ax.plot(steps[:, 0] / 1e3, steps[:, 1] * DEG, "ks", mfc="none", ms=6, label="measured: stepwise")
+    force_ax.plot(blocked[:, 0] / 1e3, blocked[:, 1], "k.", ms=5, label="measured")
+    p = numpy.linspace(ramp[0, 0], ramp[-1, 0], 600)
+    for (_, how, config, _, _), color in zip(CASES, ("C3", "C0")):
+        model = pf.FingerModel(config=str(ROOT / config))
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")
+            state = model.path().evaluate(p, outputs=["tip_angle_rad", "status"])
+            force = model.blocked_tip_force(blocked[:, 0])
+        bend = state["tip_angle_rad"].astype(float)
+        usable = numpy.array([pf.STATUS[s] in ("ok", "snapped through", "clamped to max_gauge_pa") for s in state["status"]])
+        bend[~usable] = math.nan
+        bend_ax.plot(p / 1e3, (bend - bend[0]) * DEG, color=color, label=f"model, {how}")
+        force_ax.plot(blocked[:, 0] / 1e3, force, color=color, label=f"model, {how}")
+        for ax in (bend_ax, force_ax):
+            ax.axvline(model.snap_gauge_pa / 1e3, color=color, lw=0.8, ls=":")
+    bend_ax.axvline(measured_snap(ramp) / 1e3, color="k", lw=0.8, ls=":")
+    bend_ax.set(xlabel="gauge pressure (kPa)", ylabel="bend (deg)", ylim=(-5, 130),
+                title="bend (dotted: each snap; the model's from snap_gauge_pa)")
+    force_ax.set(xlabel="gauge pressure (kPa)", ylabel="blocked tip force (N)", ylim=(-0.05, 1.5),
+                 title="blocked tip force")
+    bend_ax.legend(fontsize=7.5, loc="upper left")
+    force_ax.legend(fontsize=7.5, loc="upper left")
+    fig.suptitle("EPFL Ecoflex 00-30 PneuNet, 7 chambers: zero-shot (drawing + coupon) and fitted on its ramp")
+    fig.tight_layout()
+    fig.savefig(path, dpi=100)
+
+
 def main():
-    if "--fits" in sys.argv[1:]:
+    if "--plot" in sys.argv[1:] and len(sys.argv) == 3:
+        plot_snap(sys.argv[2])
+    elif "--fits" in sys.argv[1:]:
         fits_table()
     elif "--skins" in sys.argv[1:]:
         skins_table()
