@@ -12,6 +12,7 @@
 #include <sensor_msgs/JointState.h>
 #include <std_msgs/Float64.h>
 
+#include <algorithm>
 #include <limits>
 #include <mutex>
 #include <string>
@@ -153,6 +154,13 @@ TEST(FingerNodeLimitPoint, NothingIsPublishedPastTheLimitPointAndTheShapeReturns
       },
       5));
   EXPECT_EQ(lastOf(diagnostics).level, diagnostic_msgs::DiagnosticStatus::WARN);
+  // Where the finger snaps, the model's: for this Neo-Hookean wall its limit point.
+  const std::vector<diagnostic_msgs::KeyValue> values = lastOf(diagnostics).values;
+  const auto snap = std::find_if(values.begin(), values.end(),
+                                 [](const diagnostic_msgs::KeyValue& kv) { return kv.key == "snap pressure (Pa gauge)"; });
+  ASSERT_NE(snap, values.end());
+  EXPECT_EQ(snap->value, pf::formatMessage(model.snapGaugePa()));
+  EXPECT_EQ(model.snapGaugePa(), limit);
 
   // Below it again: a new shape.
   send(0.5 * limit);

@@ -44,6 +44,8 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
                                            : std::string("near"));
   status.add("snaps through (near to far branch)", snaps_through_);
   status.add("snaps back (far to near branch)", snaps_back_);
+  // Where a rising pressure bends the finger fastest: its limit point, or where a wall that does not fold is softest.
+  status.add("snap pressure (Pa gauge)", formatMessage(model_->snapGaugePa()));
   if (!input_.lastProblem().empty()) status.add("last problem", input_.lastProblem());
   status.add("tip error bar", tip_uncertainty_.empty()
                                    ? std::string("none (NaN in finger_state)")
