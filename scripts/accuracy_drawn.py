@@ -99,15 +99,21 @@ def measured_snap(ramp):
     return 0.5 * (ramp[k, 0] + ramp[k + 1, 0])
 
 
-def errors(model, rows, zero_pa=None):
-    """Model - measured bend (rad) along @p rows as one path; NaN where the model gives no usable shape."""
-    pressures = rows[:, 0] if zero_pa is None else numpy.concatenate(([zero_pa], rows[:, 0]))
+def path_bends(model, pressures):
+    """The model's bend (rad) along @p pressures as one path; NaN where it gives no usable shape."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         state = model.path().evaluate(pressures, outputs=["tip_angle_rad", "status"])
     angle = state["tip_angle_rad"].astype(float)
     usable = numpy.array([pf.STATUS[s] in ("ok", "snapped through", "clamped to max_gauge_pa") for s in state["status"]])
     angle[~usable] = math.nan
+    return angle
+
+
+def errors(model, rows, zero_pa=None):
+    """Model - measured bend (rad) along @p rows as one path; NaN where the model gives no usable shape."""
+    pressures = rows[:, 0] if zero_pa is None else numpy.concatenate(([zero_pa], rows[:, 0]))
+    angle = path_bends(model, pressures)
     if zero_pa is not None:
         angle = angle[1:] - angle[0]
     return angle - rows[:, 1]
@@ -454,13 +460,10 @@ def plot_snap(path):
     p = numpy.linspace(ramp[0, 0], ramp[-1, 0], 600)
     for (_, how, config, _, _), color in zip(CASES, ("C3", "C0")):
         model = pf.FingerModel(config=str(ROOT / config))
+        bend = path_bends(model, p)
         with warnings.catch_warnings():
             warnings.simplefilter("ignore")
-            state = model.path().evaluate(p, outputs=["tip_angle_rad", "status"])
             force = model.blocked_tip_force(blocked[:, 0])
-        bend = state["tip_angle_rad"].astype(float)
-        usable = numpy.array([pf.STATUS[s] in ("ok", "snapped through", "clamped to max_gauge_pa") for s in state["status"]])
-        bend[~usable] = math.nan
         bend_ax.plot(p / 1e3, (bend - bend[0]) * DEG, color=color, label=f"model, {how}")
         force_ax.plot(blocked[:, 0] / 1e3, force, color=color, label=f"model, {how}")
         for ax in (bend_ax, force_ax):

@@ -62,8 +62,10 @@ FingerModel::FingerModel(const FingerParameters& parameters, const ModelOptions&
     group_of_chamber_[k] = static_cast<int>(it - groups_.begin());
     contact_gauge_pa_ = std::min(contact_gauge_pa_, it->contact_gauge_pa);
     limit_gauge_pa_ = std::min(limit_gauge_pa_, membrane_ ? it->membrane.limit_gauge_pa : limit_gauge_pa_);
-    if (membrane_ && !options_.snap_point) snap_gauge_pa_ = std::numeric_limits<double>::quiet_NaN();
-    if (membrane_ && options_.snap_point) snap_gauge_pa_ = std::min(snap_gauge_pa_, it->membrane.snap_gauge_pa);
+    if (membrane_) {  // NaN: not asked (ModelOptions::snap_point)
+      snap_gauge_pa_ = options_.snap_point ? std::min(snap_gauge_pa_, it->membrane.snap_gauge_pa)
+                                           : std::numeric_limits<double>::quiet_NaN();
+    }
   }
   far_turning_gauge_pa_ = -std::numeric_limits<double>::infinity();
   for (const ChamberGroup& g : groups_) {

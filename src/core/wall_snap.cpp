@@ -16,8 +16,8 @@ namespace {
 // linear in delta; the outer face's grows by (A/B)^3 (lambda_a/lambda_b)^2 per unit of delta (incompressibility:
 // lambda_b^2 dlambda_b = (A/B)^3 lambda_a^2 dlambda_a).
 double gaugePerBulge(const MembraneWall& w, double delta) {
-  double gauge_pa = 0.0, slope_pa = 0.0;
-  membraneGaugeAndSlope(w, delta, gauge_pa, slope_pa);
+  double gauge_pa = 0.0, slope_pa = 0.0;  // a thick wall's slope alone, without its pressure's integral
+  if (w.thick) slope_pa = thickGaugeSlope(w, delta); else membraneGaugeAndSlope(w, delta, gauge_pa, slope_pa);
   if (!w.outer_face_bends) return slope_pa / w.bulge_per_stretch_m;
   const double ratio = (1.0 + delta) / (1.0 + thickOuterStretchExcess(w, delta));
   return slope_pa / (w.bulge_per_stretch_m * w.inner_outer_volume_ratio * ratio * ratio);
