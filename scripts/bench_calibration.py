@@ -10,7 +10,8 @@ tree's, both on this tree's data and parameter files, so that both engines solve
 the wall time of each, and the objective each reached (the largest |error| for minimax, the sum of squares for least
 squares; lower is better). A run past --timeout seconds (default 900) is reported as "> S". --doc FILE writes the
 table into FILE's measured block (scripts/measured_block.py's markers); with --only, just those rows (a new one after
-the others), the rest as they were.
+the others), the rest as they were. --base-from-doc FILE takes REV's cells from FILE's table instead of running REV's
+engine again (its code does not change; its slowest rows take minutes): for a rerun of this tree's side alone.
 """
 import argparse
 import json
@@ -122,12 +123,16 @@ def run(python_path, spec, timeout):
 
 
 def cell_time(result, timeout):
+    if result is not None and "cells" in result:
+        return result["cells"][0]
     if result is None:
         return f"> {timeout:g}"
     return "refused" if "refused" in result else f"{result['seconds']:.2f}"
 
 
 def cell_objective(result):
+    if result is not None and "cells" in result:
+        return result["cells"][1]
     return "" if result is None or "refused" in result else f"{result['objective']:.6g}"
 
 
@@ -155,20 +160,35 @@ def write_doc(path, text, command, only=False):
     pathlib.Path(path).write_text(f"{head}{begin}\n{text}\n{end}{tail}")
 
 
+def doc_base_cells(path):
+    """REV's cells (time, objective) of each row of FILE's measured table, by the row's first cell."""
+    cells = {}
+    for line in pathlib.Path(path).read_text().splitlines():
+        parts = [c.strip() for c in line.strip().strip("|").split("|")]
+        if line.startswith("| ") and len(parts) == 5 and parts[1] not in ("", "---:") and not parts[0].startswith("calib"):
+            cells[parts[0]] = {"cells": (parts[1], parts[3])}
+    return cells
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--base", default="5ec0fca")
     parser.add_argument("--timeout", type=float, default=900.0)
     parser.add_argument("--only", default="", help="run only the calibrations whose name contains this")
     parser.add_argument("--doc", default="")
+    parser.add_argument("--base-from-doc", default="", help="REV's cells from this page's table, not run again")
     a = parser.parse_args()
-    base_path = base_build(a.base)
+    cached = doc_base_cells(a.base_from_doc) if a.base_from_doc else None
+    base_path = None if cached is not None else base_build(a.base)
     tree_path = ROOT / "devel" / "lib" / "python3" / "dist-packages"
     rows = []
     for name, page, spec in CALIBRATIONS:
         if a.only not in name:
             continue
-        base, now = run(base_path, spec, a.timeout), run(tree_path, spec, a.timeout)
+        if cached is not None and f"{name} ({page})" not in cached:
+            sys.exit(f"--base-from-doc: no row '{name} ({page})' in {a.base_from_doc}: run {a.base}'s engine instead")
+        base = cached[f"{name} ({page})"] if cached is not None else run(base_path, spec, a.timeout)
+        now = run(tree_path, spec, a.timeout)
         rows.append((name, page, base, now))
         print(f"{name}: {a.base} {cell_time(base, a.timeout)} s {cell_objective(base)} | now "
               f"{cell_time(now, a.timeout)} s {cell_objective(now)}", flush=True)

@@ -403,3 +403,25 @@ TEST(Calibration, HubersLossKeepsAnOutlierFromPullingTheFit) {
   EXPECT_EQ(pf::parseObjective("huber"), pf::CalibrationObjective::kHuber);
   EXPECT_STREQ(pf::objectiveName(pf::CalibrationObjective::kHuber), "huber");
 }
+
+// A law fitted and predicted row by row (calibrateWallLaws) hands the fit's scan to leave-one-out instead of scanning
+// again: each fold must start from the same points as a leave-one-out that scans for itself, and end where it does,
+// to the bit.
+TEST(Calibration, LeaveOneOutFromTheFitsScanIsTheSameAsFromItsOwn) {
+  const std::vector<pf::Measurement> data = pf::readMeasurementsCsv(kTable1, 1);
+  pf::FingerParameters base = pf::FingerParameters::defaults();
+  const std::vector<std::string> keys = {"shear_modulus_pa", "chamber_gap_m"};
+  const auto fits = pf::calibrateWallLaws(base, {pf::WallLaw::kPaper}, keys, data, pf::CalibrationObjective::kMinimax,
+                                          pf::CalibrationQuantity::kOuterAverage, {});
+  base.wall_law = pf::WallLaw::kPaper;
+  const std::vector<pf::Residual> own = pf::leaveOneOut(base, keys, data, pf::CalibrationObjective::kMinimax,
+                                                        pf::CalibrationQuantity::kOuterAverage);
+  ASSERT_EQ(fits.size(), 1u);
+  ASSERT_EQ(fits[0].leave_one_out.size(), data.size());
+  std::size_t moved = 0;  // folds whose fit is not the whole fit (a minimax fold without an active row is the same)
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    EXPECT_EQ(fits[0].leave_one_out[i].model_joint_rad, own[i].model_joint_rad) << "row " << i;
+    moved += fits[0].leave_one_out[i].model_joint_rad != fits[0].fit.residuals[i].model_joint_rad;
+  }
+  EXPECT_GE(moved, 1u);
+}

@@ -1,18 +1,17 @@
 #include "pneumatic_finger/calibration/calibration.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
-#include <exception>
 #include <fstream>
 #include <functional>
 #include <limits>
 #include <mutex>
 #include <sstream>
-#include <thread>
 
 #include "fit_problem.hpp"
+#include "every_core.hpp"
 #include "fit_space.hpp"
+#include "shared_scan.hpp"
 #include "solver.hpp"
 
 namespace pneumatic_finger {
@@ -192,9 +191,9 @@ CalibrationResult calibrateEveryJointInTwoSteps(const FingerParameters& base, co
 // The fit itself: the solver's best point over the keys' search box (solver.hpp), reported in the caller's key order.
 CalibrationResult searchKeys(const FingerParameters& base, const std::vector<std::string>& keys,
                              const std::vector<Measurement>& data, CalibrationObjective objective,
-                             CalibrationQuantity quantity, const CalibrationProgress& progress) {
+                             CalibrationQuantity quantity, const CalibrationProgress& progress, ScanRecord* record) {
   const FitProblem problem(base, keys, data, quantity, progress);
-  const FitSolution best = solveFit(problem, objective);
+  const FitSolution best = solveFit(problem, objective, record);
   CalibrationResult result;
   result.parameters = problem.parametersAt(best.u);
   result.keys = keys;
@@ -210,12 +209,19 @@ CalibrationResult searchKeys(const FingerParameters& base, const std::vector<std
 CalibrationResult calibrate(const FingerParameters& base, const std::vector<std::string>& keys,
                             const std::vector<Measurement>& data, CalibrationObjective objective,
                             CalibrationQuantity quantity, const CalibrationProgress& progress) {
+  return calibrateKeepingScan(base, keys, data, objective, quantity, progress, nullptr);
+}
+
+CalibrationResult calibrateKeepingScan(const FingerParameters& base, const std::vector<std::string>& keys,
+                                       const std::vector<Measurement>& data, CalibrationObjective objective,
+                                       CalibrationQuantity quantity, const CalibrationProgress& progress,
+                                       ScanRecord* record) {
   checkKeysAndData(base, keys, data, quantity);
   refuseWhatTheDataCannotTell(keys, data.size(), quantity);
   const bool share = std::count(keys.begin(), keys.end(), "base_wall_share") > 0;
   CalibrationResult result = share && keys.size() > 1 && quantity == CalibrationQuantity::kEveryJoint
                                  ? calibrateEveryJointInTwoSteps(base, keys, data, objective, progress)
-                                 : searchKeys(base, keys, data, objective, quantity, progress);
+                                 : searchKeys(base, keys, data, objective, quantity, progress, record);
   calibrationUncertainty(base, data, quantity, result);
   return result;
 }
@@ -297,39 +303,17 @@ std::string unpredictedRowsWarning(const std::vector<Residual>& fit, const std::
          "point), so their tip error bars take the fit's error alone and may be too small there";
 }
 
-namespace {
-
-// Runs fold(i) for i in [0, count) on every core: each fold is a calibration of its own, deterministic and
-// independent of the others, so the answers are the same as one after another, only sooner. The first exception (by
-// fold) is rethrown once all have stopped.
-void forEachFold(std::size_t count, const std::function<void(std::size_t)>& fold) {
-  const std::size_t threads = std::max<std::size_t>(1, std::min<std::size_t>(std::thread::hardware_concurrency(), count));
-  std::atomic<std::size_t> next{0};
-  std::vector<std::exception_ptr> failed(count);
-  auto work = [&] {
-    for (std::size_t i = next++; i < count; i = next++) {
-      try {
-        fold(i);
-      } catch (...) {
-        failed[i] = std::current_exception();
-      }
-    }
-  };
-  std::vector<std::thread> pool;
-  for (std::size_t t = 1; t < threads; ++t) pool.emplace_back(work);
-  work();
-  for (std::thread& t : pool) t.join();
-  for (const std::exception_ptr& e : failed) {
-    if (e) std::rethrow_exception(e);
-  }
-}
-
-}  // namespace
-
 std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vector<std::string>& keys,
                                   const std::vector<Measurement>& data, CalibrationObjective objective,
                                   CalibrationQuantity quantity, const CalibrationProgress& progress,
                                   const std::string& step) {
+  return leaveOneOutFromScan(base, keys, data, objective, quantity, progress, step, ScanRecord());
+}
+
+std::vector<Residual> leaveOneOutFromScan(const FingerParameters& base, const std::vector<std::string>& keys,
+                                          const std::vector<Measurement>& data, CalibrationObjective objective,
+                                          CalibrationQuantity quantity, const CalibrationProgress& progress,
+                                          const std::string& step, ScanRecord record) {
   const std::size_t chamber_keys =
       keys.size() - static_cast<std::size_t>(std::count(keys.begin(), keys.end(), std::string("base_wall_share")));
   if (data.size() < chamber_keys + 2) {
@@ -347,12 +331,12 @@ std::vector<Residual> leaveOneOut(const FingerParameters& base, const std::vecto
     })
                     : CalibrationProgress();
   };
-  // One scan of every row, kept; each fold starts from its best points measured without the held-out row.
+  // One scan of every row (the fit's, where given); each fold starts from its best points measured without the
+  // held-out row.
   const FitProblem full(base, keys, data, quantity, heard(step + ", the scan: "));
-  ScanRecord record;
-  if (!two_steps) solveFit(full, objective, &record);
+  if (!two_steps && record.points.empty()) scanInto(full, objective, record);
   std::vector<Residual> predicted(data.size());
-  forEachFold(data.size(), [&](std::size_t i) {
+  onEveryCore(data.size(), [&](std::size_t i) {
     const std::string row = step + ", row " + std::to_string(i + 1) + " of " + std::to_string(data.size()) + ": ";
     std::vector<Measurement> others = data;
     others.erase(others.begin() + static_cast<long>(i));

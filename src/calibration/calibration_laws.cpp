@@ -2,9 +2,11 @@
 // the one that predicts better kept.
 #include <algorithm>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "pneumatic_finger/calibration/calibration.hpp"
+#include "shared_scan.hpp"
 
 namespace pneumatic_finger {
 
@@ -39,10 +41,14 @@ std::vector<WallLawFit> calibrateWallLaws(const FingerParameters& base, const st
     f.note = note;
     const std::string name = std::string(wallLawName(law)) + " law";
     try {
-      f.fit = calibrate(start, law_keys, data, objective, quantity,
-                        progress ? CalibrationProgress([&](const std::string& s) { progress(name + ": the fit: " + s); })
-                                 : CalibrationProgress());
-      f.leave_one_out = leaveOneOut(start, law_keys, data, objective, quantity, progress, name + ": leave-one-out");
+      ScanRecord scan;  // the fit's, which leave-one-out's folds start from
+      f.fit = calibrateKeepingScan(
+          start, law_keys, data, objective, quantity,
+          progress ? CalibrationProgress([&](const std::string& s) { progress(name + ": the fit: " + s); })
+                   : CalibrationProgress(),
+          &scan);
+      f.leave_one_out = leaveOneOutFromScan(start, law_keys, data, objective, quantity, progress,
+                                            name + ": leave-one-out", std::move(scan));
     } catch (const ParameterError& e) {
       throw ParameterError(std::string("wall law '") + wallLawName(law) + "': " + e.what());
     }

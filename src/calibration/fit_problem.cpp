@@ -102,7 +102,9 @@ double FitProblem::objective(const Eigen::VectorXd& u, CalibrationObjective obje
 
 void FitProblem::report(const std::string& step) const {
   // Every 64th call: the report's words cost more than a small data set's residuals.
-  if (progress_ && ++reports_ % 64 == 0) progress_(step + ": " + std::to_string(evaluations_) + " model evaluations");
+  if (!progress_ || ++reports_ % 64 != 0) return;
+  const std::lock_guard<std::mutex> lock(report_mutex_);
+  progress_(step + ": " + std::to_string(evaluations_.load()) + " model evaluations");
 }
 
 double reduce(const Eigen::VectorXd& terms, CalibrationObjective objective, double huber_scale) {

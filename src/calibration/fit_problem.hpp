@@ -5,6 +5,8 @@
 
 #include <Eigen/Dense>
 
+#include <atomic>
+#include <mutex>
 #include <string>
 #include <vector>
 
@@ -53,7 +55,7 @@ class FitProblem {
   /// Where @p values (in the keys' units) sit in the cube.
   Eigen::VectorXd pointOf(const std::vector<double>& values) const;
 
-  /// Model evaluations so far (a row at a point is one).
+  /// Model evaluations so far (a row at a point is one). terms() and report() may be called from several threads.
   long evaluations() const { return evaluations_; }
   /// Tells the progress listener @p step with the evaluations so far, at most every 64th call.
   void report(const std::string& step) const;
@@ -68,8 +70,9 @@ class FitProblem {
   CalibrationProgress progress_;
   std::size_t term_count_ = 0, square_count_ = 0;
   std::vector<std::size_t> row_first_;
-  mutable long evaluations_ = 0;
-  mutable long reports_ = 0;
+  mutable std::atomic<long> evaluations_{0};
+  mutable std::atomic<long> reports_{0};
+  mutable std::mutex report_mutex_;  // the listener hears one thread at a time
 };
 
 }  // namespace pneumatic_finger

@@ -1,5 +1,6 @@
 #include "solver.hpp"
 
+#include "every_core.hpp"
 #include "terms_cost.hpp"
 
 #include <ceres/ceres.h>
@@ -95,6 +96,21 @@ std::pair<double, Eigen::VectorXd> scanPoint(const FitProblem& problem, Calibrat
   return {best, u};
 }
 
+// scanPoint at each of @p points, on every core, in their order; each point's record appended in that order too.
+std::vector<std::pair<double, Eigen::VectorXd>> scanEach(const FitProblem& problem, CalibrationObjective objective,
+                                                         const std::vector<Eigen::VectorXd>& points, Eigen::Index m,
+                                                         bool profile, ScanRecord* record) {
+  std::vector<std::pair<double, Eigen::VectorXd>> at(points.size());
+  std::vector<ScanRecord> records(record ? points.size() : 0);
+  onEveryCore(points.size(), [&](std::size_t i) {
+    at[i] = scanPoint(problem, objective, points[i], m, profile, record ? &records[i] : nullptr);
+  });
+  for (ScanRecord& r : records) {
+    for (auto& p : r.points) record->points.push_back(std::move(p));
+  }
+  return at;
+}
+
 // The scan's points, each with its objective: the cube's (scanCube), then, with two or more scanned dimensions, a
 // line of 41 points along each through the best of them (a basin narrow in one key, as the gas's by a face, is missed
 // by a sparse set and found along a line), then a golden section along each. The shear modulus, where it is fitted
@@ -109,19 +125,21 @@ std::vector<std::pair<double, Eigen::VectorXd>> scan(const FitProblem& problem, 
   std::vector<std::pair<double, Eigen::VectorXd>> scanned;
   double best = std::numeric_limits<double>::infinity();
   Eigen::VectorXd best_v = Eigen::VectorXd::Zero(dims);
-  for (const Eigen::VectorXd& v : scanCube(static_cast<std::size_t>(dims))) {
-    auto point = scanPoint(problem, objective, v, m, profile, record);
-    if (point.first < best) best = point.first, best_v = v;
-    if (std::isfinite(point.first)) scanned.push_back(std::move(point));
+  const std::vector<Eigen::VectorXd> cube = scanCube(static_cast<std::size_t>(dims));
+  auto at_cube = scanEach(problem, objective, cube, m, profile, record);
+  for (std::size_t i = 0; i < cube.size(); ++i) {
+    if (at_cube[i].first < best) best = at_cube[i].first, best_v = cube[i];
+    if (std::isfinite(at_cube[i].first)) scanned.push_back(std::move(at_cube[i]));
   }
   constexpr int kLine = 41;
   for (Eigen::Index d = 0; dims > 1 && std::isfinite(best) && d < dims; ++d) {
-    for (int i = 0; i < kLine; ++i) {
-      Eigen::VectorXd v = best_v;
-      v[d] = static_cast<double>(i) / (kLine - 1);
-      auto point = scanPoint(problem, objective, v, m, profile, record);
-      if (std::isfinite(point.first)) scanned.push_back(std::move(point));
-      if (point.first < best) best = point.first, best_v = v;
+    std::vector<Eigen::VectorXd> line(kLine, best_v);  // the best point, moved along key d
+    for (int i = 0; i < kLine; ++i) line[static_cast<std::size_t>(i)][d] = static_cast<double>(i) / (kLine - 1);
+    auto at_line = scanEach(problem, objective, line, m, profile, record);
+    for (std::size_t i = 0; i < line.size(); ++i) {
+      const double value = at_line[i].first;
+      if (std::isfinite(value)) scanned.push_back(std::move(at_line[i]));
+      if (value < best) best = value, best_v = line[i];
     }
   }
   // Then a golden section along each scanned key, a line's step either side of the best: a basin narrower than the
@@ -315,9 +333,12 @@ FitSolution fromTheBestOf(const FitProblem& problem, CalibrationObjective object
     if (starts.size() == kStarts) break;
   }
   FitSolution best{scanned.front().second, scanned.front().first};
-  for (const auto* s : starts) {
-    const FitSolution local = localSolve(problem, objective, s->second, s->first);
-    if (local.objective < best.objective) best = local;
+  std::vector<FitSolution> local(starts.size());
+  onEveryCore(starts.size(), [&](std::size_t i) {
+    local[i] = localSolve(problem, objective, starts[i]->second, starts[i]->first);
+  });
+  for (const FitSolution& l : local) {
+    if (l.objective < best.objective) best = l;
   }
   // Then Subplex, which needs no derivative, from the best: where a key's step leaves the rows' shapes (its column is
   // zero) the derivative solvers cannot move it, and where the objective has kinks (a row that snaps between two
@@ -344,6 +365,10 @@ FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective, 
     return huberFrom(problem, fromTheBestOf(problem, squares, scan(problem, squares, record)).u);
   }
   return fromTheBestOf(problem, objective, scan(problem, objective, record));
+}
+
+void scanInto(const FitProblem& problem, CalibrationObjective objective, ScanRecord& record) {
+  scan(problem, objective == CalibrationObjective::kHuber ? CalibrationObjective::kLeastSquares : objective, &record);
 }
 
 FitSolution solveFold(const FitProblem& fold, CalibrationObjective objective, const ScanRecord& full,

@@ -27,6 +27,9 @@ struct ScanRecord {
 /// @throws ParameterError when no point of the scan gives every row a shape
 FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective, ScanRecord* record = nullptr);
 
+/// solveFit's scan alone, kept in @p record: where a fit's record is not at hand, leave-one-out's folds start from it.
+void scanInto(const FitProblem& problem, CalibrationObjective objective, ScanRecord& record);
+
 /// A leave-one-out fold: @p fold's problem is the full one without one row, whose terms are @p terms from
 /// @p first_term of the full problem's. Its starts are the best of the full scan @p full measured without that row
 /// (no new scan, and nothing of the held-out row), then solved locally as solveFit does.

@@ -1,0 +1,28 @@
+// A fit and its leave-one-out sharing one scan: the fit's scan of every row is the one each fold takes its starts
+// from (calibration.hpp, leaveOneOut), so a law fitted and predicted (calibrateWallLaws) scans once, not twice.
+// Internal header of src/calibration.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/calibration/calibration.hpp"
+#include "solver.hpp"
+
+namespace pneumatic_finger {
+
+/// calibrate(), keeping its scan in @p record where the fit is one search (not the two steps of every joint with
+/// the base face's share, whose record stays empty); nullptr keeps nothing.
+CalibrationResult calibrateKeepingScan(const FingerParameters& base, const std::vector<std::string>& keys,
+                                       const std::vector<Measurement>& data, CalibrationObjective objective,
+                                       CalibrationQuantity quantity, const CalibrationProgress& progress,
+                                       ScanRecord* record);
+
+/// leaveOneOut() from @p record, calibrateKeepingScan's scan of the same base, keys, rows, objective and quantity:
+/// the same folds as a scan of its own would start (the scan is deterministic); an empty record is scanned anew.
+std::vector<Residual> leaveOneOutFromScan(const FingerParameters& base, const std::vector<std::string>& keys,
+                                          const std::vector<Measurement>& data, CalibrationObjective objective,
+                                          CalibrationQuantity quantity, const CalibrationProgress& progress,
+                                          const std::string& step, ScanRecord record);
+
+}  // namespace pneumatic_finger
