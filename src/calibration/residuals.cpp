@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -148,8 +149,11 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
   options.wall_inverse = false;  // one model per candidate, a few dozen rows each: the inverse's build would dominate
   options.snap_point = false;    // nor is its snap asked
   FingerModel model(parameters, options);
-  FingerWorkspace ws(model), inverse(model);
+  FingerWorkspace ws(model);
+  std::optional<FingerWorkspace> inverse;  // only where the pressure on the path is compared
+  if (quantity == CalibrationQuantity::kGaugeAtTipAngle) inverse.emplace(model);
   std::vector<Residual> out;
+  out.reserve(data.size());
   const int n = parameters.chamber_count;
   const double nan = std::numeric_limits<double>::quiet_NaN();
   FingerState none = restState(parameters);  // what a row beyond the limit point gets: NaN, no shape
@@ -179,7 +183,7 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
     r.model_tip_y_m = s.tip().y();
     measuredInto(parameters, m, r);
     r.model_gauge_at_tip_angle_pa = quantity == CalibrationQuantity::kGaugeAtTipAngle
-                                        ? gaugeOnThePath(model, r.measured_tip_angle_rad, inverse)
+                                        ? gaugeOnThePath(model, r.measured_tip_angle_rad, *inverse)
                                         : nan;
     out.push_back(std::move(r));
   }
