@@ -157,6 +157,8 @@ def snap_table():
     print(fitted_sentences(CASES[-1][2]))
     print()
     print(ramp_against_steps(*CASES[-1][2:]))
+    print()
+    print(steps_by_pressure(*CASES[-1][2:]))
 
 
 def fitted_sentences(config):
@@ -193,6 +195,29 @@ def ramp_against_steps(config, ramp_file, step_file):
             f"was zeroed), bends up to {abs(gap[k]) * DEG:.1f} deg {'more' if gap[k] > 0 else 'less'} than the "
             f"stepwise loading (at {steps[inside][k, 0] / 1e3:.0f} kPa; {math.sqrt(numpy.mean(gap * gap)) * DEG:.1f} deg "
             f"rms).")
+
+
+def steps_by_pressure(config, ramp_file, step_file):
+    """A sentence: the stepwise loading read by the pressure that holds each of its bends (gauge_at_tip_angle's
+    comparison, well posed on a leap), for the fitted model and for the ramp itself (its bends, put on the absolute
+    scale as ramp_against_steps does, inverted by interpolation along their running maximum)."""
+    ramp, steps = table(ramp_file), table(step_file)
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        model = pf.FingerModel(config=str(ROOT / config))
+        start = float(model.evaluate(ramp[0, 0])["tip_angle_rad"])
+        bends = numpy.maximum.accumulate(ramp[:, 1] + start)
+        inside = (steps[:, 1] >= bends[0]) & (steps[:, 1] <= bends[-1])
+        held = numpy.array([model.gauge_for_tip_angle(b) for b in steps[inside, 1]])
+    ramp_held = numpy.interp(steps[inside, 1], bends, ramp[:, 0])
+    model_gap, ramp_gap, apart = held - steps[inside, 0], ramp_held - steps[inside, 0], held - ramp_held
+
+    def span(x):
+        return f"{numpy.min(x) / 1e3:+.1f} to {numpy.max(x) / 1e3:+.1f} kPa"
+    return (f"Read by the pressure that holds each stepwise bend (as `gauge_at_tip_angle` compares; "
+            f"{int(inside.sum())} of {len(steps)} steps, the ones within the ramp's bends), the fitted model needs "
+            f"{span(model_gap)} from the steps' pressures, and the ramp itself {span(ramp_gap)}: the model is within "
+            f"{numpy.max(numpy.abs(apart)) / 1e3:.2f} kPa of the ramp at every one of these bends.")
 
 
 def bend_errors(residuals):
