@@ -2,6 +2,7 @@
 // asks for by default.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <optional>
 #include <string>
@@ -143,44 +144,96 @@ double gaugeOnThePath(const FingerModel& model, double tip_angle_rad, FingerWork
 
 }  // namespace
 
+namespace {
+
+bool shaped(EvaluationStatus status) {
+  return status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum ||
+         status == EvaluationStatus::kSnappedThrough;
+}
+
+// The model's side of every row, the rows in order as one path: a wall past its limit point snaps to its far branch
+// where it has one, and such a row is data like any other (docs/MODEL.md, "The snap-through"). A row set by its
+// volume has a shape before, at and past the limit point, and the model's pressure there is compared with the
+// measured. NaN where a row has no shape (beyond the limit point, clamped).
+struct ModelRows {
+  std::size_t points = 0;                                 // backbone points per row: N + 2
+  std::vector<double> joint_rad, backbone_m, tip_angle_rad, gauge_pa;  // rows x N, rows x points x 2, rows, rows
+};
+
+// Rows set by their pressure all at once (evaluateMany: evaluate()'s numbers bit for bit, in SIMD packs where the
+// chambers are identical), else one at a time.
+ModelRows modelRows(const FingerModel& model, const std::vector<Measurement>& data) {
+  const auto n = static_cast<std::size_t>(model.parameters().chamber_count), rows = data.size();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  ModelRows out;
+  out.points = n + 2;
+  out.joint_rad.assign(rows * n, nan);
+  out.backbone_m.assign(rows * out.points * 2, nan);
+  out.tip_angle_rad.assign(rows, nan);
+  out.gauge_pa.assign(rows, nan);
+  FingerWorkspace ws(model);
+  std::vector<std::uint8_t> status(rows);
+  if (std::none_of(data.begin(), data.end(), [](const Measurement& m) { return m.driven_by_volume; })) {
+    for (std::size_t i = 0; i < rows; ++i) out.gauge_pa[i] = data[i].gauge_pa;
+    model.evaluateMany(out.gauge_pa.data(), rows,
+                       {nullptr, nullptr, nullptr, out.joint_rad.data(), out.backbone_m.data(), out.tip_angle_rad.data(),
+                        status.data()},
+                       ws);
+  } else {
+    for (std::size_t i = 0; i < rows; ++i) {
+      const Measurement& m = data[i];
+      const FingerState& s = m.driven_by_volume ? model.evaluateVolume(m.supplied_volume_m3, ws)
+                                                : model.evaluate(m.gauge_pa, ws);
+      status[i] = static_cast<std::uint8_t>(s.status);
+      std::copy(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n, out.joint_rad.begin() + i * n);
+      for (std::size_t k = 0; k < out.points; ++k) {
+        out.backbone_m[(i * out.points + k) * 2] = s.backbone_m(0, static_cast<Eigen::Index>(k));
+        out.backbone_m[(i * out.points + k) * 2 + 1] = s.backbone_m(1, static_cast<Eigen::Index>(k));
+      }
+      out.tip_angle_rad[i] = s.tip_angle_rad;
+      out.gauge_pa[i] = s.gauge_pa;
+    }
+  }
+  for (std::size_t i = 0; i < rows; ++i) {
+    if (shaped(static_cast<EvaluationStatus>(status[i]))) continue;
+    std::fill_n(out.joint_rad.begin() + i * n, n, nan);
+    std::fill_n(out.backbone_m.begin() + i * out.points * 2, out.points * 2, nan);
+    out.tip_angle_rad[i] = out.gauge_pa[i] = nan;
+  }
+  return out;
+}
+
+}  // namespace
+
 std::vector<Residual> residuals(const FingerParameters& parameters, const std::vector<Measurement>& data,
                                 CalibrationQuantity quantity) {
   ModelOptions options;
   options.wall_inverse = false;  // one model per candidate, a few dozen rows each: the inverse's build would dominate
   options.snap_point = false;    // nor is its snap asked
-  FingerModel model(parameters, options);
-  FingerWorkspace ws(model);
+  const FingerModel model(parameters, options);
+  const ModelRows rows = modelRows(model, data);
   std::optional<FingerWorkspace> inverse;  // only where the pressure on the path is compared
   if (quantity == CalibrationQuantity::kGaugeAtTipAngle) inverse.emplace(model);
+  const auto n = static_cast<std::size_t>(parameters.chamber_count);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  Eigen::VectorXd joints(static_cast<Eigen::Index>(n));  // a row's, as a state holds them (the same sum's order)
   std::vector<Residual> out;
   out.reserve(data.size());
-  const int n = parameters.chamber_count;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  FingerState none = restState(parameters);  // what a row beyond the limit point gets: NaN, no shape
-  none.joint_angle_rad.setConstant(nan);
-  none.backbone_m.setConstant(nan);
-  none.tip_angle_rad = nan;
-  none.gauge_pa = nan;
-  for (const Measurement& m : data) {
-    // The rows in order, as a path: a wall past its limit point snaps to its far branch where it has one, and such a
-    // row is data like any other (docs/MODEL.md, "The snap-through"). A row set by its volume has a shape before, at
-    // and past the limit point, and the model's pressure there is compared with the measured.
-    const FingerState& evaluated =
-        m.driven_by_volume ? model.evaluateVolume(m.supplied_volume_m3, ws) : model.evaluate(m.gauge_pa, ws);
-    const bool shaped = evaluated.status == EvaluationStatus::kOk || evaluated.status == EvaluationStatus::kVacuum ||
-                        evaluated.status == EvaluationStatus::kSnappedThrough;
-    const FingerState& s = shaped ? evaluated : none;
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const Measurement& m = data[i];
+    std::copy_n(rows.joint_rad.begin() + i * n, n, joints.data());
+    const double* tip = rows.backbone_m.data() + (i * rows.points + rows.points - 1) * 2;
     Residual r;
     r.measured_gauge_pa = m.gauge_pa;
-    r.model_gauge_pa = m.driven_by_volume ? s.gauge_pa : m.gauge_pa;
+    r.model_gauge_pa = m.driven_by_volume ? rows.gauge_pa[i] : m.gauge_pa;
     r.gauge_pa = m.hasGauge() ? m.gauge_pa : r.model_gauge_pa;
     r.supplied_volume_m3 = m.supplied_volume_m3;
-    r.model_joint_rad.assign(s.joint_angle_rad.data(), s.joint_angle_rad.data() + n);
-    r.model_avg_rad = n > 1 ? s.joint_angle_rad.tail(n - 1).mean() : nan;
-    r.model_joint1_rad = s.joint_angle_rad[0];
-    r.model_tip_angle_rad = s.tip_angle_rad;
-    r.model_tip_x_m = s.tip().x();
-    r.model_tip_y_m = s.tip().y();
+    r.model_joint_rad.assign(joints.data(), joints.data() + n);
+    r.model_avg_rad = n > 1 ? joints.tail(static_cast<Eigen::Index>(n) - 1).mean() : nan;
+    r.model_joint1_rad = joints[0];
+    r.model_tip_angle_rad = rows.tip_angle_rad[i];
+    r.model_tip_x_m = tip[0];
+    r.model_tip_y_m = tip[1];
     measuredInto(parameters, m, r);
     r.model_gauge_at_tip_angle_pa = quantity == CalibrationQuantity::kGaugeAtTipAngle
                                         ? gaugeOnThePath(model, r.measured_tip_angle_rad, *inverse)

@@ -29,11 +29,17 @@ namespace {  // NOLINT(build/namespaces): internal linkage per instruction set (
 
 /// The wall's law, P and dP/ddelta, for a pack: the thin membrane's in packs (membrane_law.hpp); the thick wall's,
 /// whose logarithms, arctangent and cube root have no pack form here, lane by lane through the single evaluation's
-/// own function (the same bits by construction).
-template <class T>
-inline void gaugeAndSlopePack(const MembraneWall& w, T x, T& f, T& df) {
+/// own function (the same bits by construction), for the lanes in @p active alone: a lane that has stopped is not
+/// read (risingNewtonPack masks it), and its law would cost as much as a running one's.
+template <class T, class M>
+inline void gaugeAndSlopePack(const MembraneWall& w, T x, M active, T& f, T& df) {
   if (!w.thick) return thinGaugeAndSlopeOf(w.pressure_scale_pa, w.locking_jm, x, f, df);
   for (int i = 0; i < lanesOf<T>(); ++i) {
+    if (!active[i]) {
+      f[i] = 0.0;
+      df[i] = 1.0;
+      continue;
+    }
     double fi = 0.0, dfi = 0.0;
     thickGaugeAndSlope(w, x[i], fi, dfi);
     f[i] = fi;
@@ -50,7 +56,7 @@ inline T risingNewtonPack(const MembraneWall& w, T target, T lo, T hi, T x, T pr
   T root = x;
   for (int k = 0; k < 2200 && anyOf(active); ++k) {  // 1100 bisections span every double
     T f, df;
-    gaugeAndSlopePack(w, x, f, df);
+    gaugeAndSlopePack(w, x, active, f, df);
     auto stop = active & (f == target);
     active = active & ~stop;
     const auto below = f < target;
