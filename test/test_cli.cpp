@@ -15,6 +15,7 @@
 
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 
 namespace pf = pneumatic_finger;
@@ -227,6 +228,28 @@ TEST(Cli, ParameterTableListsEveryKey) {
   ASSERT_EQ(r.status, 0);
   for (const char* key : {"chamber_count", "chamber_gap_m", "shear_modulus_pa", "atmospheric_pressure_pa"}) {
     EXPECT_NE(r.out.find(std::string("`") + key + "`"), std::string::npos) << key;
+  }
+}
+
+// --pressures prints the model's own pressures, under Python's names: the EPFL fit with 5 mm walls, whose wall does
+// not fold (its limit point inf, its snap where it is softest), and with 3 mm walls, which folds (snap = limit).
+TEST(Cli, PressuresAreTheModelsOwnUnderPythonsNames) {
+  const std::string config = std::string(PACKAGE_SOURCE_DIR) + "/config/epfl_ecoflex30_c7.yaml";
+  for (const char* wall : {"0.005", "0.003"}) {
+    const CliRun r = run("--config " + config + " --set drawing/wall_thickness_m=" + wall + " --pressures");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const std::vector<std::string> out = lines(r.out);
+    ASSERT_EQ(out.size(), 2u) << r.out;
+    EXPECT_EQ(out[0], "contact_gauge_pa,snap_gauge_pa,limit_gauge_pa,far_turning_gauge_pa");
+    pf::RawParameterMap raw;
+    pf::loadRawParametersFromYamlFile(config, raw);
+    raw["drawing/wall_thickness_m"] = {{std::stod(wall)}, false};
+    const pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
+    EXPECT_EQ(out[1], pf::formatExact(model.contactGaugePa()) + ',' + pf::formatExact(model.snapGaugePa()) + ',' +
+                          pf::formatExact(model.limitGaugePa()) + ',' + pf::formatExact(model.farTurningGaugePa()));
+    const std::vector<std::string> f = fields(out[1]);
+    EXPECT_EQ(f[2] == "inf", std::string(wall) == "0.005") << r.out;  // 5 mm: no fold; 3 mm: a limit point
+    EXPECT_GT(std::stod(f[1]), std::stod(f[0]));                     // it snaps after its walls touch
   }
 }
 

@@ -334,6 +334,35 @@ std::vector<double> parseVolumes(const std::vector<std::string>& volumes, const 
   return supplied;
 }
 
+// --pressures: where the model's finger changes, one CSV row under the names Python's FingerModel gives them (and
+// finger_node's diagnostics report the snap): the walls' first touch, the snap (the limit point where a wall folds,
+// else where it is softest), the limit point (inf where no wall folds) and the far branch's turning point.
+void printModelPressures(const pf::FingerModel& model) {
+  std::cout << "contact_gauge_pa,snap_gauge_pa,limit_gauge_pa,far_turning_gauge_pa\n"
+            << pf::formatExact(model.contactGaugePa()) << ',' << pf::formatExact(model.snapGaugePa()) << ','
+            << pf::formatExact(model.limitGaugePa()) << ',' << pf::formatExact(model.farTurningGaugePa()) << '\n';
+}
+
+// What finger_model prints instead of rows, and exits: the parameter tables, or the model's pressures.
+struct Listings {
+  bool parameters = false, drawing = false, pressures = false;
+
+  void addTo(CLI::App& app) {
+    app.add_flag("--parameters", parameters, "print the parameter table (Markdown) and exit");
+    app.add_flag("--drawing-parameters", drawing, "print the drawing's keys (Markdown, docs/DRAWING.md) and exit");
+    app.add_flag("--pressures", pressures,
+                 "print where the finger changes (Pa gauge, as Python's FingerModel names them): contact_gauge_pa, "
+                 "snap_gauge_pa, limit_gauge_pa (inf: no wall folds), far_turning_gauge_pa; and exit");
+  }
+  // True when one was asked for, and printed.
+  bool print(const pf::ParameterOptions& file) const {
+    if (parameters) printParameterTable();
+    else if (drawing) printDrawingTable();
+    else if (pressures) printModelPressures(pf::FingerModel(file.load()));
+    return parameters || drawing || pressures;
+  }
+};
+
 // The time mode's rows: a constant flow fills one finger; each row's time and its pressure, by the regulator's fill law.
 void timeModeRows(const pf::FingerParameters& finger, const std::string& flow_lpm, const std::string& duration_s,
                   const std::string& step_s, std::vector<double>& times, std::vector<double>& pressures) {
@@ -370,16 +399,14 @@ int main(int argc, char** argv) {
   std::string solver = "robust", sweep;
   std::vector<std::string> gauges;
   VolumeOptions volume;
-  bool parameter_table = false;
   app.add_option("--solver", solver, "robust (default), paper or table");
   // Kept as text: NaN and inf are refused by our own parser, with the option's name.
   // One value per occurrence, repeated for several rows: the help shows "--gauge-pa PA", not "TEXT ...".
   pf::addRepeatedOption(app, "--gauge-pa", gauges, "gauge pressure P (Pa); repeat for several rows", "PA");
   app.add_option("--sweep-pa", sweep, "FROM:TO:COUNT, evenly spaced gauge pressures (Pa)");
   volume.addTo(app);
-  app.add_flag("--parameters", parameter_table, "print the parameter table (Markdown) and exit");
-  bool drawing_table = false;
-  app.add_flag("--drawing-parameters", drawing_table, "print the drawing's keys (Markdown, docs/DRAWING.md) and exit");
+  Listings listings;
+  listings.addTo(app);
   CsvColumns columns;
   std::string max_gauge;
   app.add_option("--max-gauge-pa", max_gauge,
@@ -397,10 +424,7 @@ int main(int argc, char** argv) {
                  "X,Y,R: a disk in the finger's plane (m; x along the unbent finger from the mount, y toward the "
                  "strain-limited side); the finger closes on it instead of passing through");
   return pf::runTool("finger_model", app, argc, argv, [&] {
-    if (parameter_table || drawing_table) {
-      parameter_table ? printParameterTable() : printDrawingTable();
-      return 0;
-    }
+    if (listings.print(parameters)) return 0;
     std::vector<double> pressures;
     // NaN and inf are refused here: a pressure the model cannot place is an input error, not a row.
     for (const auto& g : gauges) pressures.push_back(pf::parseFiniteOption("--gauge-pa", g));
