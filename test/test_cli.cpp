@@ -316,7 +316,7 @@ TEST(Cli, PressuresBeyondTheLimitPointAreNanRowsWithAWarning) {
 }
 
 TEST(CalibrateCli, WallLawAutoKeepsTheBetterPredictionAndWritesIt) {
-  // The ribbed segment of Marchese 2015, two keys per law (the default three of the membrane law take minutes).
+  // The ribbed segment of Marchese 2015, the same two keys for every law (named, so each law is fitted once).
   const std::string out_file = testing::TempDir() + "/ribbed.yaml";
   const std::string root = PACKAGE_SOURCE_DIR;
   const CliRun r = runShell(std::string(FINGER_CALIBRATE_EXE) + " --config " + root +
