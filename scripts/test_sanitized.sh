@@ -3,7 +3,8 @@
 # sanitizer report fails the test binary. Called by scripts/test.sh after scripts/setup.sh.
 #  - AddressSanitizer and UndefinedBehaviorSanitizer: test_core and test_tools (the tools built likewise), in
 #    build/sanitized/;
-#  - ThreadSanitizer: test_concurrency (one model shared by threads, each with its own workspace), in build/tsan/.
+#  - ThreadSanitizer: test_concurrency (one model shared by threads, each with its own workspace; a calibration, whose
+#    scan, local solves and folds run on every core), in build/tsan/.
 set -euo pipefail
 ROOT="$(cd "$(dirname "$0")/.." && pwd)"
 export PATH="/usr/bin:/bin:$PATH"

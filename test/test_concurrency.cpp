@@ -1,5 +1,5 @@
 // One FingerModel shared by several threads, each with its own FingerWorkspace: every thread gets, bit for bit, what
-// it gets alone. scripts/test_sanitized.sh runs this file again under ThreadSanitizer, which reports any access to
+// it gets alone; and a calibration, whose scan, local solves and leave-one-out folds run on every core. scripts/test_sanitized.sh runs this file again under ThreadSanitizer, which reports any access to
 // shared memory that is not read-only; here, without it, a workspace shared by mistake would mix the threads' results.
 #include <gtest/gtest.h>
 
@@ -8,6 +8,7 @@
 #include <thread>
 #include <vector>
 
+#include "pneumatic_finger/calibration/calibration.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 
 namespace pf = pneumatic_finger;
@@ -83,5 +84,25 @@ TEST(Concurrency, AWorkspaceOfAnotherShapeIsRefusedNamingBoth) {
   } catch (const std::invalid_argument& e) {
     EXPECT_NE(std::string(e.what()).find("7 chambers in 1 groups, not this one's 7 in 7"), std::string::npos)
         << e.what();
+  }
+}
+
+// The calibration runs its scan's points, its local solves and leave-one-out's folds on every core
+// (src/calibration/every_core.hpp), each task writing its own slot, combined in order. Under ThreadSanitizer any
+// other shared write is reported; here, two runs, whose threads interleave as they happen to, give the same bits.
+TEST(Concurrency, ACalibrationOnEveryCoreGivesTheSameBitsEveryRun) {
+  const std::vector<pf::Measurement> data =
+      pf::readMeasurementsCsv(std::string(PACKAGE_SOURCE_DIR) + "/data/sierra2022_table1.csv", 4);
+  const auto run = [&data] {
+    return pf::calibrateWallLaws(pf::FingerParameters::defaults(), {pf::WallLaw::kPaper},
+                                 {"shear_modulus_pa", "chamber_gap_m"}, data, pf::CalibrationObjective::kMinimax,
+                                 pf::CalibrationQuantity::kOuterAverage, {});
+  };
+  const auto first = run(), second = run();
+  ASSERT_EQ(first.size(), 1u);
+  EXPECT_EQ(first[0].fit.values, second[0].fit.values);
+  ASSERT_EQ(first[0].leave_one_out.size(), data.size());
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    EXPECT_EQ(first[0].leave_one_out[i].model_joint_rad, second[0].leave_one_out[i].model_joint_rad) << "row " << i;
   }
 }

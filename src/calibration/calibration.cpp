@@ -8,8 +8,8 @@
 #include <mutex>
 #include <sstream>
 
-#include "fit_problem.hpp"
 #include "every_core.hpp"
+#include "fit_problem.hpp"
 #include "fit_space.hpp"
 #include "shared_scan.hpp"
 #include "solver.hpp"

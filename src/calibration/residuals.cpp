@@ -142,10 +142,6 @@ double gaugeOnThePath(const FingerModel& model, double tip_angle_rad, FingerWork
   return shaped ? s.gauge_pa : std::numeric_limits<double>::quiet_NaN();
 }
 
-}  // namespace
-
-namespace {
-
 bool shaped(EvaluationStatus status) {
   return status == EvaluationStatus::kOk || status == EvaluationStatus::kVacuum ||
          status == EvaluationStatus::kSnappedThrough;
