@@ -240,6 +240,12 @@ FitSolution huberFrom(const FitProblem& problem, const Eigen::VectorXd& u) {
 struct Epigraph {
   const FitProblem* problem;
   FitSolution best;
+  // The last point's terms, and their Jacobian where it was asked for. SLSQP asks again at the same keys (a line
+  // search's value twice, or a t-only step), about one call in eight of the EPFL fit's; the same keys give the same
+  // terms, so those calls cost nothing.
+  Eigen::VectorXd last_u, e;
+  Eigen::MatrixXd j;
+  bool ok = false, has_jacobian = false;
 };
 
 void epigraphConstraints(unsigned m, double* result, unsigned n, const double* x, double* gradient, void* data) {
@@ -247,9 +253,15 @@ void epigraphConstraints(unsigned m, double* result, unsigned n, const double* x
   const auto k = static_cast<Eigen::Index>(n - 1);
   const Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(x, k);
   const double t = x[n - 1];
-  Eigen::VectorXd e;
-  Eigen::MatrixXd j;
-  const bool ok = gradient ? g.problem->termsAndJacobian(u, e, j) : g.problem->terms(u, e);
+  const bool same = g.last_u.size() == u.size() && g.last_u == u;
+  if (!same || (gradient && !g.has_jacobian)) {
+    g.ok = gradient ? g.problem->termsAndJacobian(u, g.e, g.j) : g.problem->terms(u, g.e);
+    g.has_jacobian = gradient != nullptr;
+    g.last_u = u;
+  }
+  const bool ok = g.ok;
+  const Eigen::VectorXd& e = g.e;
+  const Eigen::MatrixXd& j = g.j;
   g.problem->report("minimax");
   const unsigned terms = m / 2;
   for (unsigned i = 0; i < terms; ++i) {
