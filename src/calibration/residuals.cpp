@@ -69,8 +69,8 @@ CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data) {
 std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity, WallLaw law) {
   if (quantity == CalibrationQuantity::kEveryJoint) return {"shear_modulus_pa", "chamber_gap_m", "base_wall_share"};
   if (quantity == CalibrationQuantity::kFirstJoint) return {"base_wall_share"};
-  // The thick wall keeps the file's J_m: its Gent pressure costs about twice the membrane's, and a third nested key
-  // with leave-one-out took ten minutes on the ribbed segment's 15 rows. Name wall_locking_jm with --fit to fit it.
+  // The thick wall keeps the file's J_m: fitting it lowers the fit's error but not always the prediction's (the
+  // cylindrical drawing's), so --wall-law auto fits it both ways (calibration_laws.cpp, keySets) and keeps the better.
   if (law == WallLaw::kMembrane) return {"shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"};
   return {"shear_modulus_pa", "chamber_gap_m"};
 }

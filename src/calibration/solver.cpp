@@ -240,9 +240,8 @@ FitSolution huberFrom(const FitProblem& problem, const Eigen::VectorXd& u) {
 struct Epigraph {
   const FitProblem* problem;
   FitSolution best;
-  // The last point's terms, and their Jacobian where it was asked for. SLSQP asks again at the same keys (a line
-  // search's value twice, or a t-only step), about one call in eight of the EPFL fit's; the same keys give the same
-  // terms, so those calls cost nothing.
+  // The last point's terms, and their Jacobian where it was asked for. SLSQP often asks again at the same keys; the
+  // same keys give the same terms, so those calls cost nothing.
   Eigen::VectorXd last_u, e;
   Eigen::MatrixXd j;
   bool ok = false, has_jacobian = false;

@@ -261,7 +261,8 @@ void addDataOptions(CLI::App& app, DataOptions& o) {
                  "auto (fit the paper, the membrane and the thick-wall law, keep the one with the smallest "
                  "leave-one-out error and write it), paper, membrane or thick; default: the parameter file's "
                  "wall_law. Without --fit each law takes its own keys (membrane: "
-                 "shear_modulus_pa,chamber_gap_m,wall_locking_jm; thick: shear_modulus_pa,chamber_gap_m)");
+                 "shear_modulus_pa,chamber_gap_m,wall_locking_jm; thick: shear_modulus_pa,chamber_gap_m, and under "
+                 "auto also with wall_locking_jm, the better prediction kept)");
 }
 
 std::ofstream openOutput(const std::string& output) {

@@ -140,7 +140,7 @@ CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data);
 /// The keys a fit over @p quantity takes when none are named: shear_modulus_pa and chamber_gap_m, and base_wall_share
 /// too when every joint is compared. Under the membrane law, wall_locking_jm as the third key where base_wall_share is
 /// not one (the Gent lock shapes the bend's rise after the limit point's bend); the thick wall keeps the file's J_m
-/// (its Gent pressure costs about twice the membrane's, and a third key ten minutes of leave-one-out).
+/// (calibrateWallLaws under auto fits it a second time with J_m too, and keeps the better prediction).
 std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity, WallLaw law = WallLaw::kPaper);
 
 /// "minimax", "least_squares" or "huber". @throws ParameterError for anything else.
@@ -257,7 +257,8 @@ struct WallLawFit {
 };
 
 /// `finger_calibrate --wall-law`: each law of @p laws fitted to @p data (with @p keys, or each law's defaultFitKeys
-/// when empty) and predicted row by row (leaveOneOut). A law with more keys fits at least as well; which law the data
+/// when empty; with several laws and no @p keys, the thick wall twice, with its defaultFitKeys and with
+/// wall_locking_jm too: one entry each) and predicted row by row (leaveOneOut). A law with more keys fits at least as well; which law the data
 /// support is the one that predicts better: chosenWallLaw picks the smallest leave-one-out objective. The membrane
 /// law's lever b may exceed the chamber height; the paper law's may not (docs/MODEL.md), so where @p base's does, the
 /// paper law starts from its uniform wall, b = L/2, and says so in its note.
