@@ -93,7 +93,7 @@ TEST(Drawing, TheShippedDrawingsGiveTheShippedKeys) {
   for (double p : {0.0, 49033.25, 98066.5, 196133.0, 294199.5}) {
     const pf::FingerState& s = from_drawing.evaluate(p, a);
     const pf::FingerState& t = from_keys.evaluate(p, b);
-    for (std::size_t j = 0; j < s.joint_angle_rad.size(); ++j) {
+    for (Eigen::Index j = 0; j < s.joint_angle_rad.size(); ++j) {
       EXPECT_NEAR(s.joint_angle_rad[j], t.joint_angle_rad[j], 1e-13) << p << " Pa, joint " << j + 1;
     }
   }

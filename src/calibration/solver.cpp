@@ -283,7 +283,7 @@ double epigraphObjective(unsigned n, const double* x, double* gradient, void*) {
 
 FitSolution minimaxFrom(const FitProblem& problem, const Eigen::VectorXd& start, double start_objective) {
   const auto k = static_cast<unsigned>(start.size());
-  Epigraph g{&problem, {start, start_objective}};
+  Epigraph g{&problem, {start, start_objective}, {}, {}, {}};
   nlopt::opt opt(nlopt::LD_SLSQP, k + 1);
   std::vector<double> lower(k + 1, 0.0), upper(k + 1, 1.0);
   upper[k] = HUGE_VAL;

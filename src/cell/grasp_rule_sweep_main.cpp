@@ -161,12 +161,7 @@ void printArmLift(const Sweep& s, const std::vector<pf::GripperFinger>& fingers,
                lift_s, grasp_pa, lift.tool_rise_m, lift.part_rise_m, lift.largest_tilt_deg, lift.fewest_fingers);
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  CLI::App app("grasp_rule_sweep: the cell's grasp rule against MuJoCo, over the part's mass and the lift's "
-               "acceleration; one CSV row per case");
-  Sweep s;
+void addOptions(CLI::App& app, Sweep& s) {
   app.add_option("--gripper", s.gripper, "the gripper's file")->check(CLI::ExistingFile)->capture_default_str();
   app.add_option("--cell", s.cell, "the cell's file (the part's size, friction, hold margin)")
       ->check(CLI::ExistingFile)->capture_default_str();
@@ -184,6 +179,15 @@ int main(int argc, char** argv) {
   app.add_option("--write-scene", s.scene_out,
                  "also write the first mass's scene, the springs at the grasp pressure, as MJCF to this file "
                  "(mujoco-simulate FILE shows it)");
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app("grasp_rule_sweep: the cell's grasp rule against MuJoCo, over the part's mass and the lift's "
+               "acceleration; one CSV row per case");
+  Sweep s;
+  addOptions(app, s);
   CLI11_PARSE(app, argc, argv);
   try {
     const std::vector<pf::GripperFinger> fingers = pf::loadGripperFile(s.gripper);

@@ -295,8 +295,22 @@ ContactState ContactTracker::solve(double gauge_pa) {
     solver_.backbone(out.joint_angle_rad, out.backbone_m);
     return out;
   }
-  // The touch events do not depend on the pressure asked for: they are found once, in order, and kept. A pressure
-  // within what is already known costs only the free model and the backbone.
+  findEventsUpTo(pressure, free_half_angle_rad);
+  if (failed_) {
+    out.status = ContactState::Status::kSolverFailure;
+    solver_.backbone(out.joint_angle_rad, out.backbone_m);
+    return out;
+  }
+  const int frozen = applyEventsUpTo(pressure, out);
+  solver_.backbone(out.joint_angle_rad, out.backbone_m);
+  out.status = frozen > 0 ? ContactState::Status::kInContact : ContactState::Status::kFree;
+  return out;
+}
+
+// The touch events do not depend on the pressure asked for: they are found once, in order, and kept. A pressure
+// within what is already known costs only the free model and the backbone.
+void ContactTracker::findEventsUpTo(double pressure, double free_half_angle_rad) {
+  const int n = solver_.model_.chamberCount();
   while (!failed_ && (events_.empty() || events_.back().gauge_pa <= pressure) && frozen_ < n &&
          pressure > clear_gauge_pa_) {
     const double from = events_.empty() ? 0.0 : events_.back().search_x;
@@ -317,11 +331,11 @@ ContactState ContactTracker::solve(double gauge_pa) {
     events_.push_back(std::move(e));
     clear_gauge_pa_ = 0.0;  // a new segment of the search starts at this event
   }
-  if (failed_) {
-    out.status = ContactState::Status::kSolverFailure;
-    solver_.backbone(out.joint_angle_rad, out.backbone_m);
-    return out;
-  }
+}
+
+// The events up to @p pressure into @p out: the touches, and the held joints at the angles they froze at. Returns how
+// many joints, from the mount, are held.
+int ContactTracker::applyEventsUpTo(double pressure, ContactState& out) const {
   int frozen = 0;
   for (const TouchEvent& e : events_) {
     if (e.gauge_pa > pressure) break;
@@ -334,9 +348,7 @@ ContactState ContactTracker::solve(double gauge_pa) {
     out.joint_angle_rad.head(frozen) = e.frozen_q.head(frozen);
   }
   for (int i = 0; i < frozen; ++i) out.held[static_cast<std::size_t>(i)] = true;
-  solver_.backbone(out.joint_angle_rad, out.backbone_m);
-  out.status = frozen > 0 ? ContactState::Status::kInContact : ContactState::Status::kFree;
-  return out;
+  return frozen;
 }
 
 }  // namespace pneumatic_finger

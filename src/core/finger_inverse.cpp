@@ -62,24 +62,7 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
     message = why.str();
     return false;
   }
-  double answer;
-  if (groups_.size() == 1) {
-    // Identical chambers: Theta_N = (2N - 1 + s0) theta, and every stage inverts in closed form.
-    if (!gaugeForHalfAngle(tip_angle_rad / turns, answer)) answer = std::numeric_limits<double>::infinity();
-  } else {
-    // Unequal chambers: Theta_N(P) is non-decreasing, so bisect on [0, max] (below the limit point).
-    const double top = std::min(max_gauge_pa, belowLimitGaugePa());
-    if (tipAngleAt(top) < tip_angle_rad) {
-      answer = std::numeric_limits<double>::infinity();
-    } else {
-      double lo = 0.0, hi = top;
-      for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
-        const double mid = 0.5 * (lo + hi);
-        (tipAngleAt(mid) < tip_angle_rad ? lo : hi) = mid;
-      }
-      answer = hi;
-    }
-  }
+  const double answer = gaugeOnNearBranch(tip_angle_rad, turns, max_gauge_pa);
   if (!(answer <= max_gauge_pa)) {
     why << "tip angle " << formatMessage(tip_angle_rad) << " rad needs more than the allowed " << formatMessage(max_gauge_pa)
         << " Pa gauge";
@@ -89,6 +72,25 @@ bool FingerModel::gaugeForTipAngle(double tip_angle_rad, double max_gauge_pa, do
   }
   gauge_pa = answer;
   return true;
+}
+
+// The pressure for a tip angle on the near branch (inf where none up to @p max_gauge_pa).
+double FingerModel::gaugeOnNearBranch(double tip_angle_rad, double turns, double max_gauge_pa) const {
+  double answer;
+  if (groups_.size() == 1) {
+    // Identical chambers: Theta_N = (2N - 1 + s0) theta, and every stage inverts in closed form.
+    if (!gaugeForHalfAngle(tip_angle_rad / turns, answer)) answer = std::numeric_limits<double>::infinity();
+    return answer;
+  }
+  // Unequal chambers: Theta_N(P) is non-decreasing, so bisect on [0, max] (below the limit point).
+  const double top = std::min(max_gauge_pa, belowLimitGaugePa());
+  if (tipAngleAt(top) < tip_angle_rad) return std::numeric_limits<double>::infinity();
+  double lo = 0.0, hi = top;
+  for (int i = 0; i < 200 && hi - lo > 1e-12 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (tipAngleAt(mid) < tip_angle_rad ? lo : hi) = mid;
+  }
+  return hi;
 }
 
 // A tip angle past the near branch's, for identical chambers whose walls have a far branch (docs/MODEL.md, "The

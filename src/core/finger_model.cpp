@@ -203,41 +203,47 @@ ChamberGroupSolution FingerModel::solveGroup(const ChamberGroup& group, double g
       r.half.tan = r.half.sin / r.half.cos;
       return r;
     }
-    case SolverKind::kTable: {
-      int segment = 0;
-      double x = 0.0;
-      const bool in_table = tableSegment(group, gauge_pa, segment, x);
-      // Above the table the robust chain answers, and it also gives the detail.
-      if (!in_table && gauge_pa > group.contact_gauge_pa) {
-        double delta = 0.0;
-        robustWall(group, gauge_pa, p_o, delta, r.bulge_m, r.half);
-        r.stretch = 1.0 + delta;
-        return r;
-      }
-      if (detail) {
-        const double delta = stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa));
-        r.stretch = 1.0 + delta;
-        r.bulge_m = bulge(delta, group.chamber_height_m);
-      }
-      if (!in_table) return r;  // walls apart: theta = 0 exactly
-      const auto k = static_cast<std::size_t>(segment);
-      const double theta = tableTheta(group, segment, x);
-      // Near contact the interpolant may dip a rounding error below 0: theta is 0 there by definition.
-      if (!(theta > 0.0)) return r;
-      r.half.rad = theta;
-      // tan is not tabulated: jointsAndBackbone does not read it, and a shape table's shape comes from the table.
-      r.half.tan = std::numeric_limits<double>::quiet_NaN();
-      if (group.table_functions == kTableTrigFunctions) {
-        const double* row = &group.table[k * kTableTrigFunctions * kTableNodes];
-        r.half.cos = tableFunction(row, kTableTrigFunctions, 1, x);
-        r.half.sin = tableFunction(row, kTableTrigFunctions, 2, x);
-      } else {
-        // A shape table has no cos and sin: writeState takes the shape from it directly, and the callers that come
-        // here (tipAngleAt, jointAnglesAt) read theta only. NaN, so that nothing can use them unnoticed.
-        r.half.cos = r.half.sin = std::numeric_limits<double>::quiet_NaN();
-      }
-      return r;
-    }
+    case SolverKind::kTable:
+      return solveGroupByTable(group, gauge_pa, detail);
+  }
+  return r;
+}
+
+// The table solver: theta (and cos, sin) interpolated within the table, the robust chain above it.
+ChamberGroupSolution FingerModel::solveGroupByTable(const ChamberGroup& group, double gauge_pa, bool detail) const {
+  ChamberGroupSolution r{1.0, 0.0, HalfAngle{}};
+  const double p_o = parameters_.atmospheric_pressure_pa;
+  int segment = 0;
+  double x = 0.0;
+  const bool in_table = tableSegment(group, gauge_pa, segment, x);
+  // Above the table the robust chain answers, and it also gives the detail.
+  if (!in_table && gauge_pa > group.contact_gauge_pa) {
+    double delta = 0.0;
+    robustWall(group, gauge_pa, p_o, delta, r.bulge_m, r.half);
+    r.stretch = 1.0 + delta;
+    return r;
+  }
+  if (detail) {
+    const double delta = stretchExcess(energyGroup(gauge_pa, p_o, group.shear_modulus_pa));
+    r.stretch = 1.0 + delta;
+    r.bulge_m = bulge(delta, group.chamber_height_m);
+  }
+  if (!in_table) return r;  // walls apart: theta = 0 exactly
+  const auto k = static_cast<std::size_t>(segment);
+  const double theta = tableTheta(group, segment, x);
+  // Near contact the interpolant may dip a rounding error below 0: theta is 0 there by definition.
+  if (!(theta > 0.0)) return r;
+  r.half.rad = theta;
+  // tan is not tabulated: jointsAndBackbone does not read it, and a shape table's shape comes from the table.
+  r.half.tan = std::numeric_limits<double>::quiet_NaN();
+  if (group.table_functions == kTableTrigFunctions) {
+    const double* row = &group.table[k * kTableTrigFunctions * kTableNodes];
+    r.half.cos = tableFunction(row, kTableTrigFunctions, 1, x);
+    r.half.sin = tableFunction(row, kTableTrigFunctions, 2, x);
+  } else {
+    // A shape table has no cos and sin: writeState takes the shape from it directly, and the callers that come
+    // here (tipAngleAt, jointAnglesAt) read theta only. NaN, so that nothing can use them unnoticed.
+    r.half.cos = r.half.sin = std::numeric_limits<double>::quiet_NaN();
   }
   return r;
 }

@@ -174,6 +174,15 @@ inline T estrin(const double (&c)[N], T x) {
   return estrinRange<0, N>(c, powers);
 }
 
+/// sinCosSmall's coefficients: 1/(2k+1)!, k = 0..11, for sin x / x, and 1/(2k)! for cos x.
+inline constexpr double kSinTaylor[12] = {
+    1.0, 1.0 / 6.0, 1.0 / 120.0, 1.0 / 5040.0, 1.0 / 362880.0, 1.0 / 39916800.0, 1.0 / 6227020800.0,
+    1.0 / 1307674368000.0, 1.0 / 355687428096000.0, 1.0 / 121645100408832000.0, 1.0 / 51090942171709440000.0,
+    1.0 / 25852016738884976640000.0};
+inline constexpr double kCosTaylor[12] = {
+    1.0, 1.0 / 2.0, 1.0 / 24.0, 1.0 / 720.0, 1.0 / 40320.0, 1.0 / 3628800.0, 1.0 / 479001600.0, 1.0 / 87178291200.0,
+    1.0 / 20922789888000.0, 1.0 / 6402373705728000.0, 1.0 / 2432902008176640000.0, 1.0 / 1124000727777607680000.0};
+
 /// cos(x) and sin(x) for 0 <= x <= pi/2 by their Taylor series to x^22 and x^23 (the first term left out is below
 /// 2e-18 there), as polynomials in z = x^2 by Estrin's scheme: pairs of coefficients, then z^2, z^4 and z^8 combine
 /// them, a tree five products deep instead of Horner's chain of eleven. For x <= 1/8 (joint 1's base half angle stays
@@ -202,30 +211,6 @@ inline void sinCosSmall(T x, T& cos_x, T& sin_x) {
     const T z8 = z4 * z4;
     return ((p[0] + z2 * p[1]) + z4 * (p[2] + z2 * p[3])) + z8 * (p[4] + z2 * p[5]);
   };
-  static constexpr double kSin[12] = {1.0,
-                                      1.0 / 6.0,
-                                      1.0 / 120.0,
-                                      1.0 / 5040.0,
-                                      1.0 / 362880.0,
-                                      1.0 / 39916800.0,
-                                      1.0 / 6227020800.0,
-                                      1.0 / 1307674368000.0,
-                                      1.0 / 355687428096000.0,
-                                      1.0 / 121645100408832000.0,
-                                      1.0 / 51090942171709440000.0,
-                                      1.0 / 25852016738884976640000.0};
-  static constexpr double kCos[12] = {1.0,
-                                      1.0 / 2.0,
-                                      1.0 / 24.0,
-                                      1.0 / 720.0,
-                                      1.0 / 40320.0,
-                                      1.0 / 3628800.0,
-                                      1.0 / 479001600.0,
-                                      1.0 / 87178291200.0,
-                                      1.0 / 20922789888000.0,
-                                      1.0 / 6402373705728000.0,
-                                      1.0 / 2432902008176640000.0,
-                                      1.0 / 1124000727777607680000.0};
   bool all_short, any_short;
   if constexpr (lanesOf<T>() == 1) {
     all_short = any_short = x <= kSinCosShortLimit;
@@ -235,16 +220,16 @@ inline void sinCosSmall(T x, T& cos_x, T& sin_x) {
     any_short = anyOf(short_lane);
   }
   if (all_short) {
-    sin_x = x * shortSeries(kSin);
-    cos_x = shortSeries(kCos);
+    sin_x = x * shortSeries(kSinTaylor);
+    cos_x = shortSeries(kCosTaylor);
   } else if (!any_short) {
-    sin_x = x * longSeries(kSin);
-    cos_x = longSeries(kCos);
+    sin_x = x * longSeries(kSinTaylor);
+    cos_x = longSeries(kCosTaylor);
   } else {
     // A pack that straddles the limit: each lane as the single evaluation would take it.
     const auto short_lane = x <= splat<T>(kSinCosShortLimit);
-    sin_x = short_lane ? x * shortSeries(kSin) : x * longSeries(kSin);
-    cos_x = short_lane ? shortSeries(kCos) : longSeries(kCos);
+    sin_x = short_lane ? x * shortSeries(kSinTaylor) : x * longSeries(kSinTaylor);
+    cos_x = short_lane ? shortSeries(kCosTaylor) : longSeries(kCosTaylor);
   }
 }
 

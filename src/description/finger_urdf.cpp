@@ -150,6 +150,24 @@ urdf::JointSharedPtr joint(const std::string& name, int type, const std::string&
   return j;
 }
 
+// Upper joint limits: the model's joint angles at the top of its pressure range (the finger cannot bend further
+// there); the lower limits are 0: vacuum is outside the model, which then shows the straight finger.
+std::vector<double> upperJointLimits(const FingerParameters& p, double max_gauge_pa) {
+  FingerModel model(p);
+  FingerWorkspace ws(model);
+  // Under the membrane law the limit point may come first. Where the walls have a far branch they snap to it and bend
+  // on up to the range's top; otherwise the joints reach the most the model holds just below the limit.
+  const bool far = std::isfinite(model.farTurningGaugePa()) && max_gauge_pa >= model.limitGaugePa();
+  model.startBranch(ws, far);
+  const double top_pa = far ? max_gauge_pa : std::min(max_gauge_pa, model.belowLimitGaugePa());
+  const FingerState* at_max = &model.evaluate(top_pa, ws);
+  if (at_max->status == EvaluationStatus::kBeyondLimitPoint) {  // a group without a far branch passed its limit
+    model.startBranch(ws, false);
+    at_max = &model.evaluate(model.belowLimitGaugePa(), ws);
+  }
+  return std::vector<double>(at_max->joint_angle_rad.data(), at_max->joint_angle_rad.data() + p.chamber_count);
+}
+
 }  // namespace
 
 urdf::ModelInterface fingerUrdfModel(const FingerParameters& p, const FingerUrdfOptions& o) {
@@ -157,21 +175,7 @@ urdf::ModelInterface fingerUrdfModel(const FingerParameters& p, const FingerUrdf
   if (!isValidNamePrefix(o.prefix, why)) throw ParameterError("frame prefix '" + o.prefix + "' " + why);
   if (!isValidFrameId(o.parent_frame, why)) throw ParameterError("parent frame '" + o.parent_frame + "' " + why);
   const int n = p.chamber_count;
-  // Upper joint limits: the model's joint angles at the top of its pressure range (the finger cannot bend further
-  // there); lower limits 0: vacuum is outside the model, which then shows the straight finger.
-  FingerModel model(p);
-  FingerWorkspace ws(model);
-  // Under the membrane law the limit point may come first. Where the walls have a far branch they snap to it and bend
-  // on up to the range's top; otherwise the joints reach the most the model holds just below the limit.
-  const bool far = std::isfinite(model.farTurningGaugePa()) && o.max_gauge_pa >= model.limitGaugePa();
-  model.startBranch(ws, far);
-  const double top_pa = far ? o.max_gauge_pa : std::min(o.max_gauge_pa, model.belowLimitGaugePa());
-  const FingerState* at_max = &model.evaluate(top_pa, ws);
-  if (at_max->status == EvaluationStatus::kBeyondLimitPoint) {  // a group without a far branch passed its limit
-    model.startBranch(ws, false);
-    at_max = &model.evaluate(model.belowLimitGaugePa(), ws);
-  }
-
+  const std::vector<double> upper_rad = upperJointLimits(p, o.max_gauge_pa);
   urdf::ModelInterface m;
   m.name_ = o.prefix + "pneumatic_finger";
   auto material = std::make_shared<urdf::Material>();
@@ -206,7 +210,7 @@ urdf::ModelInterface fingerUrdfModel(const FingerParameters& p, const FingerUrdf
     j->limits = std::make_shared<urdf::JointLimits>();
     j->limits->lower = 0.0;
     // A revolute joint needs upper > lower even where the walls never touch within the range.
-    j->limits->upper = std::max(at_max->joint_angle_rad[i - 1], 1e-6);
+    j->limits->upper = std::max(upper_rad[k], 1e-6);
     j->limits->effort = 0.0;    // not actuated by torque: the angle follows from the pressure
     j->limits->velocity = 10.0;  // rad/s, above what a regulator fill (about 1 s) produces
     m.joints_[j->name] = j;

@@ -409,6 +409,33 @@ void defineVolume(py::class_<PyFingerModel>& c) {
            "the limit point too; ValueError beyond what volume control follows or above max_volume_m3 (None: no cap)");
 }
 
+void defineProperties(py::class_<PyFingerModel>& c) {
+  c.def_property_readonly("parameters", &PyFingerModel::parameters)
+      .def_property_readonly("chamber_count", &PyFingerModel::chamberCount)
+      .def_property_readonly("contact_gauge_pa", &PyFingerModel::contactGaugePa)
+      .def_property_readonly("limit_gauge_pa", &PyFingerModel::limitGaugePa,
+                             "the limit point (Pa gauge), where a wall folds: at or above it the status is 'beyond "
+                             "limit point' (or 'snapped through' onto a far branch); inf under the paper law and where "
+                             "no wall folds (a Gent wall that locks first): snap_gauge_pa is where the finger snaps "
+                             "either way")
+      .def_property_readonly("snap_gauge_pa", &PyFingerModel::snapGaugePa,
+                             "where a rising pressure bends the finger fastest (Pa gauge): the limit point where a wall "
+                             "folds, else where a Gent wall that locks first is softest (its bend rises steeply but "
+                             "continuously); inf under the paper law or where every wall only stiffens")
+      .def_property_readonly("far_turning_gauge_pa", [](const PyFingerModel& self) { return self.farTurning(); },
+                             "the pressure (Pa gauge) at or below which a wall on its far branch snaps back to the near "
+                             "one (the largest over the chamber groups); inf where no wall has a far branch")
+      .def_property_readonly("solver", &PyFingerModel::solver)
+      .def_property_readonly("max_gauge_pa", &PyFingerModel::maxGaugePa,
+                             "the top of the model's range (Pa gauge): evaluate() clamps a pressure above it to it, "
+                             "with status 'clamped to max_gauge_pa' and a RuntimeWarning, as finger_node does; the "
+                             "parameter file's max_gauge_pa unless max_gauge_pa= was given")
+      .def_property_readonly("validated_max_gauge_pa", &PyFingerModel::validatedMaxGaugePa,
+                             "the top of the validated range (Pa gauge): the parameter file's validated_max_gauge_pa "
+                             "(finger_calibrate writes the highest pressure it calibrated on), no higher than "
+                             "max_gauge_pa");
+}
+
 PYBIND11_MODULE(_core, m) {
   m.doc() = "The pneumatic finger model (C++ core). Use pneumatic_finger.core, which adds the default parameter file.";
   // The core's refusals (a bad key, value or file) are Python's ValueError, with the tools' message.
@@ -430,6 +457,7 @@ PYBIND11_MODULE(_core, m) {
   py::class_<PyFingerModel> finger_model(m, "FingerModel");
   defineVolume(finger_model);
   defineContact(finger_model);
+  defineProperties(finger_model);
   finger_model
       .def(py::init<const std::string&, const py::dict&, const std::string&, const py::object&>(), py::arg("config"),
            py::arg("overrides") = py::dict(), py::arg("solver") = "robust", py::arg("max_gauge_pa") = py::none())
@@ -465,27 +493,5 @@ PYBIND11_MODULE(_core, m) {
            py::arg("outputs") = py::none(),
            "Many designs at one pressure: this model with keys set to each row of values (designs, len(keys)): "
            "tip_angle_rad, tip_x_m, tip_y_m, contact_gauge_pa (designs,) and status; refused: [(design, message)] "
-           "for designs the parameters refuse (NaN in every output)")
-      .def_property_readonly("parameters", &PyFingerModel::parameters)
-      .def_property_readonly("chamber_count", &PyFingerModel::chamberCount)
-      .def_property_readonly("contact_gauge_pa", &PyFingerModel::contactGaugePa)
-      .def_property_readonly("limit_gauge_pa", &PyFingerModel::limitGaugePa,
-                             "the membrane wall's limit point (Pa gauge): at or above it the status is 'beyond limit "
-                             "point' and no shape is given; inf under the paper law")
-      .def_property_readonly("snap_gauge_pa", &PyFingerModel::snapGaugePa,
-                             "where a rising pressure bends the finger fastest (Pa gauge): the limit point where a wall "
-                             "folds, else where a Gent wall that locks first is softest (its bend rises steeply but "
-                             "continuously); inf under the paper law or where every wall only stiffens")
-      .def_property_readonly("far_turning_gauge_pa", [](const PyFingerModel& self) { return self.farTurning(); },
-                             "the pressure (Pa gauge) at or below which a wall on its far branch snaps back to the near "
-                             "one (the largest over the chamber groups); inf where no wall has a far branch")
-      .def_property_readonly("solver", &PyFingerModel::solver)
-      .def_property_readonly("max_gauge_pa", &PyFingerModel::maxGaugePa,
-                             "the top of the model's range (Pa gauge): evaluate() clamps a pressure above it to it, "
-                             "with status 'clamped to max_gauge_pa' and a RuntimeWarning, as finger_node does; the "
-                             "parameter file's max_gauge_pa unless max_gauge_pa= was given")
-      .def_property_readonly("validated_max_gauge_pa", &PyFingerModel::validatedMaxGaugePa,
-                             "the top of the validated range (Pa gauge): the parameter file's validated_max_gauge_pa "
-                             "(finger_calibrate writes the highest pressure it calibrated on), no higher than "
-                             "max_gauge_pa");
+           "for designs the parameters refuse (NaN in every output)");
 }

@@ -209,15 +209,47 @@ bool FingerNode::publishAt(double gauge_pa, const ros::Time& stamp, bool clamped
 
 void FingerNode::publish(const FingerState& state, const ContactState* contact, const ros::Time& stamp, bool clamped,
                          double supplied_volume_m3) {
-  const int n = settings_.finger.chamber_count;
   // With contact the joints, backbone and tip are the contact rule's; stretch, bulge and half angle stay the free
   // chambers' (they depend on the pressure alone).
   const double* q_rad = contact ? contact->joint_angle_rad.data() : state.joint_angle_rad.data();
   const Eigen::Ref<const Eigen::Matrix2Xd> backbone = contact ? Eigen::Ref<const Eigen::Matrix2Xd>(contact->backbone_m)
                                                                : Eigen::Ref<const Eigen::Matrix2Xd>(state.backbone_m);
+  double tip_angle_rad = writeJoints(state, contact, q_rad, stamp);
+  if (!contact) tip_angle_rad = state.tip_angle_rad;  // the model's own sum, bit for bit
+  writeShape(state, backbone, tip_angle_rad, stamp);
+  const bool held = contact && std::any_of(contact->held.begin(), contact->held.end(), [](bool h) { return h; });
+  // Held, the walls' bulges the state already holds (the free ones) are reused; only the held walls' are solved.
+  if (held) {
+    finger_state_.supplied_volume_m3 = suppliedVolumeInContact(*model_, *contact, state.gauge_pa, state.bulge_m.data());
+  } else {
+    finger_state_.supplied_volume_m3 =
+        std::isnan(supplied_volume_m3) ? model_->suppliedVolumeOf(state) : supplied_volume_m3;
+  }
+  finger_state_.walls_in_contact = state.walls_in_contact;
+  finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.input.validated_max_gauge_pa;
+  const bool meets_itself = backboneMeetsItself(backbone, q_rad);  // said, and published with its status
+  if (meets_itself) ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), selfContactMessage(tip_angle_rad).c_str());
+  finger_state_.status = publishedStatus(state.status, clamped, meets_itself);
+  writeObject(contact);
+  writeForces(state.gauge_pa, contact);
+  // The error bar of the free model at this pressure (vacuum: the rest shape, 0).
+  const TipUncertainty::At bar = tip_uncertainty_.at(state.gauge_pa);
+  finger_state_.tip_angle_uncertainty_rad = bar.tip_angle_rad;
+  finger_state_.tip_position_uncertainty_m = bar.tip_position_m;
+  finger_state_.tip_uncertainty_extrapolated = bar.extrapolated;
+  const double variance = bar.tip_position_m * bar.tip_position_m;
+  finger_state_.tip_position_covariance = {variance, 0.0, 0.0, 0.0, variance, 0.0, 0.0, 0.0, 0.0};
+  if (tf_) tf_->sendTransform(transforms_);
+  joint_states_pub_.publish(joint_states_);
+  finger_state_pub_.publish(finger_state_);
+  publishTipMarker(bar);
+}
+
+double FingerNode::writeJoints(const FingerState& state, const ContactState* contact, const double* q_rad,
+                               const ros::Time& stamp) {
   double tip_angle_rad = 0.0;
   joint_states_.header.stamp = stamp;
-  for (int i = 0; i < n; ++i) {
+  for (int i = 0; i < settings_.finger.chamber_count; ++i) {
     const auto k = static_cast<std::size_t>(i);
     const double q = q_rad[i];
     tip_angle_rad += q;
@@ -233,8 +265,12 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
     finger_state_.held_by_contact[k] = contact && contact->held[k];
     finger_state_.snapped_through[k] = workspace_->onFarBranch(model_->groupOfChamber(i));
   }
-  if (!contact) tip_angle_rad = state.tip_angle_rad;  // the model's own sum, bit for bit
-  for (int i = 0; i < n + 2; ++i) {
+  return tip_angle_rad;
+}
+
+void FingerNode::writeShape(const FingerState& state, const Eigen::Ref<const Eigen::Matrix2Xd>& backbone,
+                            double tip_angle_rad, const ros::Time& stamp) {
+  for (int i = 0; i < settings_.finger.chamber_count + 2; ++i) {
     auto& p = finger_state_.backbone[static_cast<std::size_t>(i)];
     p.x = backbone(0, i);
     p.y = backbone(1, i);
@@ -245,45 +281,22 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
   finger_state_.tip.orientation.z = std::sin(0.5 * tip_angle_rad);
   finger_state_.tip.orientation.w = std::cos(0.5 * tip_angle_rad);
   finger_state_.tip_angle_rad = tip_angle_rad;
-  const bool held = contact && std::any_of(contact->held.begin(), contact->held.end(), [](bool h) { return h; });
-  // Held, the walls' bulges the state already holds (the free ones) are reused; only the held walls' are solved.
-  if (held) {
-    finger_state_.supplied_volume_m3 = suppliedVolumeInContact(*model_, *contact, state.gauge_pa, state.bulge_m.data());
-  } else {
-    finger_state_.supplied_volume_m3 =
-        std::isnan(supplied_volume_m3) ? model_->suppliedVolumeOf(state) : supplied_volume_m3;
-  }
-  finger_state_.walls_in_contact = state.walls_in_contact;
-  finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.input.validated_max_gauge_pa;
-  const bool meets_itself = backboneMeetsItself(backbone, q_rad);  // said, and published with its status
-  if (meets_itself) ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), selfContactMessage(tip_angle_rad).c_str());
-  finger_state_.status = publishedStatus(state.status, clamped, meets_itself);
+}
+
+void FingerNode::writeObject(const ContactState* contact) {
   finger_state_.object_id = object_ ? object_->id : std::string();
   finger_state_.object_status = toMessage(contact ? grasp_->statusWith(*contact) : grasp_->status());
   finger_state_.touch_gauge_pa = grasp_->touchGaugePa();
   finger_state_.first_touch_gauge_pa = NAN;
   finger_state_.contact_points.clear();
-  if (contact) {
-    finger_state_.first_touch_gauge_pa = contact->first_touch_gauge_pa;
-    for (const Eigen::Vector2d& c : contact->contact_points_m) {
-      geometry_msgs::Point p;
-      p.x = c.x();
-      p.y = c.y();
-      finger_state_.contact_points.push_back(p);
-    }
+  if (!contact) return;
+  finger_state_.first_touch_gauge_pa = contact->first_touch_gauge_pa;
+  for (const Eigen::Vector2d& c : contact->contact_points_m) {
+    geometry_msgs::Point p;
+    p.x = c.x();
+    p.y = c.y();
+    finger_state_.contact_points.push_back(p);
   }
-  writeForces(state.gauge_pa, contact);
-  // The error bar of the free model at this pressure (vacuum: the rest shape, 0).
-  const TipUncertainty::At bar = tip_uncertainty_.at(state.gauge_pa);
-  finger_state_.tip_angle_uncertainty_rad = bar.tip_angle_rad;
-  finger_state_.tip_position_uncertainty_m = bar.tip_position_m;
-  finger_state_.tip_uncertainty_extrapolated = bar.extrapolated;
-  const double variance = bar.tip_position_m * bar.tip_position_m;
-  finger_state_.tip_position_covariance = {variance, 0.0, 0.0, 0.0, variance, 0.0, 0.0, 0.0, 0.0};
-  if (tf_) tf_->sendTransform(transforms_);
-  joint_states_pub_.publish(joint_states_);
-  finger_state_pub_.publish(finger_state_);
-  publishTipMarker(bar);
 }
 
 // The force model only where there is contact (a scene that needs it): the held joints' moments, into finger_state
@@ -330,107 +343,6 @@ void FingerNode::publishTipMarker(const TipUncertainty::At& bar) {
   m.color.b = bar.extrapolated ? 0.0f : 1.0f;
   m.color.a = 0.5f;
   tip_marker_pub_.publish(m);
-}
-
-void FingerNode::onGraspObject(const GraspObject::ConstPtr& msg) {
-  object_.reset();
-  object_refused_.clear();
-  grasp_->clear();
-  object_timer_.stop();
-  // Said once per change: the physics cell sends the object at 50 Hz as it moves, with the same id and frame.
-  const std::string said = msg->id.empty() ? "cleared" : "'" + msg->id + "' in '" + msg->header.frame_id + "'";
-  if (!msg->id.empty() && !acceptObject(msg)) return republish();
-  if (said != announced_object_) ROS_INFO("%s: grasp object %s", log_name_.c_str(), said.c_str());
-  announced_object_ = said;
-  if (!msg->id.empty()) updateObject();
-  republish();
-}
-
-bool FingerNode::acceptObject(const GraspObject::ConstPtr& msg) {
-  // Validate before use: a bad object is refused by name and the finger stays free.
-  std::string why = solidFromMessage(*msg, object_in_frame_);
-  if (why.empty() && msg->header.frame_id.empty()) why = "header.frame_id is empty";
-  if (!why.empty()) {
-    object_refused_ = "grasp object '" + msg->id + "' refused: " + why;
-    ROS_ERROR("%s: %s; the finger stays free", log_name_.c_str(), object_refused_.c_str());
-    return false;
-  }
-  object_ = msg;
-  object_since_ = ros::WallTime::now();
-  object_located_once_ = false;
-  grasp_->setObject(object_in_frame_);
-  const std::string finger_frame = segmentLinkName(settings_.urdf.prefix, 0);
-  if (msg->header.frame_id != finger_frame && msg->header.frame_id != settings_.urdf.parent_frame && !tf_buffer_) {
-    tf_buffer_ = std::make_unique<tf2_ros::Buffer>();
-    tf_listener_ = std::make_unique<tf2_ros::TransformListener>(*tf_buffer_);
-  }
-  if (!object_timer_.isValid()) {
-    object_timer_ = nh_.createTimer(ros::Duration(1.0 / settings_.object_rate_hz), &FingerNode::onObjectTimer, this);
-  }
-  object_timer_.start();
-  return true;
-}
-
-void FingerNode::onObjectTimer(const ros::TimerEvent&) {
-  if (updateObject()) republish();
-}
-
-bool FingerNode::objectPose(Eigen::Isometry3d& finger_from_frame, std::string& why) const {
-  const std::string finger_frame = segmentLinkName(settings_.urdf.prefix, 0);
-  const std::string& parent_frame = settings_.urdf.parent_frame;
-  finger_from_frame = Eigen::Isometry3d::Identity();
-  if (object_->header.frame_id == finger_frame) return true;
-  // The finger's own mount (known here, not looked up: it does not depend on who publishes the finger's frames)
-  // after tf's latest parent_frame <- object frame.
-  const auto& xyz = settings_.urdf.mount_xyz_m;
-  const auto& rpy = settings_.urdf.mount_rpy_rad;
-  const Eigen::Isometry3d parent_from_finger =
-      Eigen::Translation3d(xyz[0], xyz[1], xyz[2]) * Eigen::AngleAxisd(rpy[2], Eigen::Vector3d::UnitZ()) *
-      Eigen::AngleAxisd(rpy[1], Eigen::Vector3d::UnitY()) * Eigen::AngleAxisd(rpy[0], Eigen::Vector3d::UnitX());
-  Eigen::Isometry3d parent_from_frame = Eigen::Isometry3d::Identity();
-  if (object_->header.frame_id != parent_frame) {
-    geometry_msgs::TransformStamped t;
-    try {
-      t = tf_buffer_->lookupTransform(parent_frame, object_->header.frame_id, ros::Time(0));
-    } catch (const tf2::TransformException& e) {
-      why = "no transform from '" + object_->header.frame_id + "' to '" + parent_frame + "': " + e.what();
-      return false;
-    }
-    // tf keeps a dead publisher's last transform for ever: a chain through moving joints (stamp not 0) that has not
-    // been renewed for transform_timeout_s is as good as none, or the finger would close on where the object was.
-    const double age_s = (ros::Time::now() - t.header.stamp).toSec();
-    if (settings_.transform_timeout_s > 0 && !t.header.stamp.isZero() && age_s > settings_.transform_timeout_s) {
-      why = "the transform from '" + object_->header.frame_id + "' to '" + parent_frame + "' is " +
-            formatMessage(std::round(age_s * 100) / 100) + " s old (over transform_timeout_s): has its publisher stopped?";
-      return false;
-    }
-    parent_from_frame = isometryFromMessage(t.transform);
-  }
-  finger_from_frame = parent_from_finger.inverse() * parent_from_frame;
-  return true;
-}
-
-bool FingerNode::updateObject() {
-  if (!object_) return false;
-  Eigen::Isometry3d finger_from_frame;
-  std::string why;
-  if (!objectPose(finger_from_frame, why)) {
-    // At start-up the frames come a moment after the object (robot_state_publisher's first joint states): that
-    // wait is not a problem worth a WARN. A transform still missing after it, or lost later, is.
-    const bool starting = !object_located_once_ && (ros::WallTime::now() - object_since_).toSec() < kTransformGraceS;
-    if (starting) {
-      ROS_DEBUG("%s: grasp object '%s': waiting for tf: %s", log_name_.c_str(), object_->id.c_str(), why.c_str());
-    } else {
-      ROS_WARN_THROTTLE(5.0, "%s: grasp object '%s': %s", log_name_.c_str(), object_->id.c_str(), why.c_str());
-    }
-    return grasp_->lostTransform(why);
-  }
-  object_located_once_ = true;
-  const bool changed = grasp_->locate(finger_from_frame);
-  if (changed && grasp_->status() == GraspObjectStatus::kOverlapsAtRest) {
-    ROS_WARN_THROTTLE(5.0, "%s: grasp object '%s' %s", log_name_.c_str(), object_->id.c_str(), grasp_->problem().c_str());
-  }
-  return changed;
 }
 
 FingerNodeConfig FingerNode::currentConfig() const {

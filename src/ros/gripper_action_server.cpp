@@ -249,20 +249,8 @@ class GripperActionServer {
     if (!unlocated.empty()) return abort(unlocated);
     std::vector<pf::FingerGoalAnswer> answers;
     bool object = false;
-    for (std::size_t i = 0; i < fingers_.size(); ++i) {
-      pf::PressureForTipAngle srv;
-      srv.request.tip_angle_rad = std::max(goal->position, 0.0);  // below 0: open, as 0
-      const std::string name = ros::names::append(fingers_[i], "pressure_for_tip_angle");
-      if (!ros::service::waitForService(name, ros::Duration(2.0)) || !ros::service::call(name, srv)) {
-        return abort("service '" + name + "' did not answer");
-      }
-      // The finger's range: the service refuses beyond its max_gauge_pa; the touch is predicted up to it.
-      const pf::FingerModelState& s = *states[i].state;
-      object = object || !s.object_id.empty();
-      answers.push_back({fingers_[i], srv.response.success ? srv.response.gauge_pa : NAN, s.touch_gauge_pa});
-      // Expected when the goal lies beyond the object (the touch comes first): the plan below says what it does.
-      if (!srv.response.success) ROS_DEBUG("gripper_action_server: %s: %s", name.c_str(), srv.response.message.c_str());
-    }
+    std::string silent;
+    if (!askFingers(goal->position, states, answers, object, silent)) return abort(silent);
     // Within the fingers' range (their max_gauge_pa, where they clamp).
     pf::GripperPlan plan = pf::planGripperCommand(answers, goal->position, max_gauge_pa_, squeeze_margin_pa_, object);
     if (plan.kind == pf::GripperPlan::Kind::kUnreachable) return abort(plan.message);
@@ -299,6 +287,34 @@ class GripperActionServer {
         return abort(s.str(), result);
       }
     }
+    finish(plan, result);
+  }
+
+  // Each finger's pressure for the goal's tip angle (its pressure_for_tip_angle service) and its predicted touch of
+  // the object; false with the finger whose service did not answer.
+  bool askFingers(double goal_tip_angle_rad, const std::vector<Latest>& states,
+                  std::vector<pf::FingerGoalAnswer>& answers, bool& object, std::string& why) {
+    for (std::size_t i = 0; i < fingers_.size(); ++i) {
+      pf::PressureForTipAngle srv;
+      srv.request.tip_angle_rad = std::max(goal_tip_angle_rad, 0.0);  // below 0: open, as 0
+      const std::string name = ros::names::append(fingers_[i], "pressure_for_tip_angle");
+      if (!ros::service::waitForService(name, ros::Duration(2.0)) || !ros::service::call(name, srv)) {
+        why = "service '" + name + "' did not answer";
+        return false;
+      }
+      // The finger's range: the service refuses beyond its max_gauge_pa; the touch is predicted up to it.
+      const pf::FingerModelState& s = *states[i].state;
+      object = object || !s.object_id.empty();
+      answers.push_back({fingers_[i], srv.response.success ? srv.response.gauge_pa : NAN, s.touch_gauge_pa});
+      // Expected when the goal lies beyond the object (the touch comes first): the plan below says what it does.
+      if (!srv.response.success) ROS_DEBUG("gripper_action_server: %s: %s", name.c_str(), srv.response.message.c_str());
+    }
+    return true;
+  }
+
+  // The settled fingers' verdict: a grasp succeeds when every finger touches, a move when the goal is reached or the
+  // object stops it.
+  void finish(const pf::GripperPlan& plan, pf::GripperCommandResult& result) {
     std::ostringstream s;
     s << "at " << result.gauge_pa << " Pa: tip angle " << result.position << " rad, grip force " << result.effort
       << " N";

@@ -390,6 +390,32 @@ void timeModeRows(const pf::FingerParameters& finger, const std::string& flow_lp
   }
 }
 
+// The rows' pressures from --gauge-pa (repeated) or --sweep-pa. NaN and inf are refused here: a pressure the model
+// cannot place is an input error, not a row.
+std::vector<double> parsePressures(const std::vector<std::string>& gauges, const std::string& sweep) {
+  std::vector<double> pressures;
+  for (const auto& g : gauges) pressures.push_back(pf::parseFiniteOption("--gauge-pa", g));
+  if (!gauges.empty() && !sweep.empty()) throw pf::ParameterError("give --gauge-pa or --sweep-pa, not both");
+  if (!sweep.empty()) pressures = parseSweep("--sweep-pa", sweep);
+  return pressures;
+}
+
+// Exactly one input, and no blocked force by volume (a plate changes the volume, which is not modelled).
+void checkOneInput(const std::vector<double>& pressures, const std::vector<double>& supplied, bool time_mode,
+                   bool blocked_tip_force) {
+  if (time_mode + !pressures.empty() + !supplied.empty() > 1) {
+    throw pf::ParameterError("give one input: pressures, supplied volumes or the time mode");
+  }
+  if (!time_mode && pressures.empty() && supplied.empty()) {
+    throw pf::ParameterError("no pressure given: use --gauge-pa P, --sweep-pa FROM:TO:COUNT, --flow-lpm Q or "
+                             "--supplied-volume-m3 V");
+  }
+  if (!supplied.empty() && blocked_tip_force) {
+    throw pf::ParameterError("--supplied-volume-m3 takes no --blocked-tip-force: a finger held straight by a plate "
+                             "changes its volume, which is not modelled");
+  }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -425,24 +451,10 @@ int main(int argc, char** argv) {
                  "strain-limited side); the finger closes on it instead of passing through");
   return pf::runTool("finger_model", app, argc, argv, [&] {
     if (listings.print(parameters)) return 0;
-    std::vector<double> pressures;
-    // NaN and inf are refused here: a pressure the model cannot place is an input error, not a row.
-    for (const auto& g : gauges) pressures.push_back(pf::parseFiniteOption("--gauge-pa", g));
-    if (!gauges.empty() && !sweep.empty()) throw pf::ParameterError("give --gauge-pa or --sweep-pa, not both");
-    if (!sweep.empty()) pressures = parseSweep("--sweep-pa", sweep);
+    std::vector<double> pressures = parsePressures(gauges, sweep);
     const std::vector<double> supplied = parseVolumes(volume.volumes, volume.sweep);
     const bool time_mode = !flow_lpm.empty() || !duration_s.empty() || !step_s.empty();
-    if (time_mode + !pressures.empty() + !supplied.empty() > 1) {
-      throw pf::ParameterError("give one input: pressures, supplied volumes or the time mode");
-    }
-    if (!time_mode && pressures.empty() && supplied.empty()) {
-      throw pf::ParameterError("no pressure given: use --gauge-pa P, --sweep-pa FROM:TO:COUNT, --flow-lpm Q or "
-                               "--supplied-volume-m3 V");
-    }
-    if (!supplied.empty() && columns.blocked_tip_force) {
-      throw pf::ParameterError("--supplied-volume-m3 takes no --blocked-tip-force: a finger held straight by a plate "
-                               "changes its volume, which is not modelled");
-    }
+    checkOneInput(pressures, supplied, time_mode, columns.blocked_tip_force);
     columns.start_far = volume.start_branch == "far";
     columns.range = parameters.loadRange(max_gauge);  // the file's range, --max-gauge-pa on top
     pf::ModelOptions options;

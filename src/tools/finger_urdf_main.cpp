@@ -39,6 +39,17 @@ double springGaugePa(const std::string& text, double max_gauge_pa) {
   return check.gauge_pa;
 }
 
+// One finger of the gripper file (the one with --prefix), as its finger_node describes it.
+std::string gripperFingerUrdf(const std::string& gripper, const pf::FingerUrdfOptions& options) {
+  for (const pf::GripperFinger& f : pf::loadGripperFile(gripper)) {
+    if (f.mount.prefix != options.prefix) continue;
+    pf::FingerUrdfOptions mount = f.mount;
+    mount.max_gauge_pa = options.max_gauge_pa;
+    return pf::fingerUrdf(f.parameters, mount);
+  }
+  throw pf::ParameterError("gripper file '" + gripper + "' has no finger with prefix '" + options.prefix + "'");
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -86,16 +97,7 @@ int main(int argc, char** argv) {
       // One description for the whole robot: what robot_state_publisher, rviz and a planner read.
       urdf = pf::composeRobotUrdfFiles(robot, gripper);
     } else if (!gripper.empty()) {
-      // One finger of the gripper file (the one with --prefix), as its finger_node describes it.
-      for (const pf::GripperFinger& f : pf::loadGripperFile(gripper)) {
-        if (f.mount.prefix != options.prefix) continue;
-        pf::FingerUrdfOptions mount = f.mount;
-        mount.max_gauge_pa = options.max_gauge_pa;
-        urdf = pf::fingerUrdf(f.parameters, mount);
-      }
-      if (urdf.empty()) {
-        throw pf::ParameterError("gripper file '" + gripper + "' has no finger with prefix '" + options.prefix + "'");
-      }
+      urdf = gripperFingerUrdf(gripper, options);
     } else {
       urdf = pf::fingerUrdf(parameters.load(), options);
     }

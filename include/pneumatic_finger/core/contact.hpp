@@ -130,6 +130,11 @@ class ContactTracker {
   bool outOfReach() const { return out_of_reach_; }
 
  private:
+  /// Finds the touch events after the last one known, up to @p pressure (or the first failure).
+  void findEventsUpTo(double pressure, double free_half_angle_rad);
+  /// Writes the events up to @p pressure into @p out; returns the count of held joints from the mount.
+  int applyEventsUpTo(double pressure, ContactState& out) const;
+
   ContactSolver solver_;
   Obstacle obstacle_;
   bool out_of_reach_ = false, overlaps_at_rest_ = false, failed_ = false;

@@ -354,6 +354,7 @@ class FingerModel {
   static bool usualWall(const ChamberGroup& group, double gauge_pa, double atmospheric_pa, double& stretch_excess,
                         double& bulge_m, HalfAngle& half);
   ChamberGroupSolution solveGroup(const ChamberGroup& group, double gauge_pa, bool detail) const;
+  ChamberGroupSolution solveGroupByTable(const ChamberGroup& group, double gauge_pa, bool detail) const;
   /// solveGroup's half angle alone (finger_model.cpp).
   double halfAngleOf(const ChamberGroup& group, double gauge_pa) const;
   /// The table's theta in @p segment at @p x (table_theta_only).
@@ -404,6 +405,8 @@ class FingerModel {
   bool writeBranchState(double gauge_pa, FingerWorkspace& workspace, FingerState& out) const;
   /// evaluate()'s far-branch path: writeBranchState into the workspace's state, with status and cache.
   const FingerState& evaluateFarBranch(double gauge_pa, FingerWorkspace& workspace) const;
+  /// gaugeForTipAngle on the near branch: its pressure, inf where none up to @p max_gauge_pa (finger_inverse.cpp).
+  double gaugeOnNearBranch(double tip_angle_rad, double turns, double max_gauge_pa) const;
   /// gaugeForTipAngle past the near branch, for identical chambers with a far branch (finger_inverse.cpp).
   bool gaugeOnFarBranch(double half_angle_rad, double tip_angle_rad, double max_gauge_pa, double& gauge_pa,
                         std::string& message) const;

@@ -71,6 +71,12 @@ class FingerNode {
   /// @p supplied_volume_m3: the volume input's (NaN: the free chambers' at the state's pressure).
   void publish(const FingerState& state, const ContactState* contact, const ros::Time& stamp, bool clamped,
                double supplied_volume_m3 = NAN);
+  /// publish()'s parts: the joints and their frames (returns the joints' sum), the backbone and the tip, the object.
+  double writeJoints(const FingerState& state, const ContactState* contact, const double* q_rad,
+                     const ros::Time& stamp);
+  void writeShape(const FingerState& state, const Eigen::Ref<const Eigen::Matrix2Xd>& backbone, double tip_angle_rad,
+                  const ros::Time& stamp);
+  void writeObject(const ContactState* contact);
 
   // The grasp object (docs/GRASP.md).
   void onGraspObject(const GraspObject::ConstPtr& msg);
