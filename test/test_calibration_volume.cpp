@@ -291,6 +291,38 @@ TEST(CalibrationByVolume, ByVolumeWithPressuresTheDefaultComparesBendAndPressure
   EXPECT_EQ(pf::runCalibration(c.start, c.set, c.request).quantity, pf::CalibrationQuantity::kTipAngle);
 }
 
+// Driven by volume with no gas given or fitted, the run says that the volume is read as an incompressible fill's, and
+// how to fit the gas (with pressures) or give it (without); a gas given, or a run by pressure, gets no such warning.
+TEST(CalibrationByVolume, ByVolumeWithoutGasTheRunSaysHowToFitIt) {
+  VolumeRunCase c = volumeRunCase(0.9, true);
+  c.request.keys = {"chamber_gap_m"};
+  c.request.compare = "tip_angle";
+  const auto gasWarnings = [&c] {
+    std::vector<std::string> found;
+    for (const std::string& w : pf::runCalibration(c.start, c.set, c.request).warnings) {
+      if (w.rfind("driven by volume with dead_volume_m3 = 0", 0) == 0) found.push_back(w);
+    }
+    return found;
+  };
+  c.request.drive = "volume";
+  std::vector<std::string> found = gasWarnings();
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_NE(found[0].find("fit it first (--drive volume --compare gauge_pa --fit dead_volume_m3) or give it "
+                          "(--set dead_volume_m3=V;"),
+            std::string::npos)
+      << found[0];
+  c.request.drive = "pressure";
+  EXPECT_TRUE(gasWarnings().empty());
+  c.request.drive = "volume";
+  c.start.dead_volume_m3 = 1e-6;
+  EXPECT_TRUE(gasWarnings().empty());
+  c.start.dead_volume_m3 = 0.0;
+  for (pf::Measurement& m : c.set.rows) m.gauge_pa = NAN;  // nothing to fit the gas to: give it
+  found = gasWarnings();
+  ASSERT_EQ(found.size(), 1u);
+  EXPECT_NE(found[0].find("share: give it (--set dead_volume_m3=V;"), std::string::npos) << found[0];
+}
+
 // A header that cannot be read says what it probably meant, and data given as columns name their
 // rows as rows everywhere (before: "row 6" in one message, "line 1" in another).
 TEST(CalibrationData, RefusalsGiveTheLikelyCauseAndNameRowsOneWay) {

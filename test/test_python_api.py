@@ -327,6 +327,9 @@ def test_calibration_driven_by_volume_finds_the_gap_past_the_limit_point():
     assert fit["compared"] == "tip_angle+gauge_pa"
     assert fit["fitted"]["shear_modulus_pa"] == pytest.approx(2e4, rel=1e-6)
     assert fit["fitted"]["chamber_gap_m"] == pytest.approx(1e-3, rel=1e-6)
+    # No gas given nor fitted: the same words as finger_calibrate's report, with the way to fit it from the pressures.
+    gas = [w for w in fit["warnings"] if w.startswith("driven by volume with dead_volume_m3 = 0")]
+    assert len(gas) == 1 and "--compare gauge_pa --fit dead_volume_m3" in gas[0]
 
 
 def test_the_ribbed_membrane_by_volume_reaches_the_basin_six_starts_missed():

@@ -53,6 +53,20 @@ WallLawFit fitOnly(const FingerParameters& base, const std::vector<std::string>&
   return f;
 }
 
+// Driven by volume with no gas in the drive, neither given nor fitted: the supplied volume is all the chambers'
+// growth, as an incompressible fluid makes it. Where the drive pushes air, its gas takes a share that grows with the
+// pressure, and a fit without it is far off (the ribbed segment by volume, auto: 40 deg; docs/CALIBRATE.md): said,
+// with the way to fit it.
+std::string gasWarning(const FingerParameters& base, const std::vector<std::string>& keys, bool has_gauge) {
+  if (base.dead_volume_m3 != 0.0 || std::find(keys.begin(), keys.end(), "dead_volume_m3") != keys.end()) return {};
+  return std::string("driven by volume with dead_volume_m3 = 0: each row's supplied volume is taken as the chambers' "
+                     "growth alone, as an incompressible fluid gives it. If the drive pushes air, its gas takes a "
+                     "share: ") +
+         (has_gauge ? "fit it first (--drive volume --compare gauge_pa --fit dead_volume_m3) or give it"
+                    : "give it") +
+         " (--set dead_volume_m3=V; docs/CALIBRATE.md, \"A finger filled by volume\")";
+}
+
 }  // namespace
 
 CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet& data,
@@ -78,6 +92,10 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
         tipUncertainty(run.best().fit.residuals, run.best().leave_one_out, run.best().fit.keys.size());
   }
   run.warnings = data.notes;
+  if (run.by_volume) {
+    const std::string gas = gasWarning(base, run.best().fit.keys, has_gauge);
+    if (!gas.empty()) run.warnings.push_back(gas);
+  }
   for (const std::string& w : run.best().fit.warnings) run.warnings.push_back(w);
   if (!run.tip_uncertainty.empty()) {
     const std::string unpredicted = unpredictedRowsWarning(run.best().fit.residuals, run.best().leave_one_out);
