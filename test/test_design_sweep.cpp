@@ -3,9 +3,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "pneumatic_finger/core/design_sweep.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pf = pneumatic_finger;
 
@@ -71,4 +73,36 @@ TEST(DesignSweep, AnUnknownKeyIsRefusedBeforeAnyDesign) {
                                 out),
                pf::ParameterError);
   EXPECT_EQ(tip[0], -7.0);
+}
+
+// A sibling sweep (the drawing's wall thickness) of the fitted EPFL actuator: each design's snap and limit point are
+// those of its own model, built with the snap point asked for. Its 3 mm wall folds (a finite limit point, the snap
+// there); the thicker ones lock first (no limit point: inf), and their snap rises with the wall.
+TEST(DesignSweep, SnapAndLimitPointAreEachDesignsOwn) {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/epfl_ecoflex30_c7.yaml", raw);
+  const pf::FingerParameters base = pf::FingerParameters::fromRaw(raw);
+  const std::vector<double> walls_m = {0.003, 0.005, 0.007, 0.010};
+  std::vector<double> snap(walls_m.size()), limit(walls_m.size());
+  pf::DesignOutputs out;
+  out.snap_gauge_pa = snap.data();
+  out.limit_gauge_pa = limit.data();
+  ASSERT_TRUE(pf::sweepDesigns(base, pf::ModelOptions(), {"drawing/wall_thickness_m"}, walls_m.data(), walls_m.size(),
+                               0.0, out)
+                  .empty());
+  for (std::size_t d = 0; d < walls_m.size(); ++d) {
+    pf::RawParameterMap own = raw;
+    own["drawing/wall_thickness_m"] = {{walls_m[d]}, false};
+    pf::ModelOptions options;
+    options.snap_point = true;
+    const pf::FingerModel model(pf::FingerParameters::fromRaw(own), options);
+    EXPECT_EQ(snap[d], model.snapGaugePa()) << walls_m[d];
+    EXPECT_EQ(limit[d], model.limitGaugePa()) << walls_m[d];
+  }
+  EXPECT_TRUE(std::isfinite(limit[0]));
+  EXPECT_EQ(snap[0], limit[0]);
+  for (std::size_t d = 1; d < walls_m.size(); ++d) {
+    EXPECT_TRUE(std::isinf(limit[d])) << walls_m[d];
+    EXPECT_GT(snap[d], snap[d - 1]) << walls_m[d];
+  }
 }

@@ -207,11 +207,30 @@ def test_finger_design_sweeps_a_drawing():
                                                                   rel=1e-12)
 
 
+def test_finger_design_sweeps_the_siblings_snap_and_limit_point():
+    # The fitted EPFL actuator with its walls 3 to 10 mm thick: each row is the sibling's own snap_gauge_pa and
+    # limit_gauge_pa, and the CSV says inf where the wall locks before it folds (the 7 mm wall's: docs/ACCURACY.md).
+    config = str(pathlib.Path(pf.default_config()).parent / "epfl_ecoflex30_c7.yaml")
+    for quantity in ("snap_gauge_pa", "limit_gauge_pa"):
+        out = subprocess.run(DESIGN + ["--config", config, "--vary", "drawing/wall_thickness_m=0.003:0.010:8",
+                                       "--quantity", quantity], check=True, capture_output=True, text=True).stdout
+        rows = list(csv.DictReader(io.StringIO(out)))
+        assert len(rows) == 8
+        for row in rows:
+            model = pf.FingerModel(config, {"drawing/wall_thickness_m": float(row["drawing/wall_thickness_m"])})
+            assert float(row[quantity]) == getattr(model, quantity)
+        if quantity == "limit_gauge_pa":
+            assert rows[0][quantity] != "inf" and rows[4][quantity] == "inf"
+    swept = pf.FingerModel(config).sweep_designs(["drawing/wall_thickness_m"], numpy.array([[0.005]]), 0.0)
+    assert swept["snap_gauge_pa"][0] == pf.FingerModel(config, {"drawing/wall_thickness_m": 0.005}).snap_gauge_pa
+
+
 @pytest.mark.parametrize("args, message", [
     (["--vary", "no_such_key=1:2:3", "--quantity", "contact_gauge_pa"], "unknown parameter 'no_such_key'"),
     (["--vary", "chamber_gap_m=1:2", "--quantity", "contact_gauge_pa"], "KEY=FROM:TO:COUNT"),
     (["--vary", "chamber_gap_m=2e-5:1e-4:3", "--quantity", "tip_angle_rad"], "needs @"),
     (["--vary", "chamber_gap_m=2e-5:1e-4:3", "--quantity", "speed@1"], "not one of"),
+    (["--vary", "chamber_gap_m=2e-5:1e-4:3", "--quantity", "snap_gauge_pa@1"], "snap_gauge_pa takes no @ argument"),
 ])
 def test_finger_design_refuses_bad_arguments_naming_them(args, message):
     r = subprocess.run(DESIGN + args, capture_output=True, text=True)

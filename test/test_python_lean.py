@@ -135,6 +135,8 @@ def test_sweep_designs_equals_one_model_per_design():
         assert swept["tip_x_m"][d] == state["backbone_m"][-1, 0]
         assert swept["tip_y_m"][d] == state["backbone_m"][-1, 1]
         assert swept["contact_gauge_pa"][d] == alone.contact_gauge_pa
+        assert swept["snap_gauge_pa"][d] == alone.snap_gauge_pa  # inf: the paper law's walls only stiffen
+        assert swept["limit_gauge_pa"][d] == alone.limit_gauge_pa
     assert numpy.isnan(swept["tip_angle_rad"][3])
     assert swept["refused"] == [(3, "parameter 'chamber_gap_m' = -1 is outside its allowed range [0, 0.1] m")]
     lean = base.sweep_designs(["chamber_gap_m", "chamber_height_m"], values, 1.5e5, outputs=["tip_angle_rad"])

@@ -13,7 +13,8 @@ namespace {
 
 void writeNan(const DesignOutputs& out, std::size_t d) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (double* o : {out.tip_angle_rad, out.tip_x_m, out.tip_y_m, out.contact_gauge_pa}) {
+  for (double* o : {out.tip_angle_rad, out.tip_x_m, out.tip_y_m, out.contact_gauge_pa, out.snap_gauge_pa,
+                    out.limit_gauge_pa}) {
     if (o) o[d] = nan;
   }
   if (out.status) out.status[d] = static_cast<std::uint8_t>(EvaluationStatus::kNotFinite);
@@ -32,7 +33,7 @@ std::vector<DesignRefusal> sweepDesigns(const FingerParameters& base, const Mode
   RawParameterMap raw = base.toRaw();
   ModelOptions design_options = options;
   design_options.wall_inverse = false;  // one pressure per design: the wall's inverse would cost more than it saves
-  design_options.snap_point = false;    // nor is a design's snap asked
+  design_options.snap_point = out.snap_gauge_pa != nullptr;  // a scan and a golden section: only when asked
   std::vector<DesignRefusal> refused;
   const bool wants_shape = out.tip_angle_rad || out.tip_x_m || out.tip_y_m || out.status;
   const bool wants_points = out.tip_x_m || out.tip_y_m;
@@ -50,6 +51,8 @@ std::vector<DesignRefusal> sweepDesigns(const FingerParameters& base, const Mode
       continue;
     }
     if (out.contact_gauge_pa) out.contact_gauge_pa[d] = model->contactGaugePa();
+    if (out.snap_gauge_pa) out.snap_gauge_pa[d] = model->snapGaugePa();
+    if (out.limit_gauge_pa) out.limit_gauge_pa[d] = model->limitGaugePa();
     if (!wants_shape) continue;
     const int n = model->chamberCount(), groups = model->distinctChamberCount();
     // The scratch is sized once per chamber layout: a sweep of one layout allocates nothing for it after its first

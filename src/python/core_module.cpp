@@ -70,9 +70,10 @@ const std::vector<OutputField> kVolumeFields = [] {
   f.push_back({"gauge_pa", E::kFloat64, {}});
   return f;
 }();
-const std::vector<OutputField> kDesignFields = {{"tip_angle_rad", E::kFloat64, {}}, {"tip_x_m", E::kFloat64, {}},
-                                                {"tip_y_m", E::kFloat64, {}},       {"contact_gauge_pa", E::kFloat64, {}},
-                                                {"status", E::kCode, {}}};
+const std::vector<OutputField> kDesignFields = {
+    {"tip_angle_rad", E::kFloat64, {}},    {"tip_x_m", E::kFloat64, {}},       {"tip_y_m", E::kFloat64, {}},
+    {"contact_gauge_pa", E::kFloat64, {}}, {"snap_gauge_pa", E::kFloat64, {}}, {"limit_gauge_pa", E::kFloat64, {}},
+    {"status", E::kCode, {}}};
 
 class PyFingerModel {
  public:
@@ -293,9 +294,10 @@ class PyFingerModel {
       throw py::value_error("values must be an array of shape (designs, len(keys)), and keys not empty");
     }
     OutputArrays arrays(kDesignFields, outputs, py::none(), v.shape(0), 0);
-    const pf::DesignOutputs rows{arrays.data<double>("tip_angle_rad"), arrays.data<double>("tip_x_m"),
-                                 arrays.data<double>("tip_y_m"), arrays.data<double>("contact_gauge_pa"),
-                                 arrays.data<std::uint8_t>("status")};
+    const pf::DesignOutputs rows{arrays.data<double>("tip_angle_rad"),    arrays.data<double>("tip_x_m"),
+                                 arrays.data<double>("tip_y_m"),          arrays.data<double>("contact_gauge_pa"),
+                                 arrays.data<std::uint8_t>("status"),     arrays.data<double>("snap_gauge_pa"),
+                                 arrays.data<double>("limit_gauge_pa")};
     std::vector<pf::DesignRefusal> refused;
     {
       py::gil_scoped_release release;
@@ -492,6 +494,7 @@ PYBIND11_MODULE(_core, m) {
       .def("sweep_designs", &PyFingerModel::sweepDesigns, py::arg("keys"), py::arg("values"), py::arg("gauge_pa"),
            py::arg("outputs") = py::none(),
            "Many designs at one pressure: this model with keys set to each row of values (designs, len(keys)): "
-           "tip_angle_rad, tip_x_m, tip_y_m, contact_gauge_pa (designs,) and status; refused: [(design, message)] "
+           "tip_angle_rad, tip_x_m, tip_y_m, contact_gauge_pa, snap_gauge_pa, limit_gauge_pa (designs,) and status "
+           "(snap_gauge_pa, a scan per design, only when asked for or with outputs=None); refused: [(design, message)] "
            "for designs the parameters refuse (NaN in every output)");
 }

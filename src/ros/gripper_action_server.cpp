@@ -249,8 +249,8 @@ class GripperActionServer {
     if (!unlocated.empty()) return abort(unlocated);
     std::vector<pf::FingerGoalAnswer> answers;
     bool object = false;
-    std::string silent;
-    if (!askFingers(goal->position, states, answers, object, silent)) return abort(silent);
+    std::string unanswered;
+    if (!askFingers(goal->position, states, answers, object, unanswered)) return abort(unanswered);
     // Within the fingers' range (their max_gauge_pa, where they clamp).
     pf::GripperPlan plan = pf::planGripperCommand(answers, goal->position, max_gauge_pa_, squeeze_margin_pa_, object);
     if (plan.kind == pf::GripperPlan::Kind::kUnreachable) return abort(plan.message);
