@@ -33,11 +33,11 @@ double drawn(const RawParameterMap& raw, const std::string& key, double fallback
     throw ParameterError("parameter '" + std::string(kDrawingPrefix) + key + "' must be one number (every cavity "
                          "of a drawing is the same)");
   }
-  try {
-    checkParameterValue(spec, it->second.values[0]);
-  } catch (const ParameterError& e) {
-    throw ParameterError(std::string(kDrawingPrefix) + e.what());
-  }
+  // The range check's own words, the key named as the file and --set name it (drawing/KEY).
+  const std::string full_key = kDrawingPrefix + key;
+  ParameterSpec named = spec;
+  named.key = full_key.c_str();
+  checkParameterValue(named, it->second.values[0]);
   return it->second.values[0];
 }
 
