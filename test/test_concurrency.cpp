@@ -1,6 +1,7 @@
 // One FingerModel shared by several threads, each with its own FingerWorkspace: every thread gets, bit for bit, what
-// it gets alone; and a calibration, whose scan, local solves and leave-one-out folds run on every core. scripts/test_sanitized.sh runs this file again under ThreadSanitizer, which reports any access to
-// shared memory that is not read-only; here, without it, a workspace shared by mistake would mix the threads' results.
+// it gets alone; and a calibration, whose scan, local solves and leave-one-out folds run on every core.
+// scripts/test_sanitized.sh runs this file again under ThreadSanitizer, which reports any access to shared memory that
+// is not read-only; here, without it, a workspace shared by mistake would mix the threads' results.
 #include <gtest/gtest.h>
 
 #include <cstddef>

@@ -258,10 +258,10 @@ struct WallLawFit {
 
 /// `finger_calibrate --wall-law`: each law of @p laws fitted to @p data (with @p keys, or each law's defaultFitKeys
 /// when empty; with several laws and no @p keys, the thick wall twice, with its defaultFitKeys and with
-/// wall_locking_jm too: one entry each) and predicted row by row (leaveOneOut). A law with more keys fits at least as well; which law the data
-/// support is the one that predicts better: chosenWallLaw picks the smallest leave-one-out objective. The membrane
-/// law's lever b may exceed the chamber height; the paper law's may not (docs/MODEL.md), so where @p base's does, the
-/// paper law starts from its uniform wall, b = L/2, and says so in its note.
+/// wall_locking_jm too: one entry each) and predicted row by row (leaveOneOut). A law with more keys fits at least as
+/// well; which law the data support is the one that predicts better: chosenWallLaw picks the smallest leave-one-out
+/// objective. The membrane law's lever b may exceed the chamber height; the paper law's may not (docs/MODEL.md), so
+/// where @p base's does, the paper law starts from its uniform wall, b = L/2, and says so in its note.
 /// @throws ParameterError as calibrate() and leaveOneOut() do, naming the law
 std::vector<WallLawFit> calibrateWallLaws(const FingerParameters& base, const std::vector<WallLaw>& laws,
                                           const std::vector<std::string>& keys, const std::vector<Measurement>& data,

@@ -20,7 +20,7 @@ struct DesignOutputs {
   double* tip_y_m = nullptr;
   double* contact_gauge_pa = nullptr;  ///< the pressure at which the first walls touch (Pa gauge)
   std::uint8_t* status = nullptr;      ///< EvaluationStatus at the pressure
-  double* snap_gauge_pa = nullptr;     ///< where a rising pressure bends it fastest (Pa gauge; FingerModel::snapGaugePa)
+  double* snap_gauge_pa = nullptr;     ///< where a rising pressure bends it fastest (Pa gauge; snapGaugePa)
   double* limit_gauge_pa = nullptr;    ///< its limit point (Pa gauge; inf where no wall folds)
 };
 
