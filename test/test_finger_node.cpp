@@ -594,8 +594,8 @@ TEST(FingerNodeParameters, EveryBadParameterStopsTheNodeNamingTheKey) {
       {"_finger_state_topic:='x y'", "finger_state_topic"},
       // The calibration's error bar, as `rosparam load` of a parameter file puts it under ~tip_uncertainty/ (the
       // command line gives a string, not a list; the lists' own rules are the core's, test_tip_uncertainty.cpp).
-      {"_tip_uncertainty/gauge_pa:=[100000.0]", "'tip_uncertainty/gauge_pa' = '[100000.0]' is not a list of numbers"},
-      {"_tip_uncertainty/gauges:=1", "tip_uncertainty/gauges"},
+      {"_tip_uncertainty/gauge_pa:=[100000.0]", "tip_uncertainty: 'gauge_pa' must be a list of numbers"},
+      {"_tip_uncertainty/gauges:=1", "tip_uncertainty: unknown key 'gauges'"},
   };
   // Every actuator key out of its range, as a rosparam (the node's other path in).
   for (const auto& spec : pf::parameterSpecs()) {

@@ -176,3 +176,25 @@ def test_finger_launch_reads_a_drawing_and_refuses_one_a_key_contradicts(tmp_pat
     log = done.stdout + done.stderr
     assert "parameter 'chamber_height_m' = 0.01 contradicts the drawing, which makes it 0.008" in log, log
     assert "exit code 2" in log, log
+
+
+def test_each_finger_launch_starts_from_a_clean_namespace(master, tmp_path):
+    # Two launches on one running master: a drawn file, then a calibrated one. Before, the second kept the first's
+    # drawing/* on the server and refused its own base_segment_length_m ("contradicts the drawing"); and a calibrated
+    # file's tip_uncertainty stayed on for an uncalibrated one. finger.launch clears the node's namespace first.
+    port = master["ROS_MASTER_URI"].rsplit(":", 1)[1]
+
+    def launch(config, seconds):
+        done = subprocess.run(["timeout", "-k", "10", str(seconds), "roslaunch", "-p", port, "pneumatic_finger",
+                               "finger.launch", f"config:={config}", "rviz:=false"], env=master,
+                              capture_output=True, text=True)
+        return done.stdout + done.stderr
+
+    subprocess.run(["rosparam", "delete", "/"], env=master, capture_output=True)
+    calibrated = launch(ROOT / "config" / "epfl_ecoflex30_c7.yaml", 12)  # a drawing and an error bar
+    assert "/finger_node: 7 chambers" in calibrated and "no tip_uncertainty" not in calibrated, calibrated
+    undrawn = launch(ROOT / "config" / "finger.yaml", 12)  # no drawing: its own base_segment_length_m
+    assert "/finger_node: 7 chambers" in undrawn and "contradicts" not in undrawn, undrawn
+    launch(ROOT / "config" / "epfl_ecoflex30_c7.yaml", 12)
+    uncalibrated = launch(ROOT / "config" / "epfl_ecoflex30_c7_drawing.yaml", 12)  # no error bar
+    assert "the parameters have no tip_uncertainty" in uncalibrated, uncalibrated

@@ -175,7 +175,9 @@ std::string couponParameterYaml(RawParameterMap base, const CouponFit& fit, cons
   }
   base["shear_modulus_pa"] = {{fit.shear_modulus_pa}, false};
   base["wall_locking_jm"] = {{fit.wall_locking_jm}, false};
-  return parametersToYaml(FingerParameters::fromRaw(base)) + "\n" + rangeToYaml(range);
+  PressureRange unvalidated = range;  // a coupon is the elastomer's: no actuator has validated this file
+  unvalidated.validated_max_gauge_pa = 0.0;
+  return parametersToYaml(FingerParameters::fromRaw(base)) + "\n" + rangeToYaml(unvalidated);
 }
 
 }  // namespace pneumatic_finger

@@ -27,7 +27,7 @@ std::vector<DesignRefusal> sweepDesigns(const FingerParameters& base, const Mode
                                         std::size_t designs, double gauge_pa, const DesignOutputs& out) {
   for (const std::string& key : keys) {
     if (!isDrawingKey(key) && findParameterSpec(key) == nullptr) {
-      throw ParameterError("unknown parameter '" + key + "'");
+      throw unknownParameterError(key);
     }
   }
   RawParameterMap raw = base.toRaw();

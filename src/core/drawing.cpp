@@ -15,7 +15,7 @@ const ParameterSpec& drawingSpec(const std::string& key) {
   for (const ParameterSpec& spec : drawingParameterSpecs()) {
     if (key == spec.key) return spec;
   }
-  throw ParameterError("unknown parameter '" + std::string(kDrawingPrefix) + key + "'");
+  throw unknownParameterError(kDrawingPrefix + key);
 }
 
 // The drawing's value for @p key: given (checked against its range), else its default (NaN: required, refused).

@@ -241,7 +241,7 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& given) {
       continue;
     }
     if (findParameterSpec(entry.first) == nullptr) {
-      throw ParameterError("unknown parameter '" + entry.first + "'");
+      throw unknownParameterError(entry.first);
     }
     if (entry.second.values.empty()) {
       throw ParameterError("parameter '" + entry.first + "' has no value");
@@ -348,7 +348,7 @@ void parseParameterAssignment(const std::string& assignment, RawParameterMap& ra
   const std::string key = trim(assignment.substr(0, eq));
   const std::string value = trim(assignment.substr(eq + 1));
   const bool drawn = isDrawingKey(key);  // a drawing's key: one number, checked when drawn
-  if (!drawn && findParameterSpec(key) == nullptr) throw ParameterError("unknown parameter '" + key + "'");
+  if (!drawn && findParameterSpec(key) == nullptr) throw unknownParameterError(key);
   RawParameterValue parsed;
   if (!value.empty() && value.front() == '[') {
     if (value.back() != ']') throw ParameterError("parameter '" + key + "': list '" + value + "' lacks ']'");

@@ -47,6 +47,10 @@ std::string vacuumMessage(double gauge_pa) {
 }
 
 std::string aboveValidatedMessage(double gauge_pa, const PressureRange& range) {
+  if (range.validated_max_gauge_pa == 0.0) {
+    return "gauge pressure " + formatMessage(gauge_pa) + " Pa: no actuator's data validate this file "
+           "(validated_max_gauge_pa 0: a drawing or a coupon), so the twin's answer is a zero-shot prediction";
+  }
   return "gauge pressure " + formatMessage(gauge_pa) + " Pa is above the validated range (0 to " +
          formatMessage(range.validated_max_gauge_pa) + " Pa): the twin extrapolates";
 }

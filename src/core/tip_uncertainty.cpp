@@ -96,7 +96,10 @@ TipUncertainty tipUncertaintyFromYamlNode(const YAML::Node& root, const std::str
                            "' (known: gauge_pa, tip_angle_rad, tip_position_m)");
     }
   }
-  return TipUncertainty::fromLists(list("gauge_pa"), list("tip_angle_rad"), list("tip_position_m"), origin);
+  // In the file's order, so that the first list at fault is the one named (arguments have no order of evaluation).
+  const std::vector<double> gauge_pa = list("gauge_pa");
+  const std::vector<double> tip_angle_rad = list("tip_angle_rad");
+  return TipUncertainty::fromLists(gauge_pa, tip_angle_rad, list("tip_position_m"), origin);
 }
 
 std::string tipUncertaintyToYaml(const TipUncertainty& u) {

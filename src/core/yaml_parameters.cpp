@@ -96,7 +96,10 @@ void drawingFromNode(const YAML::Node& node, const std::string& origin, RawParam
   }
 }
 
-void fromNode(const YAML::Node& root, const std::string& origin, RawParameterMap& raw) {
+// The tree's actuator keys into @p raw; finger_node's own keys into @p node_keys (the node reads them, every other
+// interface ignores them); any other key is refused, in unknownParameterError's words.
+void fromNode(const YAML::Node& root, const std::string& origin, RawParameterMap& raw,
+              std::vector<std::string>& node_keys) {
   if (root.IsNull()) return;  // an empty file: all defaults
   if (!root.IsMap()) throw ParameterError(origin + ": expected a mapping of parameter keys to values");
   for (const auto& item : root) {
@@ -106,8 +109,12 @@ void fromNode(const YAML::Node& root, const std::string& origin, RawParameterMap
       drawingFromNode(item.second, origin, raw);
       continue;
     }
-    if (findRangeSpec(key) != nullptr || isNodeInterfaceKey(key)) continue;  // the range's, and the node's own
-    if (findParameterSpec(key) == nullptr) throw ParameterError(origin + ": unknown parameter '" + key + "'");
+    if (findRangeSpec(key) != nullptr) continue;  // the range's: rangeFromNode
+    if (isNodeInterfaceKey(key)) {
+      node_keys.push_back(key);
+      continue;
+    }
+    if (findParameterSpec(key) == nullptr) throw unknownParameterError(key, origin);
     RawParameterValue value;
     if (item.second.IsSequence()) {
       value.is_list = true;
@@ -126,9 +133,10 @@ const std::vector<ParameterSpec>& rangeParameterSpecs() {
   static const std::vector<ParameterSpec> specs = {
       {"max_gauge_pa", "P_max", "Pa", kModelMaxGaugePa, 0.0, false, 1e7, ParameterShape::kScalar,
        "top of the model's range: a higher pressure (or the volume that makes it) is clamped to it"},
-      {"validated_max_gauge_pa", "P_val", "Pa", kValidatedMaxGaugePa, 0.0, false, 1e7, ParameterShape::kScalar,
+      {"validated_max_gauge_pa", "P_val", "Pa", kValidatedMaxGaugePa, 0.0, true, 1e7, ParameterShape::kScalar,
        "top of the validated range (written by finger_calibrate: the highest pressure it calibrated on); above it "
-       "the twin extrapolates and says so"}};
+       "the twin extrapolates and says so; 0: no actuator's data validate the file (a drawing, a coupon), and every "
+       "answer above 0 Pa is a zero-shot prediction"}};
   return specs;
 }
 
@@ -158,6 +166,14 @@ std::string rangeToYaml(const PressureRange& range) {
   return out.str();
 }
 
+ParameterTree readParameterTree(const YAML::Node& root, const std::string& origin) {
+  ParameterTree tree;
+  fromNode(root, origin, tree.raw, tree.node_keys);
+  rangeFromNode(root, origin, tree.range);  // checked for every reader, as the error bar is
+  tree.tip_uncertainty = tipUncertaintyFromYamlNode(root, origin);
+  return tree;
+}
+
 void loadRawParametersFromYamlText(const std::string& text, const std::string& origin, RawParameterMap& raw,
                                    TipUncertainty* tip_uncertainty, PressureRange* range) {
   YAML::Node root;
@@ -166,13 +182,11 @@ void loadRawParametersFromYamlText(const std::string& text, const std::string& o
   } catch (const YAML::Exception& e) {
     throw ParameterError(origin + ": not valid YAML: " + e.what());
   }
-  fromNode(root, origin, raw);
-  PressureRange file_range = range != nullptr ? *range : PressureRange{};
-  rangeFromNode(root, origin, file_range);  // checked for every reader, as the error bar is
-  if (range != nullptr) *range = file_range;
-  // A malformed error bar is refused by every reader of the file, whether it asked for it or not.
-  const TipUncertainty read = tipUncertaintyFromYamlNode(root, origin);
-  if (tip_uncertainty != nullptr) *tip_uncertainty = read;
+  ParameterTree tree = readParameterTree(root, origin);
+  for (auto& [key, value] : tree.raw) raw[key] = std::move(value);
+  // A malformed range or error bar is refused by every reader of the file, whether it asked for it or not.
+  if (range != nullptr) *range = tree.range;
+  if (tip_uncertainty != nullptr) *tip_uncertainty = tree.tip_uncertainty;
 }
 
 void loadRawParametersFromYamlFile(const std::string& path, RawParameterMap& raw, TipUncertainty* tip_uncertainty,

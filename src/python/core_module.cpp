@@ -134,6 +134,7 @@ class PyFingerModel {
       meets = markSelfContact(model_->parameters(), rows, count);
     }
     if (clamped > 0) warnClamped(p.data(), count, clamped);
+    warnOutsideValidated(p.data(), count);
     warnSelfContact(meets);
     return arrays.result(scalar);
   }
@@ -207,6 +208,23 @@ class PyFingerModel {
     if (PyErr_WarnEx(PyExc_RuntimeWarning, what.c_str(), 1) != 0) throw py::error_already_set();
   }
 
+  // The range rule's other words, as finger_model says them on stderr and the node in its diagnostics: a vacuum, and
+  // a pressure above the validated range that was not clamped (a zero-shot file: every pressure above 0). Once per
+  // call each, as a RuntimeWarning, for the first such pressure.
+  void warnOutsideValidated(const double* p, std::size_t count) const {
+    const double* vacuum = std::find_if(p, p + count, [](double x) { return x < 0; });
+    if (vacuum != p + count) warn(pf::vacuumMessage(*vacuum));
+    const double* above = std::find_if(p, p + count, [this](double x) {
+      const pf::RangeCheck c = pf::checkGaugeRange(x, range_);
+      return c.above_validated && !c.clamped;
+    });
+    if (above != p + count) warn(pf::aboveValidatedMessage(*above, range_));
+  }
+
+  static void warn(const std::string& what) {
+    if (PyErr_WarnEx(PyExc_RuntimeWarning, what.c_str(), 1) != 0) throw py::error_already_set();
+  }
+
   // The blocked tip force (N) at a pressure or an array of them (docs/MODEL.md "Force"). A pressure that is not a
   // finite number is refused by its index: a force is an answer to a real pressure.
   py::object blockedTipForce(const py::object& gauge_pa) const {
@@ -218,8 +236,12 @@ class PyFingerModel {
         throw py::value_error("gauge_pa" + (scalar ? std::string() : "[" + std::to_string(i) + "]") + " = " +
                               pf::formatMessage(p.data()[i]) + " is not a finite pressure (Pa)");
       }
-      force.mutable_data()[i] = model_->blockedTipForceN(p.data()[i]);
+      // The range rule of every interface: above max_gauge_pa, the force there (as finger_model prints it).
+      force.mutable_data()[i] = model_->blockedTipForceN(pf::checkGaugeRange(p.data()[i], range_).gauge_pa);
     }
+    const std::size_t clamped = static_cast<std::size_t>(std::count_if(
+        p.data(), p.data() + p.size(), [this](double x) { return pf::checkGaugeRange(x, range_).clamped; }));
+    if (clamped > 0) warnClamped(p.data(), static_cast<std::size_t>(p.size()), clamped);
     if (scalar) return py::float_(force.data()[0]);
     return std::move(force);
   }

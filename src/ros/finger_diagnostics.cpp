@@ -14,7 +14,9 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   status.add("input rate (Hz, last 1 s)", r.rate_hz);
   status.add("seconds since last pressure", r.age_s);
   status.add("last gauge pressure (Pa)", input_.lastGaugePa());
-  status.add("validated range (Pa gauge)", "0.." + formatMessage(settings_.input.validated_max_gauge_pa));
+  const double validated = settings_.input.validated_max_gauge_pa;
+  status.add("validated range (Pa gauge)",
+             validated > 0 ? "0.." + formatMessage(validated) : "none: a zero-shot prediction (no actuator's data)");
   // The input rules' counters, each with the name diagnostics give it, in three groups: what arrived and when, what
   // was refused, and what the accepted messages gave.
   using Counted = std::pair<const char*, long>;

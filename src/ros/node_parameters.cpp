@@ -48,7 +48,7 @@ const std::vector<NodeParameterSpec>& specs() {
       coreNumberParameter(rangeParameterSpec("max_gauge_pa"),
              "also the URDF's joint upper limits, the inverse services' limit and the table's (default 3 kg/cm^2)"),
       coreNumberParameter(rangeParameterSpec("validated_max_gauge_pa"),
-             "the node's in_validated_range and diagnostics (default: the paper's 2 kg/cm^2)", "(0, max_gauge_pa]"),
+             "the node's in_validated_range and diagnostics (default: the paper's 2 kg/cm^2)", "[0, max_gauge_pa]"),
       textParameter("description_param", node.description_param, "a ROS name",
            "parameter (resolved in the node's namespace) that receives the generated URDF"),
       textParameter("pressure_topic", node.pressure_topic, "a ROS name", "subscribed sensor_msgs/FluidPressure"),
@@ -87,40 +87,14 @@ const std::vector<NodeParameterSpec>& nodeParameterSpecs() { return specs(); }
 
 namespace {
 
-// The actuator: the same keys, ranges and messages as the YAML loader (FingerParameters::fromRaw). Returns the keys
-// given, which a gripper file then must not repeat.
-RawParameterMap readActuatorKeys(const ros::NodeHandle& nh) {
-  RawParameterMap raw;
-  for (const ParameterSpec& spec : parameterSpecs()) {
-    XmlRpc::XmlRpcValue v;
-    if (!nh.getParam(spec.key, v)) continue;
-    RawParameterValue value;
-    value.is_list = v.getType() == XmlRpc::XmlRpcValue::TypeArray;
-    if (value.is_list) {
-      value.values = parameterNumbers(v, spec.key);
-    } else if (spec.shape == ParameterShape::kChoice && v.getType() == XmlRpc::XmlRpcValue::TypeString) {
-      value.values.push_back(parseParameterText(spec, static_cast<std::string>(v)));
-    } else {
-      value.values.push_back(0);
-      if (!asParameterNumber(v, value.values[0])) {
-        throw ParameterError(std::string("parameter '") + spec.key + "' = " + describeParameterValue(v) +
-                             " is not a number");
-      }
-    }
-    raw[spec.key] = value;
-  }
-  // The actuator as drawn: the parameter file's drawing mapping, which rosparam loads as ~drawing/KEY.
-  for (const ParameterSpec& spec : drawingParameterSpecs()) {
-    const std::string key = kDrawingPrefix + std::string(spec.key);
-    XmlRpc::XmlRpcValue v;
-    if (!nh.getParam(key, v)) continue;
-    double number = 0;
-    if (!asParameterNumber(v, number)) {
-      throw ParameterError("parameter '" + key + "' = " + describeParameterValue(v) + " is not a number");
-    }
-    raw[key] = {{number}, false};
-  }
-  return raw;
+// The node's private namespace as one tree, read by the parameter file's own loader (readParameterTree): the same
+// keys, range rule, error bar and refusals as finger_model and Python. diagnostic_updater's own key is its.
+ParameterTree readNamespaceTree(const ros::NodeHandle& nh) {
+  XmlRpc::XmlRpcValue all;
+  if (!nh.getParam(nh.getNamespace(), all) || all.getType() != XmlRpc::XmlRpcValue::TypeStruct) return {};
+  YAML::Node tree = parameterTree(all);
+  tree.remove("diagnostic_period");
+  return readParameterTree(tree, "parameter server " + nh.getNamespace() + "/");
 }
 
 // The finger's names and mount: the prefix, the parent frame and the mount pose.
@@ -168,6 +142,12 @@ void readGripperFile(const ros::NodeHandle& nh, const RawParameterMap& actuator_
   for (const char* key : {"parent_frame", "mount_xyz_m", "mount_rpy_rad"}) {
     if (nh.hasParam(key)) throw ParameterError(std::string("parameter '") + key + "' is set, but gripper_file defines it");
   }
+  for (const ParameterSpec& spec : rangeParameterSpecs()) {
+    if (nh.hasParam(spec.key)) {
+      throw ParameterError(std::string("parameter '") + spec.key + "' is set, but gripper_file defines the actuator "
+                           "(its parameter file gives the range)");
+    }
+  }
   RawParameterMap live;
   for (const auto& [key, value] : actuator_keys) {
     if (!isLiveActuatorKey(key)) {
@@ -177,38 +157,14 @@ void readGripperFile(const ros::NodeHandle& nh, const RawParameterMap& actuator_
   }
   for (const GripperFinger& f : loadGripperFile(s.gripper_file)) {
     if (f.mount.prefix != s.urdf.prefix) continue;
-    s.urdf = f.mount;  // max_gauge_pa is read later, as for any finger
+    s.urdf = f.mount;
     s.finger = f.parameters;
     s.tip_uncertainty = f.tip_uncertainty;
+    s.range = f.range;
     resumeLiveActuatorKeys(live, s);
     return;
   }
   throw ParameterError("gripper file '" + s.gripper_file + "' has no finger with prefix '" + s.urdf.prefix + "'");
-}
-
-// The calibration's error bar's three lists, the keys `rosparam load` makes of the parameter file's mapping.
-constexpr const char* kTipUncertaintyLists[3] = {"gauge_pa", "tip_angle_rad", "tip_position_m"};
-
-// The calibration's error bar: the parameter file's tip_uncertainty mapping, under ~tip_uncertainty/ (or the gripper
-// file's finger's parameter file). Checked like the file: one rule, one message.
-void readTipUncertainty(const ros::NodeHandle& nh, NodeSettings& s) {
-  const std::string base = std::string(kTipUncertaintyKey) + "/";
-  std::vector<double> lists[3];
-  bool any = false;
-  for (int i = 0; i < 3; ++i) {
-    const std::string key = base + kTipUncertaintyLists[i];
-    XmlRpc::XmlRpcValue v;
-    if (!nh.getParam(key, v)) continue;
-    any = true;
-    if (v.getType() != XmlRpc::XmlRpcValue::TypeArray) {
-      throw ParameterError("parameter '" + key + "' = " + describeParameterValue(v) + " is not a list of numbers");
-    }
-    lists[i] = parameterNumbers(v, key);
-  }
-  if (any && !s.gripper_file.empty()) {
-    throw ParameterError("parameter '" + base + "*' is set, but gripper_file defines the actuator (and its error bar)");
-  }
-  if (any) s.tip_uncertainty = TipUncertainty::fromLists(lists[0], lists[1], lists[2], "rosparam");
 }
 
 // The solver, the frame authority, the input rules' settings and the pressure range.
@@ -223,10 +179,10 @@ void readModelAndInput(const NodeParameterReader& in, NodeSettings& s) {
   s.input.stale_timeout_s = in.number("stale_timeout_s");
   s.input.stamp_tolerance_s = in.number("stamp_tolerance_s");
   s.input.time_jump_s = in.number("time_jump_s");
-  s.urdf.max_gauge_pa = in.number("max_gauge_pa");
-  s.input.max_gauge_pa = s.urdf.max_gauge_pa;
+  s.urdf.max_gauge_pa = s.range.max_gauge_pa;  // the parameter file's range, by the loader's one rule
+  s.input.max_gauge_pa = s.range.max_gauge_pa;
   s.input.atmospheric_pa = s.finger.atmospheric_pressure_pa;
-  s.input.validated_max_gauge_pa = in.number("validated_max_gauge_pa", s.urdf.max_gauge_pa);
+  s.input.validated_max_gauge_pa = s.range.validated_max_gauge_pa;
   s.object_rate_hz = in.number("object_rate_hz");
   s.transform_timeout_s = in.number("transform_timeout_s");
   s.force_arrow_m_per_n = in.number("force_arrow_m_per_n");
@@ -243,36 +199,26 @@ void readNames(const NodeParameterReader& in, NodeSettings& s) {
   s.grasp_object_topic = in.rosName("grasp_object_topic");
 }
 
-// Besides the table's keys the node knows the actuator's, diagnostic_updater's and the error bar's lists.
-void refuseUnknownKeys(const NodeParameterReader& in) {
-  const std::string tip = std::string(kTipUncertaintyKey) + "/";
-  for (const std::string& key : in.givenKeys()) {
-    if (key.compare(0, tip.size(), tip) != 0) continue;
-    const std::string sub = key.substr(tip.size());
-    if (sub != kTipUncertaintyLists[0] && sub != kTipUncertaintyLists[1] && sub != kTipUncertaintyLists[2]) {
-      throw ParameterError("unknown parameter '" + key + "' (known: " + tip + "gauge_pa, tip_angle_rad, tip_position_m)");
-    }
-  }
-  in.refuseUnknownKeys(
-      [](const std::string& key) {
-        return findParameterSpec(key) != nullptr || key == "diagnostic_period" || isDrawingKey(key);
-      });
-}
-
 }  // namespace
 
 NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   const NodeParameterReader in(nh, specs());
   NodeSettings s;
-  const RawParameterMap actuator_keys = readActuatorKeys(nh);
-  s.finger = FingerParameters::fromRaw(actuator_keys);
+  const ParameterTree tree = readNamespaceTree(nh);  // refuses a key that is no one's, as every interface does
+  s.finger = FingerParameters::fromRaw(tree.raw);
+  s.tip_uncertainty = tree.tip_uncertainty;
+  s.range = tree.range;
   readMount(in, s);
   s.gripper_file = in.text("gripper_file");
-  if (!s.gripper_file.empty()) readGripperFile(nh, actuator_keys, s);
-  readTipUncertainty(nh, s);
+  if (!s.gripper_file.empty()) {
+    if (!tree.tip_uncertainty.empty()) {
+      throw ParameterError("parameter 'tip_uncertainty/*' is set, but gripper_file defines the actuator (and its "
+                           "error bar)");
+    }
+    readGripperFile(nh, tree.raw, s);
+  }
   readModelAndInput(in, s);
   readNames(in, s);
-  refuseUnknownKeys(in);
   return s;
 }
 

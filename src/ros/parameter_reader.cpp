@@ -117,6 +117,27 @@ std::string describeParameterValue(const XmlRpc::XmlRpcValue& v) {
   }
 }
 
+YAML::Node parameterTree(const XmlRpc::XmlRpcValue& v) {
+  auto& x = const_cast<XmlRpc::XmlRpcValue&>(v);
+  switch (x.getType()) {
+    case XmlRpc::XmlRpcValue::TypeDouble: return YAML::Node(static_cast<double>(x));  // max_digits10: every bit
+    case XmlRpc::XmlRpcValue::TypeInt: return YAML::Node(static_cast<int>(x));
+    case XmlRpc::XmlRpcValue::TypeBoolean: return YAML::Node(static_cast<bool>(x));
+    case XmlRpc::XmlRpcValue::TypeString: return YAML::Node(static_cast<std::string>(x));
+    case XmlRpc::XmlRpcValue::TypeArray: {
+      YAML::Node list(YAML::NodeType::Sequence);
+      for (int i = 0; i < x.size(); ++i) list.push_back(parameterTree(x[i]));
+      return list;
+    }
+    case XmlRpc::XmlRpcValue::TypeStruct: {
+      YAML::Node map(YAML::NodeType::Map);
+      for (const auto& entry : x) map[entry.first] = parameterTree(entry.second);
+      return map;
+    }
+    default: return YAML::Node(describeParameterValue(v));  // no number: refused as one by the key's reader
+  }
+}
+
 std::vector<double> parameterNumbers(const XmlRpc::XmlRpcValue& v, const std::string& key) {
   std::vector<double> out;
   for (int i = 0; i < v.size(); ++i) {

@@ -31,11 +31,28 @@ double stiffestSpringNmPerRad(const FingerModel& model, int joint, double max_ga
   return stiffest;
 }
 
+namespace {
+
+// The twin's free angles at @p gauge_pa as every interface gives them from rest (finger_model, Python, the node): the
+// near branch, or past a Gent wall's snap the far branch it jumps to. false where there is no shape (not finite, a
+// Neo-Hookean wall at or beyond its limit point).
+bool freeJointAngles(const FingerModel& model, double gauge_pa, std::vector<double>& q) {
+  if (!std::isfinite(gauge_pa)) return false;
+  if (model.jointAnglesAt(gauge_pa, q.data())) return true;
+  FingerWorkspace workspace(model);
+  const FingerState& state = model.evaluate(gauge_pa, workspace);
+  if (state.status != EvaluationStatus::kSnappedThrough) return false;
+  for (std::size_t j = 0; j < q.size(); ++j) q[j] = state.joint_angle_rad[static_cast<Eigen::Index>(j)];
+  return true;
+}
+
+}  // namespace
+
 std::vector<JointSpring> jointSprings(const FingerModel& model, double gauge_pa, std::string& why) {
   const int n = model.chamberCount();
   std::vector<double> q(static_cast<std::size_t>(n)), moment(static_cast<std::size_t>(n));
   const double p = gauge_pa < 0.0 ? 0.0 : gauge_pa;  // a vacuum: the straight finger (the model has none)
-  if (!std::isfinite(p) || !model.jointAnglesAt(p, q.data())) {
+  if (!freeJointAngles(model, p, q)) {
     why = "the twin has no free shape at " + formatMessage(gauge_pa) +
           " Pa gauge (not finite, or at or beyond the wall's limit point)";
     return {};

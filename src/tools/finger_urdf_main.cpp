@@ -26,25 +26,27 @@ std::array<double, 3> parseTriple(const std::string& option, const std::string& 
 
 // --gauge-pa through the range rule of every interface (pressure_range.hpp), in its words: above --max-gauge-pa the
 // springs of the finger there; a vacuum, the straight finger's (the model has none).
-double springGaugePa(const std::string& text, double max_gauge_pa) {
+double springGaugePa(const std::string& text, const pf::PressureRange& range) {
   const double requested = pf::parseFiniteOption("--gauge-pa", text);
-  const pf::PressureRange range = pf::PressureRange::upTo(max_gauge_pa);
   const pf::RangeCheck check = pf::checkGaugeRange(requested, range);
   if (check.clamped) {
     std::cerr << "finger_urdf: warning: " << pf::clampedMessage(requested, range) << " (the springs are written there)\n";
   } else if (requested < 0.0) {
     std::cerr << "finger_urdf: warning: " << pf::vacuumMessage(requested) << "'s springs are written (at rest)\n";
     return 0.0;
+  } else if (check.above_validated) {
+    std::cerr << "finger_urdf: warning: " << pf::aboveValidatedMessage(requested, range) << "\n";
   }
   return check.gauge_pa;
 }
 
 // One finger of the gripper file (the one with --prefix), as its finger_node describes it.
-std::string gripperFingerUrdf(const std::string& gripper, const pf::FingerUrdfOptions& options) {
+// Its joint limits at the top of its parameter file's range, or at --max-gauge-pa's when given.
+std::string gripperFingerUrdf(const std::string& gripper, const pf::FingerUrdfOptions& options, bool max_given) {
   for (const pf::GripperFinger& f : pf::loadGripperFile(gripper)) {
     if (f.mount.prefix != options.prefix) continue;
     pf::FingerUrdfOptions mount = f.mount;
-    mount.max_gauge_pa = options.max_gauge_pa;
+    if (max_given) mount.max_gauge_pa = options.max_gauge_pa;
     return pf::fingerUrdf(f.parameters, mount);
   }
   throw pf::ParameterError("gripper file '" + gripper + "' has no finger with prefix '" + options.prefix + "'");
@@ -62,8 +64,9 @@ int main(int argc, char** argv) {
   app.add_option("--parent", options.parent_frame, "the link the finger is mounted on")->capture_default_str();
   app.add_option("--xyz", xyz, "mount position X,Y,Z in the parent (m)");
   app.add_option("--rpy", rpy, "mount orientation R,P,Y in the parent (rad)");
-  app.add_option("--max-gauge-pa", options.max_gauge_pa, "pressure that sets the joint limits (Pa gauge)")
-      ->capture_default_str();
+  std::string max_text;
+  app.add_option("--max-gauge-pa", max_text,
+                 "pressure that sets the joint limits (Pa gauge); default: the parameter file's max_gauge_pa");
   app.add_option("-o,--output", output, "write here instead of stdout");
   std::string robot, gripper;
   auto* robot_opt = app.add_option("--robot", robot, "compose: the robot's URDF, to which every finger of --gripper is attached");
@@ -81,13 +84,13 @@ int main(int argc, char** argv) {
   return pf::runTool("finger_urdf", app, argc, argv, [&] {
     if (!xyz.empty()) options.mount_xyz_m = parseTriple("--xyz", xyz);
     if (!rpy.empty()) options.mount_rpy_rad = parseTriple("--rpy", rpy);
-    if (!(options.max_gauge_pa > 0) || !std::isfinite(options.max_gauge_pa)) {
-      throw pf::ParameterError("--max-gauge-pa must be a finite pressure > 0");
-    }
+    // The file's range by the loader's one rule, its top replaced by --max-gauge-pa when given.
+    const pf::PressureRange range = parameters.loadRange(max_text);
+    options.max_gauge_pa = range.max_gauge_pa;
     std::string urdf;
     if (!mjcf_gauge.empty() && !mjcf) throw pf::ParameterError("--gauge-pa needs --mjcf");
     if (mjcf) {
-      if (!mjcf_gauge.empty()) mjcf_options.gauge_pa = springGaugePa(mjcf_gauge, options.max_gauge_pa);
+      if (!mjcf_gauge.empty()) mjcf_options.gauge_pa = springGaugePa(mjcf_gauge, range);
       if (!gripper.empty() && robot.empty()) {
         throw pf::ParameterError("--mjcf with --gripper needs --robot (the whole cell), or neither (one finger)");
       }
@@ -97,7 +100,7 @@ int main(int argc, char** argv) {
       // One description for the whole robot: what robot_state_publisher, rviz and a planner read.
       urdf = pf::composeRobotUrdfFiles(robot, gripper);
     } else if (!gripper.empty()) {
-      urdf = gripperFingerUrdf(gripper, options);
+      urdf = gripperFingerUrdf(gripper, options, !max_text.empty());
     } else {
       urdf = pf::fingerUrdf(parameters.load(), options);
     }

@@ -24,6 +24,14 @@ class ParameterError : public std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// Every key a parameter file may hold: the actuator's, the drawing's (drawing/KEY), the range's, finger_node's own
+/// and the error bar's mapping (parameter_keys.cpp).
+std::vector<std::string> knownParameterFileKeys();
+
+/// The one refusal of a key that is none of knownParameterFileKeys, the same from every interface: it names the key
+/// and, for a typo, the key meant ("did you mean 'roof_thickness_m'?"). @p origin (a file) prefixes it when given.
+ParameterError unknownParameterError(const std::string& key, const std::string& origin = "");
+
 /// How a key may be given.
 enum class ParameterShape {
   kScalar,         ///< one number

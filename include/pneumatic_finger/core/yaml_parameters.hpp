@@ -10,7 +10,27 @@
 #include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 
+namespace YAML {
+class Node;
+}
+
 namespace pneumatic_finger {
+
+/// What a parameter tree says: the one reading of a parameter file that every interface calls, whether the tree came
+/// from a file (finger_model, the tools, Python, a gripper file's finger) or is finger_node's private namespace, which
+/// rosparam loaded from the same file (the node hands it over whole, as robot_state_publisher reads its description).
+struct ParameterTree {
+  RawParameterMap raw;              ///< the actuator's keys as given (model keys; the drawing's as drawing/KEY)
+  PressureRange range;              ///< max_gauge_pa and validated_max_gauge_pa, by the one rule (rangeParameterSpecs)
+  TipUncertainty tip_uncertainty;   ///< the calibration's error bar (empty without one)
+  std::vector<std::string> node_keys;  ///< the keys left unclaimed: finger_node's own (nodeInterfaceKeys), for it
+};
+
+/// Reads @p root, a mapping of parameter keys. Any key that is not the actuator's, the range's, the error bar's or
+/// the node's is refused (unknownParameterError); values are checked as the file's (FingerParameters::fromRaw checks
+/// the actuator's as a whole). The validated range, when the tree gives only max_gauge_pa, is no higher than it.
+/// @throws ParameterError naming @p origin and the key
+ParameterTree readParameterTree(const YAML::Node& root, const std::string& origin);
 
 /// Reads a YAML mapping of keys (parameterSpecs()) to numbers or lists of numbers.
 /// @param[in] path file to read

@@ -16,6 +16,7 @@
 #include <urdf_model/model.h>
 
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 
 namespace pneumatic_finger {
@@ -49,6 +50,7 @@ struct GripperFinger {
   FingerParameters parameters;  ///< the actuator
   std::string config_path;      ///< the parameter file it was read from (for messages)
   TipUncertainty tip_uncertainty;  ///< that file's error bar (empty when it has none)
+  PressureRange range;             ///< that file's range (max_gauge_pa, validated_max_gauge_pa); mount.max_gauge_pa
 };
 
 /// Reads a gripper file (YAML): `fingers:` a list of {prefix, parent, xyz, rpy, config}, config a parameter file

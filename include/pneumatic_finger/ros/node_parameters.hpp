@@ -23,6 +23,7 @@ const std::vector<NodeParameterSpec>& nodeParameterSpecs();
 struct NodeSettings {
   FingerParameters finger;
   TipUncertainty tip_uncertainty;  ///< the calibration's error bar (rosparam tip_uncertainty/*, or the gripper file's)
+  PressureRange range;  ///< the parameter file's range (or the gripper file's finger's), by the loader's one rule
   FingerUrdfOptions urdf;
   PressureInputSettings input;  ///< the input rules' settings (atmospheric_pa and max_gauge_pa follow finger, urdf)
   // The defaults of the node's own parameters (nodeParameterSpecs() shows these, the one definition).

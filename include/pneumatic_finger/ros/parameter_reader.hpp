@@ -6,6 +6,7 @@
 
 #include <ros/node_handle.h>
 #include <xmlrpcpp/XmlRpcValue.h>
+#include <yaml-cpp/yaml.h>
 
 #include <array>
 #include <cmath>
@@ -50,6 +51,10 @@ std::string describeParameterValue(const XmlRpc::XmlRpcValue& v);
 /// A number (a double, an int, or a string that is one whole number: rosparam reads "1e-05" as a string) as @p out;
 /// false for anything else.
 bool asParameterNumber(const XmlRpc::XmlRpcValue& v, double& out);
+
+/// A parameter server value (a namespace: a struct) as the YAML tree a parameter file parses to: numbers keep every
+/// bit, text stays text (the core reads "1e-05" as the number rosparam's YAML 1.1 took for a string).
+YAML::Node parameterTree(const XmlRpc::XmlRpcValue& v);
 
 /// The entries of a list value as numbers. @throws ParameterError naming the key, the value and the entry
 std::vector<double> parameterNumbers(const XmlRpc::XmlRpcValue& v, const std::string& key);

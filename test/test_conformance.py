@@ -1,0 +1,309 @@
+"""One table of cases, every interface: test/conformance/cases.yaml driven through finger_model, finger_design,
+finger_urdf (URDF and MJCF), Python and finger_node, each of which must answer alike.
+
+Run by `make run_tests` (CMakeLists.txt passes the package's executables in PNEUMATIC_FINGER_BIN). The node's cases
+start one master of their own on a free port, load each file with rosparam as finger.launch does, and start the node
+on it.
+"""
+import csv
+import io
+import math
+import os
+import pathlib
+import re
+import socket
+import subprocess
+import time
+import warnings
+
+import pytest
+import yaml
+
+import pneumatic_finger.core as pf
+
+ROOT = pathlib.Path(__file__).resolve().parent.parent
+BIN = pathlib.Path(os.environ.get("PNEUMATIC_FINGER_BIN", ROOT / "devel/lib/pneumatic_finger"))
+TABLE = yaml.safe_load((ROOT / "test/conformance/cases.yaml").read_text())
+ANGLE_TOLERANCE_RAD = 1e-12  # the model's own exactness: every interface runs the same core
+
+# The warning classes, by the core's words (pressure_range.cpp): every interface says them in these words.
+WARNING_WORDS = {"clamped": "the top of the model's range: clamped to it", "vacuum": "is a vacuum, outside the model",
+                 "extrapolated": "is above the validated range", "zero_shot": "a zero-shot prediction"}
+
+
+def warning_classes(text):
+    return sorted(name for name, words in WARNING_WORDS.items() if words in text) or ["none"]
+
+
+def message_number(x):
+    """A number as the core's messages print it (formatMessage): shortest round trip, no trailing '.0'."""
+    return repr(float(x)).removesuffix(".0")
+
+
+@pytest.fixture(scope="module")
+def files(tmp_path_factory):
+    """Every file of the table, written out: shipped ones as they are, edited ones edited."""
+    folder = tmp_path_factory.mktemp("conformance")
+    out = {}
+    for name, spec in TABLE["files"].items():
+        if "path" in spec:
+            out[name] = ROOT / spec["path"]
+            continue
+        if "written_by" in spec:  # a tool's --output, as a user makes the file
+            out[name] = folder / f"{name}.yaml"
+            args = [str(ROOT / a) if (ROOT / a).is_file() else a for a in spec["written_by"][1:]]
+            done = tool(spec["written_by"][0], *args, "--output", out[name])
+            assert done.returncode == 0, done.stderr
+            continue
+        text = (ROOT / spec["base"]).read_text()
+        for key in spec.get("drop", []):
+            text, count = re.subn(rf"(?m)^{key}:.*\n", "", text)
+            assert count == 1, (name, key)
+        for old, new in spec.get("replace", []):
+            assert text.count(old) == 1, (name, old)
+            text = text.replace(old, new)
+        text += spec.get("append", "")
+        out[name] = folder / f"{name}.yaml"
+        out[name].write_text(text)
+    return out
+
+
+def tool(name, *args):
+    return subprocess.run([str(BIN / name), *map(str, args)], capture_output=True, text=True, timeout=120)
+
+
+# ---- each interface's answer, in one form: (tip angle in rad, the printed gauge, warning classes) or a refusal ----
+
+def python_answer(path, gauge_pa):
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        model = pf.FingerModel(config=str(path))
+        state = model.evaluate(gauge_pa)
+    words = " ".join(str(w.message) for w in caught)
+    return float(state["tip_angle_rad"]), warning_classes(words)
+
+
+def finger_model_answer(path, gauge_pa):
+    done = tool("finger_model", "--config", path, "--gauge-pa", repr(gauge_pa))
+    assert done.returncode == 0, done.stderr
+    row = next(csv.DictReader(io.StringIO(done.stdout)))
+    joints = [float(v) for k, v in row.items() if k.startswith("joint_")]
+    return math.fsum(joints), float(row["gauge_pa"]), warning_classes(done.stderr)
+
+
+def finger_design_answer(path, gauge_pa):
+    mu = pf.FingerModel(config=str(path)).parameters["shear_modulus_pa"]
+    done = tool("finger_design", "--config", path, "--vary", f"shear_modulus_pa={mu!r}:{mu!r}:1",
+                "--quantity", f"tip_angle_rad@{gauge_pa!r}")
+    assert done.returncode == 0, done.stderr
+    row = next(csv.reader(io.StringIO(done.stdout.splitlines()[1])))
+    return float(row[-1]), warning_classes(done.stderr)
+
+
+def mjcf_answer(path, gauge_pa):
+    done = tool("finger_urdf", "--config", path, "--mjcf", "--gauge-pa", repr(gauge_pa))
+    assert done.returncode == 0, done.stderr
+    angles = [float(x) for x in re.findall(r'<joint name="finger_joint_\d+"[^>]*springref="([^"]+)"', done.stdout)]
+    assert angles, done.stdout[:500]
+    return math.fsum(angles), warning_classes(done.stderr)
+
+
+def urdf_upper_limits(path):
+    done = tool("finger_urdf", "--config", path)
+    assert done.returncode == 0, done.stderr
+    return math.fsum(float(x) for x in re.findall(r'<limit [^>]*upper="([^"]+)"', done.stdout))
+
+
+def tip_at(path, gauge_pa):
+    """The reference: the core through Python, warnings aside."""
+    return reference_state(path, gauge_pa)[0]
+
+
+def reference_state(path, gauge_pa):
+    """The core through Python, warnings aside: (tip angle in rad, status code)."""
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        state = pf.FingerModel(config=str(path)).evaluate(gauge_pa)
+    return float(state["tip_angle_rad"]), int(state["status"])
+
+
+def refusals_of_the_tools(path):
+    """Every interface but the node, each refusing the file: its message."""
+    messages = {}
+    for name, args in {"finger_model": ["--gauge-pa", "1000"], "finger_urdf": [], "finger_urdf --mjcf": ["--mjcf"],
+                       "finger_design": ["--vary", "chamber_gap_m=1e-5:2e-5:2", "--quantity", "tip_angle_rad@1000"],
+                       "finger_calibrate --coupon": ["--coupon", ROOT / "data/epfl_ecoflex30_uniaxial.csv"]}.items():
+        done = tool(name.split()[0], "--config", path, *args)
+        messages[name] = (done.returncode, done.stderr)
+    try:
+        pf.FingerModel(config=str(path))
+        messages["python"] = (0, "")
+    except ValueError as e:
+        messages["python"] = (2, str(e))
+    return messages
+
+
+@pytest.mark.parametrize("case", TABLE["refusals"], ids=lambda c: c["file"])
+def test_every_tool_refuses_the_file_in_the_same_words(files, case):
+    for interface, (code, message) in refusals_of_the_tools(files[case["file"]]).items():
+        assert code == 2 and case["words"] in message, (interface, code, message)
+
+
+@pytest.mark.parametrize("case", TABLE["ranges"], ids=lambda c: c["file"])
+def test_every_tool_reads_the_file_range_alike(files, case):
+    path, top, validated = files[case["file"]], case["max_gauge_pa"], case["validated_max_gauge_pa"]
+    model = pf.FingerModel(config=str(path))
+    assert (model.max_gauge_pa, model.validated_max_gauge_pa) == (top, validated)
+    # Above the top: every interface clamps there, in the same words, with the top's number.
+    above = top * 1.01
+    at_top = tip_at(path, top)
+    tip, printed, classes = finger_model_answer(path, above)
+    assert printed == top and abs(tip - at_top) <= ANGLE_TOLERANCE_RAD and "clamped" in classes
+    for answer in (python_answer, finger_design_answer, mjcf_answer):
+        tip, classes = answer(path, above)
+        assert abs(tip - at_top) <= ANGLE_TOLERANCE_RAD and "clamped" in classes, (answer.__name__, tip, classes)
+    assert abs(urdf_upper_limits(path) - at_top) <= ANGLE_TOLERANCE_RAD  # the joint limits are the finger at the top
+    # Just above the validated range (below the top): the tools extrapolate and say so, with the range's number.
+    if 0 < validated < top:
+        done = tool("finger_model", "--config", path, "--gauge-pa", repr(validated * 1.0001))
+        assert f"(0 to {message_number(validated)} Pa)" in done.stderr, done.stderr
+        assert warning_classes(tool("finger_model", "--config", path, "--gauge-pa",
+                                    repr(validated * 0.9999)).stderr) == ["none"]
+
+
+@pytest.mark.parametrize("case", TABLE["pressures"], ids=lambda c: f"{c['file']}@{c['gauge_pa']}")
+def test_every_tool_gives_the_same_finger_and_warning(files, case):
+    path, gauge_pa = files[case["file"]], float(case["gauge_pa"])
+    reference = tip_at(path, gauge_pa)
+    tip, _, classes = finger_model_answer(path, gauge_pa)
+    answers = {"finger_model": (tip, classes)}
+    # The blocked tip force through the same range rule: finger_model's column and Python's call agree.
+    done = tool("finger_model", "--config", path, "--gauge-pa", repr(gauge_pa), "--blocked-tip-force")
+    cli_force = float(next(csv.DictReader(io.StringIO(done.stdout)))["blocked_tip_force_n"])
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        python_force = float(pf.FingerModel(config=str(path)).blocked_tip_force(gauge_pa))
+    assert cli_force == pytest.approx(python_force, rel=1e-12, abs=1e-15), (cli_force, python_force)
+    for answer in (python_answer, finger_design_answer, mjcf_answer):
+        answers[answer.__name__] = answer(path, gauge_pa)
+    for interface, (tip, classes) in answers.items():
+        assert abs(tip - reference) <= ANGLE_TOLERANCE_RAD, (interface, tip, reference)
+        assert classes == [case["warning"]], (interface, classes)
+
+
+# ---- finger_node, as finger.launch starts it: the file loaded by rosparam into its private namespace ----
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("localhost", 0))
+        return s.getsockname()[1]
+
+
+@pytest.fixture(scope="module")
+def ros(tmp_path_factory):
+    """A master of this test's own, and this process as a rospy node on it."""
+    port = free_port()
+    os.environ.update(ROS_MASTER_URI=f"http://localhost:{port}", ROS_HOSTNAME="localhost",
+                      ROS_HOME=str(tmp_path_factory.mktemp("ros_home")))
+    core = subprocess.Popen(["roscore", "-p", str(port)], stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    import rospy
+    for _ in range(200):
+        if subprocess.run(["rosparam", "list"], capture_output=True).returncode == 0:
+            break
+        time.sleep(0.1)
+    rospy.init_node("conformance", anonymous=True, disable_signals=True)
+    yield rospy
+    rospy.signal_shutdown("done")
+    core.terminate()
+    core.wait()
+
+
+class StartedNode:
+    """finger_node in namespace /NS, its private parameters loaded from @p path (rosparam load, as the launch file)."""
+
+    count = 0
+
+    def __init__(self, rospy, path):
+        import rosparam
+        from sensor_msgs.msg import FluidPressure
+        from pneumatic_finger.msg import FingerModelState
+        StartedNode.count += 1
+        self.rospy, self.ns = rospy, f"/conformance_{StartedNode.count}"
+        for params, sub_ns in rosparam.load_file(str(path), default_namespace=f"{self.ns}/finger_node/"):
+            rosparam.upload_params(sub_ns, params)
+        self.process = subprocess.Popen([str(BIN / "finger_node"), f"__ns:={self.ns}", "__name:=finger_node"],
+                                        stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
+        self.states = []
+        self.subscriber = rospy.Subscriber(f"{self.ns}/finger_state", FingerModelState, self.states.append)
+        self.publisher = rospy.Publisher(f"{self.ns}/pressure", FluidPressure, queue_size=10)
+        self.message = FluidPressure
+
+    def refusal(self):
+        out, _ = self.process.communicate(timeout=60)
+        return self.process.returncode, out
+
+    def state_at(self, gauge_pa, atmospheric_pa):
+        for _ in range(300):  # the node subscribed
+            if self.publisher.get_num_connections() > 0 and self.subscriber.get_num_connections() > 0:
+                break
+            assert self.process.poll() is None, self.process.communicate()[0]
+            time.sleep(0.05)
+        for _ in range(10):
+            seen = len(self.states)
+            message = self.message(fluid_pressure=gauge_pa + atmospheric_pa)
+            message.header.stamp = self.rospy.Time.now()
+            self.publisher.publish(message)
+            for _ in range(40):
+                if len(self.states) > seen:
+                    return self.states[-1]
+                time.sleep(0.025)
+        raise AssertionError(f"no finger_state for {gauge_pa} Pa")
+
+    def stop(self):
+        self.subscriber.unregister()
+        self.publisher.unregister()
+        if self.process.poll() is None:
+            self.process.terminate()
+            self.process.wait(timeout=30)
+
+
+def node_warning(state, validated):
+    if state.status == state.STATUS_CLAMPED:
+        return ["clamped"]
+    if state.status == state.STATUS_VACUUM:
+        return ["vacuum"]
+    if not state.in_validated_range:
+        return ["zero_shot" if validated == 0 else "extrapolated"]
+    return ["none"]
+
+
+@pytest.mark.parametrize("case", TABLE["refusals"], ids=lambda c: c["file"])
+def test_the_node_refuses_the_file_in_the_same_words(ros, files, case):
+    node = StartedNode(ros, files[case["file"]])
+    code, out = node.refusal()
+    node.stop()
+    assert code == 2 and case["words"] in out, out
+
+
+@pytest.mark.parametrize("file", sorted({c["file"] for c in TABLE["pressures"]} | {c["file"] for c in TABLE["ranges"]}))
+def test_the_node_gives_the_same_finger_range_and_warning(ros, files, file):
+    path = files[file]
+    model = pf.FingerModel(config=str(path))
+    atmospheric_pa = model.parameters["atmospheric_pressure_pa"]
+    node = StartedNode(ros, path)
+    try:
+        for case in [c for c in TABLE["pressures"] if c["file"] == file]:
+            state = node.state_at(float(case["gauge_pa"]), atmospheric_pa)
+            tip, status = reference_state(path, float(case["gauge_pa"]))
+            assert abs(state.tip_angle_rad - tip) <= ANGLE_TOLERANCE_RAD and state.status == status, case
+            assert node_warning(state, model.validated_max_gauge_pa) == [case["warning"]], (case, state.status)
+        for case in [c for c in TABLE["ranges"] if c["file"] == file]:
+            top, validated = case["max_gauge_pa"], case["validated_max_gauge_pa"]
+            state = node.state_at(top * 1.01, atmospheric_pa)
+            assert state.gauge_pa == top and state.status == reference_state(path, top * 1.01)[1], case
+            if validated > 0:
+                assert node.state_at(validated * 0.9999, atmospheric_pa).in_validated_range, case
+            if validated < top:
+                assert not node.state_at(validated * 1.0001 + 1e-3, atmospheric_pa).in_validated_range, case
+    finally:
+        node.stop()
