@@ -24,6 +24,7 @@
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 #include "calibrate_module.hpp"
 #include "range_module.hpp"
+#include "range_warnings.hpp"
 #include "python_parameters.hpp"
 #include "contact_rows.hpp"
 #include "output_arrays.hpp"
@@ -133,8 +134,8 @@ class PyFingerModel {
       if (clamped > 0 && rows.status) pf::markClamped(p.data(), rows.status, count, range_);
       meets = markSelfContact(model_->parameters(), rows, count);
     }
-    if (clamped > 0) warnClamped(p.data(), count, clamped);
-    warnOutsideValidated(p.data(), count);
+    if (clamped > 0) warnClamped(p.data(), count, clamped, range_);
+    warnOutsideValidated(p.data(), count, range_);
     warnSelfContact(meets);
     return arrays.result(scalar);
   }
@@ -172,9 +173,8 @@ class PyFingerModel {
     }
     if (clamped > 0) {
       const double* first = std::find_if(v.data(), v.data() + count, [this](double x) { return x > max_volume_m3_; });
-      const std::string what = pf::volumeClampedMessage(*first, max_volume_m3_, range_) +
-                               (clamped > 1 ? " (and " + std::to_string(clamped - 1) + " more)" : std::string());
-      if (PyErr_WarnEx(PyExc_RuntimeWarning, what.c_str(), 1) != 0) throw py::error_already_set();
+      warnRuntime(pf::volumeClampedMessage(*first, max_volume_m3_, range_) +
+                  (clamped > 1 ? " (and " + std::to_string(clamped - 1) + " more)" : std::string()));
     }
     warnSelfContact(meets);
     return arrays.result(scalar);
@@ -199,32 +199,6 @@ class PyFingerModel {
     return storage.data();
   }
 
-  // The interfaces' words for a clamp, once per call, as a RuntimeWarning.
-  void warnClamped(const double* p, std::size_t count, std::size_t clamped) const {
-    const double* first =
-        std::find_if(p, p + count, [this](double x) { return pf::checkGaugeRange(x, range_).clamped; });
-    const std::string what = pf::clampedMessage(*first, range_) +
-                             (clamped > 1 ? " (and " + std::to_string(clamped - 1) + " more)" : std::string());
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, what.c_str(), 1) != 0) throw py::error_already_set();
-  }
-
-  // The range rule's other words, as finger_model says them on stderr and the node in its diagnostics: a vacuum, and
-  // a pressure above the validated range that was not clamped (a zero-shot file: every pressure above 0). Once per
-  // call each, as a RuntimeWarning, for the first such pressure.
-  void warnOutsideValidated(const double* p, std::size_t count) const {
-    const double* vacuum = std::find_if(p, p + count, [](double x) { return x < 0; });
-    if (vacuum != p + count) warn(pf::vacuumMessage(*vacuum));
-    const double* above = std::find_if(p, p + count, [this](double x) {
-      const pf::RangeCheck c = pf::checkGaugeRange(x, range_);
-      return c.above_validated && !c.clamped;
-    });
-    if (above != p + count) warn(pf::aboveValidatedMessage(*above, range_));
-  }
-
-  static void warn(const std::string& what) {
-    if (PyErr_WarnEx(PyExc_RuntimeWarning, what.c_str(), 1) != 0) throw py::error_already_set();
-  }
-
   // The blocked tip force (N) at a pressure or an array of them (docs/MODEL.md "Force"). A pressure that is not a
   // finite number is refused by its index: a force is an answer to a real pressure.
   py::object blockedTipForce(const py::object& gauge_pa) const {
@@ -241,7 +215,7 @@ class PyFingerModel {
     }
     const std::size_t clamped = static_cast<std::size_t>(std::count_if(
         p.data(), p.data() + p.size(), [this](double x) { return pf::checkGaugeRange(x, range_).clamped; }));
-    if (clamped > 0) warnClamped(p.data(), static_cast<std::size_t>(p.size()), clamped);
+    if (clamped > 0) warnClamped(p.data(), static_cast<std::size_t>(p.size()), clamped, range_);
     if (scalar) return py::float_(force.data()[0]);
     return std::move(force);
   }

@@ -1,0 +1,41 @@
+// The range rule's words as Python's RuntimeWarnings: the same words finger_model prints on stderr and finger_node
+// gives in its diagnostics (pressure_range.hpp). Internal header of the Python module (src/python).
+#pragma once
+
+#include <pybind11/pybind11.h>
+
+#include <algorithm>
+#include <cstddef>
+#include <string>
+
+#include "pneumatic_finger/core/pressure_range.hpp"
+
+namespace pneumatic_finger_python {
+
+namespace py = pybind11;
+namespace pf = pneumatic_finger;
+
+inline void warnRuntime(const std::string& what) {
+  if (PyErr_WarnEx(PyExc_RuntimeWarning, what.c_str(), 1) != 0) throw py::error_already_set();
+}
+
+/// A clamp, once per call, for the first pressure above the range (and how many more).
+inline void warnClamped(const double* p, std::size_t count, std::size_t clamped, const pf::PressureRange& range) {
+  const double* first = std::find_if(p, p + count, [&range](double x) { return pf::checkGaugeRange(x, range).clamped; });
+  warnRuntime(pf::clampedMessage(*first, range) +
+              (clamped > 1 ? " (and " + std::to_string(clamped - 1) + " more)" : std::string()));
+}
+
+/// The rule's other words, once per call each, for the first such pressure: a vacuum, and a pressure above the
+/// validated range that was not clamped (in a file no actuator validates: every pressure above 0).
+inline void warnOutsideValidated(const double* p, std::size_t count, const pf::PressureRange& range) {
+  const double* vacuum = std::find_if(p, p + count, [](double x) { return x < 0; });
+  if (vacuum != p + count) warnRuntime(pf::vacuumMessage(*vacuum));
+  const double* above = std::find_if(p, p + count, [&range](double x) {
+    const pf::RangeCheck c = pf::checkGaugeRange(x, range);
+    return c.above_validated && !c.clamped;
+  });
+  if (above != p + count) warnRuntime(pf::aboveValidatedMessage(*above, range));
+}
+
+}  // namespace pneumatic_finger_python
