@@ -307,3 +307,31 @@ def test_the_node_gives_the_same_finger_range_and_warning(ros, files, file):
                 assert not node.state_at(validated * 1.0001 + 1e-3, atmospheric_pa).in_validated_range, case
     finally:
         node.stop()
+
+
+# ---- data files: finger_calibrate and Python read a measurement or a coupon CSV alike ----
+
+def data_file_text(case):
+    if "text" in case:
+        return case["text"]
+    rows = [line.split(",") for line in (ROOT / case["from"]).read_text().splitlines()
+            if line and not line.startswith("#")][1:]
+    kept = [(float(strain), float(stress)) for strain, stress, *_ in rows if float(strain) <= case["up_to_strain"]]
+    return "engineering_strain,nominal_stress_pa\n" + "".join(
+        f"{strain * case['strain_scale']!r},{stress * case['stress_scale']!r}\n" for strain, stress in kept)
+
+
+@pytest.mark.parametrize("case", TABLE["data_files"], ids=lambda c: f"{c['kind']}:{c['words'][:30]}")
+def test_every_interface_refuses_the_data_file_in_the_same_words(tmp_path, case):
+    path = tmp_path / "data.csv"
+    path.write_text(data_file_text(case))
+    coupon = case["kind"] == "coupon"
+    done = tool("finger_calibrate", "--coupon" if coupon else "--data", path, "--config",
+                ROOT / "config/epfl_ecoflex30_c7_drawing.yaml")
+    assert done.returncode == 2 and case["words"] in done.stderr, done.stderr
+    with pytest.raises(ValueError) as refused:
+        if coupon:
+            pf.fit_coupon(str(path), config=str(ROOT / "config/epfl_ecoflex30_c7_drawing.yaml"))
+        else:
+            pf.calibrate(data=str(path), config=str(ROOT / "config/epfl_ecoflex30_c7_drawing.yaml"))
+    assert case["words"] in str(refused.value), str(refused.value)

@@ -94,7 +94,9 @@ TEST(Coupon, BadCouponsAreRefusedWithTheReason) {
   EXPECT_NE(refusal(percent, stress).find("is it in percent? Give a ratio"), std::string::npos) << refusal(percent, stress);
   std::vector<double> mpa = stress;
   for (double& s : mpa) s *= 1e-6;
-  EXPECT_NE(refusal(strain, mpa).find("is the stress in kPa or MPa (N/mm^2)? Give it in Pa"), std::string::npos)
+  EXPECT_NE(refusal(strain, mpa).find("is the stress in kPa or MPa (N/mm^2), or the strain in percent? Give the stress "
+                                      "in Pa"),
+            std::string::npos)
       << refusal(strain, mpa);
   std::vector<double> kpa = stress;
   for (double& s : kpa) s *= 1e-3;
@@ -123,5 +125,42 @@ TEST(Coupon, TheCsvReaderTakesThePackagesCouponAndNamesAMissingColumn) {
   } catch (const pf::ParameterError& e) {
     EXPECT_NE(std::string(e.what()).find("header needs the columns engineering_strain and nominal_stress_pa; give the "
                                          "stress in Pa"), std::string::npos) << e.what();
+  }
+}
+
+// A stiffer elastomer's first rows, to 20 % strain, written in percent (0..20), pass every row's check: their secant is
+// an elastomer's and no strain is past 2000 %. Before, they were fitted (mu 1.5e4 +- 1.3e5 Pa, the preload on its
+// bound); the fit now refuses a modulus its data do not fix, and asks about percent. The same rows as ratios fit.
+TEST(Coupon, PercentStrainOfSmallStretchesIsRefusedByTheFitItself) {
+  const pf::CouponTest file = pf::loadCouponCsv(std::string(PACKAGE_SOURCE_DIR) + "/data/epfl_ecoflex30_uniaxial.csv");
+  std::vector<double> ratio, percent, stiff;
+  for (const pf::CouponRow& r : file.rows) {
+    if (r.engineering_strain > 0.2) break;
+    ratio.push_back(r.engineering_strain);
+    percent.push_back(100.0 * r.engineering_strain);
+    stiff.push_back(28.0 * r.nominal_stress_pa);  // about 0.6 MPa: a stiffer silicone than Ecoflex 00-30
+  }
+  const pf::CouponFit as_ratio = pf::fitCoupon(pf::couponFromColumns(ratio, stiff, "coupon"), true);
+  EXPECT_LT(as_ratio.shear_modulus_sd_pa, 0.2 * as_ratio.shear_modulus_pa);
+  try {
+    pf::fitCoupon(pf::couponFromColumns(percent, stiff, "coupon"), true);
+    ADD_FAILURE() << "a coupon in percent was fitted";
+  } catch (const pf::ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("coupon: the coupon does not fix the shear modulus"), std::string::npos)
+        << e.what();
+    EXPECT_NE(std::string(e.what()).find("is the strain in percent? Give it as a ratio (0.2 for 20 %)"),
+              std::string::npos) << e.what();
+  }
+}
+
+// A refused row of a file is named by its line, as an editor counts (comments and the header included).
+TEST(Coupon, ARefusedRowOfAFileIsNamedByItsLine) {
+  const std::string path = testing::TempDir() + "coupon_lines.csv";
+  std::ofstream(path) << "# a comment\nengineering_strain,nominal_stress_pa\n0,0\n0.5,2e4\n# mid\n1.0,1.5e4\n2,3e4\n";
+  try {
+    pf::loadCouponCsv(path);
+    ADD_FAILURE() << "a falling stress was read";
+  } catch (const pf::ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find(path + ":6 (data row 3): the stress falls"), std::string::npos) << e.what();
   }
 }

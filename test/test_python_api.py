@@ -600,7 +600,7 @@ def test_fit_coupon_is_the_tools_own_and_refuses_alike(tmp_path):
     assert numpy.ravel(model.parameters["shear_modulus_pa"])[0] == fit["shear_modulus_pa"]
     assert model.parameters["wall_locking_jm"] == fit["wall_locking_jm"]
     table = numpy.loadtxt(coupon, delimiter=",", comments="#", skiprows=9)
-    with pytest.raises(ValueError, match=r"is the stress in kPa or MPa \(N/mm\^2\)\? Give it in Pa"):
+    with pytest.raises(ValueError, match=r"is the stress in kPa or MPa \(N/mm\^2\), or the strain in percent\? Give the stress in Pa"):
         pf.fit_coupon({"engineering_strain": table[:, 0], "nominal_stress_pa": table[:, 1] * 1e-6}, overrides=base)
     with pytest.raises(ValueError, match="the paper law's shear_modulus_pa is an effective stiffness"):
         pf.fit_coupon(str(coupon))

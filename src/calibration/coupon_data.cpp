@@ -19,7 +19,11 @@ constexpr double kLeastSecantModulusPa = 1e3;  // softer than any elastomer a fi
 constexpr double kFallShare = 0.02;         // a stress falling by more than this share of its largest so far
 constexpr std::size_t kLeastRows = 4;       // three keys and one more row
 
-std::string rowName(const std::string& origin, std::size_t i) { return origin + ": row " + std::to_string(i + 1); }
+// A row as a person finds it: its file's line (an editor's count, comments and header included), else its index.
+std::string rowName(const std::string& origin, std::size_t i, int line = 0) {
+  return line > 0 ? origin + ":" + std::to_string(line) + " (data row " + std::to_string(i + 1) + ")"
+                  : origin + ": row " + std::to_string(i + 1);
+}
 
 // The columns of the header, or throws naming what it lacks.
 void headerColumns(const std::vector<std::string>& header, const std::string& at, int& strain, int& stress) {
@@ -61,7 +65,7 @@ void checkCouponRows(const std::vector<CouponRow>& rows, const std::string& orig
   double largest_pa = 0.0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const CouponRow& r = rows[i];
-    const std::string at = rowName(origin, i);
+    const std::string at = rowName(origin, i, r.line);
     if (!std::isfinite(r.engineering_strain) || !std::isfinite(r.nominal_stress_pa)) {
       throw ParameterError(at + ": strain " + formatMessage(r.engineering_strain) + " and stress " +
                            formatMessage(r.nominal_stress_pa) + " Pa must be finite numbers");
@@ -86,7 +90,8 @@ void checkCouponRows(const std::vector<CouponRow>& rows, const std::string& orig
   if (!(secant_pa >= kLeastSecantModulusPa)) {
     throw ParameterError(origin + ": a stress of " + formatMessage(last.nominal_stress_pa) + " at a strain of " +
                          formatMessage(last.engineering_strain) + " is a secant modulus of " + formatMessage(secant_pa) +
-                         " Pa, softer than any elastomer; is the stress in kPa or MPa (N/mm^2)? Give it in Pa");
+                         " Pa, softer than any elastomer; is the stress in kPa or MPa (N/mm^2), or the strain in percent? Give the "
+                         "stress in Pa and the strain as a ratio (0.5 for 50 %)");
   }
 }
 
@@ -114,18 +119,18 @@ CouponTest loadCouponCsv(const std::string& path) {
   for (std::string line; std::getline(in, line);) {
     ++line_number;
     if (line.find_first_not_of(" \t\r") == std::string::npos || line[line.find_first_not_of(" \t")] == '#') continue;
-    const std::vector<std::string> fields = splitCsv(line);
     const std::string at = path + ":" + std::to_string(line_number) + ": ";
+    const std::vector<std::string> fields = strain < 0 ? splitCsvHeader(line, at) : splitCsv(line);
     if (strain < 0) {
       headerColumns(fields, at, strain, stress);
       continue;
     }
-    const std::string row = rowName(path, test.rows.size());
+    const std::string row = rowName(path, test.rows.size(), line_number);
     if (fields.size() <= static_cast<std::size_t>(std::max(strain, stress))) {
       throw ParameterError(row + ": " + std::to_string(fields.size()) + " columns, fewer than the header's");
     }
     test.rows.push_back({number(fields[static_cast<std::size_t>(strain)], row, "engineering_strain"),
-                         number(fields[static_cast<std::size_t>(stress)], row, "nominal_stress_pa")});
+                         number(fields[static_cast<std::size_t>(stress)], row, "nominal_stress_pa"), line_number});
   }
   if (strain < 0) throw ParameterError(path + ": no header (engineering_strain,nominal_stress_pa)");
   checkCouponRows(test.rows, path);

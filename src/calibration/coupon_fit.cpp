@@ -129,6 +129,13 @@ CouponFit fitCoupon(const CouponTest& test, bool gent) {
   // J_m = 1 / alpha; alpha at its bound 0 is no locking, written as J_m = 0 (the Neo-Hookean solid).
   fit.wall_locking_jm = best.alpha > 0.0 ? 1.0 / best.alpha : 0.0;
   fit.wall_locking_jm_sd = best.alpha > 0.0 ? best.sd[1] / (best.alpha * best.alpha) : 0.0;
+  // A modulus the data do not fix is no reading: most often a strain in percent whose first rows look linear.
+  if (!(fit.shear_modulus_sd_pa < fit.shear_modulus_pa)) {
+    throw ParameterError(test.origin + ": the coupon does not fix the shear modulus (" +
+                         formatMessage(fit.shear_modulus_pa) + " +- " + formatMessage(fit.shear_modulus_sd_pa) +
+                         " Pa, one sd); is the strain in percent? Give it as a ratio (0.2 for 20 %), or more of the "
+                         "curve");
+  }
   double sum = 0.0;
   for (const CouponRow& r : test.rows) {
     const double stretch = (1.0 + r.engineering_strain) * (1.0 + fit.preload_strain);

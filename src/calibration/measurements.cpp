@@ -243,7 +243,8 @@ MeasurementSet parseMeasurementSet(const std::string& text, const std::string& o
     ++number;
     const auto first = line.find_first_not_of(" \t\r");
     if (first == std::string::npos || line[first] == '#') continue;
-    const std::vector<std::string> fields = splitCsv(line);
+    const std::vector<std::string> fields =
+        header.empty() ? splitCsvHeader(line, where(origin, number)) : splitCsv(line);
     if (header.empty()) {
       header = fields;
       columns = readHeader(header, average_column, where(origin, number));

@@ -2,6 +2,8 @@
 
 #include <sstream>
 
+#include "pneumatic_finger/core/parameters.hpp"
+
 namespace pneumatic_finger {
 
 std::vector<std::string> splitCsv(const std::string& line) {
@@ -15,6 +17,18 @@ std::vector<std::string> splitCsv(const std::string& line) {
   }
   if (!line.empty() && line.back() == ',') out.push_back("");
   return out;
+}
+
+std::vector<std::string> splitCsvHeader(const std::string& line, const std::string& at) {
+  std::vector<std::string> fields = splitCsv(line);
+  if (fields.size() != 1) return fields;
+  for (const char* separator : {";", "\t"}) {
+    if (line.find(separator) == std::string::npos) continue;
+    throw ParameterError(at + "the header '" + fields[0] + "' is separated by " +
+                         (separator[0] == ';' ? "';'" : "tabs") + ": the package reads comma-separated values with a "
+                         "decimal point (export the sheet as CSV with ',' between fields and '.' in numbers)");
+  }
+  return fields;
 }
 
 }  // namespace pneumatic_finger

@@ -228,12 +228,38 @@ std::string describeRange(const ParameterSpec& spec) {
 
 FingerParameters FingerParameters::defaults() { return fromRaw({}); }
 
+namespace {
+
+FingerParameters fromResolved(const RawParameterMap& raw);
+
+// A drawn model key out of its range is the drawing's doing, and the user never set it: say where it comes from.
+ParameterError forTheDrawing(const ParameterError& e, const RawParameterMap& given) {
+  const std::string what = e.what(), opening = "parameter '";
+  if (what.rfind(opening, 0) != 0) return e;
+  const std::string key = what.substr(opening.size(), what.find('\'', opening.size()) - opening.size());
+  const std::vector<std::string>& drawn = drawnModelKeys();
+  if (given.count(key) > 0 || std::find(drawn.begin(), drawn.end(), key) == drawn.end()) return e;
+  return ParameterError(what + ": the drawing makes " + key + " from its drawing/ keys (docs/DRAWING.md); change those");
+}
+
+}  // namespace
+
 FingerParameters FingerParameters::fromRaw(const RawParameterMap& given) {
   // A drawing's model keys, put in (docs/DRAWING.md). Its "drawing/" keys sort together: without one, no copy.
   const auto first_drawn = given.lower_bound(kDrawingPrefix);
   const bool drawn = first_drawn != given.end() && first_drawn->first.rfind(kDrawingPrefix, 0) == 0;
-  const RawParameterMap resolved = drawn ? resolveDrawing(given) : RawParameterMap();
-  const RawParameterMap& raw = drawn ? resolved : given;
+  if (!drawn) return fromResolved(given);
+  const RawParameterMap resolved = resolveDrawing(given);
+  try {
+    return fromResolved(resolved);
+  } catch (const ParameterError& e) {
+    throw forTheDrawing(e, given);
+  }
+}
+
+namespace {
+
+FingerParameters fromResolved(const RawParameterMap& raw) {
   FingerParameters p;
   for (const auto& entry : raw) {
     if (entry.first.rfind(kDrawingPrefix, 0) == 0) {
@@ -282,6 +308,8 @@ FingerParameters FingerParameters::fromRaw(const RawParameterMap& given) {
   }
   return p;
 }
+
+}  // namespace
 
 RawParameterMap FingerParameters::toRaw() const {
   RawParameterMap raw;

@@ -271,7 +271,8 @@ std::vector<WallLawFit> calibrateWallLaws(const FingerParameters& base, const st
 /// The index in @p fits of the smallest leave-one-out objective (the first on a tie).
 std::size_t chosenWallLaw(const std::vector<WallLawFit>& fits);
 
-/// "auto" (both laws), "paper" or "membrane". @throws ParameterError for anything else.
+/// "auto" (every law: paper, membrane and thick, each fitted, the best prediction kept), or one law by name ("paper",
+/// "membrane", "thick"). @throws ParameterError for anything else.
 std::vector<WallLaw> parseWallLawChoice(const std::string& name);
 
 /// The tip's error bar from a calibration: at each row's pressure, the largest of @p fit's and @p leave_one_out's

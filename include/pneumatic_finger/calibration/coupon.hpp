@@ -16,6 +16,7 @@ namespace pneumatic_finger {
 struct CouponRow {
   double engineering_strain = 0.0;
   double nominal_stress_pa = 0.0;
+  int line = 0;  ///< its line in the file, for messages (0: from columns)
 };
 
 /// A coupon test, checked (checkCouponRows): at least four rows, strain rising from >= 0, a stress that does not fall.

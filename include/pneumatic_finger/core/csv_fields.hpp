@@ -10,4 +10,8 @@ namespace pneumatic_finger {
 /// last field.
 std::vector<std::string> splitCsv(const std::string& line);
 
+/// A header line as the package reads it: its comma-separated fields. @throws ParameterError naming @p at when the
+/// line is one field separated by ';' or tabs (a spreadsheet's export in a locale with a decimal comma), with the fix.
+std::vector<std::string> splitCsvHeader(const std::string& line, const std::string& at);
+
 }  // namespace pneumatic_finger
