@@ -327,8 +327,8 @@ TEST(CalibrationByVolume, ByVolumeWithoutGasTheRunSaysHowToFitIt) {
 // rows as rows everywhere (before: "row 6" in one message, "line 1" in another).
 TEST(CalibrationData, RefusalsGiveTheLikelyCauseAndNameRowsOneWay) {
   EXPECT_EQ(refusal([] { pf::parseMeasurementSet("gauge_pa;tip_angle_rad\n1000;0.1\n", "m.csv", 1); }),
-            "m.csv:1: header has no 'gauge_pa' column (nor 'supplied_volume_m3', for a finger set by volume); the header "
-            "reads as one column 'gauge_pa;tip_angle_rad': separate the columns with commas");
+            "m.csv:1: the header 'gauge_pa;tip_angle_rad' is separated by ';': the package reads comma-separated values "
+            "with a decimal point (export the sheet as CSV with ',' between fields and '.' in numbers)");
   EXPECT_EQ(refusal([] { pf::parseMeasurementSet("pressure_kpa,tip_angle_rad\n10,0.1\n", "m.csv", 1); }),
             "m.csv:1: header has no 'gauge_pa' column (nor 'supplied_volume_m3', for a finger set by volume); column "
             "'pressure_kpa' looks like a pressure: give it as gauge_pa, gauge pressure in Pa (1 kPa = 1000 Pa, 1 bar = "

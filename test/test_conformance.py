@@ -80,15 +80,21 @@ def python_answer(path, gauge_pa):
         model = pf.FingerModel(config=str(path))
         state = model.evaluate(gauge_pa)
     words = " ".join(str(w.message) for w in caught)
-    return float(state["tip_angle_rad"]), warning_classes(words)
+    return float(state["tip_angle_rad"]), warning_classes(words), report(state["status"], state["status_flags"])
+
+
+def report(status, flags):
+    """A status and its flags by name (pf.STATUS, pf.status_flag_names), as the table writes them."""
+    return pf.STATUS[int(status)], pf.status_flag_names(int(flags))
 
 
 def finger_model_answer(path, gauge_pa):
-    done = tool("finger_model", "--config", path, "--gauge-pa", repr(gauge_pa))
+    done = tool("finger_model", "--config", path, "--gauge-pa", repr(gauge_pa), "--status")
     assert done.returncode == 0, done.stderr
     row = next(csv.DictReader(io.StringIO(done.stdout)))
     joints = [float(v) for k, v in row.items() if k.startswith("joint_")]
-    return math.fsum(joints), float(row["gauge_pa"]), warning_classes(done.stderr)
+    return (math.fsum(joints), float(row["gauge_pa"]), warning_classes(done.stderr),
+            report(row["status"], row["status_flags"]))
 
 
 def finger_design_answer(path, gauge_pa):
@@ -96,8 +102,9 @@ def finger_design_answer(path, gauge_pa):
     done = tool("finger_design", "--config", path, "--vary", f"shear_modulus_pa={mu!r}:{mu!r}:1",
                 "--quantity", f"tip_angle_rad@{gauge_pa!r}")
     assert done.returncode == 0, done.stderr
-    row = next(csv.reader(io.StringIO(done.stdout.splitlines()[1])))
-    return float(row[-1]), warning_classes(done.stderr)
+    row = next(csv.DictReader(io.StringIO(done.stdout)))
+    return (float(row[f"tip_angle_rad@{gauge_pa!r}"]), warning_classes(done.stderr),
+            report(row["status"], row["status_flags"]))
 
 
 def mjcf_answer(path, gauge_pa):
@@ -157,10 +164,10 @@ def test_every_tool_reads_the_file_range_alike(files, case):
     # Above the top: every interface clamps there, in the same words, with the top's number.
     above = top * 1.01
     at_top = tip_at(path, top)
-    tip, printed, classes = finger_model_answer(path, above)
+    tip, printed, classes, _ = finger_model_answer(path, above)
     assert printed == top and abs(tip - at_top) <= ANGLE_TOLERANCE_RAD and "clamped" in classes
     for answer in (python_answer, finger_design_answer, mjcf_answer):
-        tip, classes = answer(path, above)
+        tip, classes = answer(path, above)[:2]
         assert abs(tip - at_top) <= ANGLE_TOLERANCE_RAD and "clamped" in classes, (answer.__name__, tip, classes)
     assert abs(urdf_upper_limits(path) - at_top) <= ANGLE_TOLERANCE_RAD  # the joint limits are the finger at the top
     # Just above the validated range (below the top): the tools extrapolate and say so, with the range's number.
@@ -175,8 +182,8 @@ def test_every_tool_reads_the_file_range_alike(files, case):
 def test_every_tool_gives_the_same_finger_and_warning(files, case):
     path, gauge_pa = files[case["file"]], float(case["gauge_pa"])
     reference = tip_at(path, gauge_pa)
-    tip, _, classes = finger_model_answer(path, gauge_pa)
-    answers = {"finger_model": (tip, classes)}
+    tip, _, classes, reported = finger_model_answer(path, gauge_pa)
+    answers = {"finger_model": (tip, classes, reported)}
     # The blocked tip force through the same range rule: finger_model's column and Python's call agree.
     done = tool("finger_model", "--config", path, "--gauge-pa", repr(gauge_pa), "--blocked-tip-force")
     cli_force = float(next(csv.DictReader(io.StringIO(done.stdout)))["blocked_tip_force_n"])
@@ -186,9 +193,11 @@ def test_every_tool_gives_the_same_finger_and_warning(files, case):
     assert cli_force == pytest.approx(python_force, rel=1e-12, abs=1e-15), (cli_force, python_force)
     for answer in (python_answer, finger_design_answer, mjcf_answer):
         answers[answer.__name__] = answer(path, gauge_pa)
-    for interface, (tip, classes) in answers.items():
+    expected = (case["status"], case["flags"])
+    for interface, (tip, classes, *reported) in answers.items():
         assert abs(tip - reference) <= ANGLE_TOLERANCE_RAD, (interface, tip, reference)
         assert classes == [case["warning"]], (interface, classes)
+        assert not reported or reported[0] == expected, (interface, reported, expected)
 
 
 # ---- finger_node, as finger.launch starts it: the file loaded by rosparam into its private namespace ----
@@ -223,7 +232,7 @@ class StartedNode:
 
     count = 0
 
-    def __init__(self, rospy, path):
+    def __init__(self, rospy, path, extra=None):
         import rosparam
         from sensor_msgs.msg import FluidPressure
         from pneumatic_finger.msg import FingerModelState
@@ -231,12 +240,19 @@ class StartedNode:
         self.rospy, self.ns = rospy, f"/conformance_{StartedNode.count}"
         for params, sub_ns in rosparam.load_file(str(path), default_namespace=f"{self.ns}/finger_node/"):
             rosparam.upload_params(sub_ns, params)
+        for key, value in (extra or {}).items():  # a launch argument, as finger.launch sets it
+            rospy.set_param(f"{self.ns}/finger_node/{key}", value)
         self.process = subprocess.Popen([str(BIN / "finger_node"), f"__ns:={self.ns}", "__name:=finger_node"],
                                         stdout=subprocess.PIPE, stderr=subprocess.STDOUT, text=True)
         self.states = []
         self.subscriber = rospy.Subscriber(f"{self.ns}/finger_state", FingerModelState, self.states.append)
-        self.publisher = rospy.Publisher(f"{self.ns}/pressure", FluidPressure, queue_size=10)
-        self.message = FluidPressure
+        if extra and extra.get("volume_topic"):
+            from std_msgs.msg import Float64
+            self.publisher = rospy.Publisher(f"{self.ns}/{extra['volume_topic']}", Float64, queue_size=10)
+            self.message = lambda fluid_pressure: Float64(data=fluid_pressure)  # a volume, in the same call
+        else:
+            self.publisher = rospy.Publisher(f"{self.ns}/pressure", FluidPressure, queue_size=10)
+            self.message = FluidPressure
 
     def refusal(self):
         out, _ = self.process.communicate(timeout=60)
@@ -251,7 +267,8 @@ class StartedNode:
         for _ in range(10):
             seen = len(self.states)
             message = self.message(fluid_pressure=gauge_pa + atmospheric_pa)
-            message.header.stamp = self.rospy.Time.now()
+            if hasattr(message, "header"):
+                message.header.stamp = self.rospy.Time.now()
             self.publisher.publish(message)
             for _ in range(40):
                 if len(self.states) > seen:
@@ -268,7 +285,7 @@ class StartedNode:
 
 
 def node_warning(state, validated):
-    if state.status == state.STATUS_CLAMPED:
+    if state.status_flags & state.FLAG_CLAMPED:
         return ["clamped"]
     if state.status == state.STATUS_VACUUM:
         return ["vacuum"]
@@ -296,6 +313,7 @@ def test_the_node_gives_the_same_finger_range_and_warning(ros, files, file):
             state = node.state_at(float(case["gauge_pa"]), atmospheric_pa)
             tip, status = reference_state(path, float(case["gauge_pa"]))
             assert abs(state.tip_angle_rad - tip) <= ANGLE_TOLERANCE_RAD and state.status == status, case
+            assert report(state.status, state.status_flags) == (case["status"], case["flags"]), case
             assert node_warning(state, model.validated_max_gauge_pa) == [case["warning"]], (case, state.status)
         for case in [c for c in TABLE["ranges"] if c["file"] == file]:
             top, validated = case["max_gauge_pa"], case["validated_max_gauge_pa"]
@@ -335,3 +353,33 @@ def test_every_interface_refuses_the_data_file_in_the_same_words(tmp_path, case)
         else:
             pf.calibrate(data=str(path), config=str(ROOT / "config/epfl_ecoflex30_c7_drawing.yaml"))
     assert case["words"] in str(refused.value), str(refused.value)
+
+
+@pytest.mark.parametrize("file", sorted({c["file"] for c in TABLE["volumes"]}))
+def test_every_interface_driven_by_volume_gives_the_same_finger(ros, files, file):
+    path = files[file]
+    node = StartedNode(ros, path, {"volume_topic": "volume"})
+    try:
+        for case in [c for c in TABLE["volumes"] if c["file"] == file]:
+            v = float(case["supplied_volume_m3"])
+            with warnings.catch_warnings(record=True) as caught:
+                warnings.simplefilter("always")
+                python = pf.FingerModel(config=str(path)).evaluate_volume(v)
+            done = tool("finger_model", "--config", path, "--supplied-volume-m3", repr(v), "--status")
+            assert done.returncode == 0, done.stderr
+            row = next(csv.DictReader(io.StringIO(done.stdout)))
+            cli_tip = math.fsum(float(x) for k, x in row.items() if k.startswith("joint_"))
+            state = node.state_at(v, 0.0)
+            expected = (case["status"], case["flags"])
+            assert report(python["status"], python["status_flags"]) == expected, case
+            assert report(row["status"], row["status_flags"]) == expected, case
+            assert report(state.status, state.status_flags) == expected, case
+            if "words" in case:  # no shape: the same words, NaN in the CLI and Python, the last shape kept by the node
+                assert case["words"] in done.stderr and any(case["words"] in str(w.message) for w in caught), case
+                assert math.isnan(cli_tip) and math.isnan(python["tip_angle_rad"]), case
+                continue
+            tip = float(python["tip_angle_rad"])
+            assert abs(cli_tip - tip) <= ANGLE_TOLERANCE_RAD and abs(state.tip_angle_rad - tip) <= ANGLE_TOLERANCE_RAD
+            assert float(row["gauge_pa"]) == float(python["gauge_pa"]) == state.gauge_pa, case
+    finally:
+        node.stop()

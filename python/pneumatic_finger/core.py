@@ -16,13 +16,14 @@ RuntimeWarning. A bad file, key or value raises ValueError with the tools' messa
 """
 import os
 
-from pneumatic_finger._core import CONTACT_STATUS, STATUS
+from pneumatic_finger._core import CONTACT_STATUS, STATUS, STATUS_FLAGS
 from pneumatic_finger._core import FingerModel as _FingerModel
 from pneumatic_finger._core import calibrate as _calibrate
 from pneumatic_finger._core import fit_coupon as _fit_coupon
 from pneumatic_finger._core import range_check
 
-__all__ = ["FingerModel", "calibrate", "fit_coupon", "default_config", "default_data", "range_check", "STATUS", "CONTACT_STATUS"]
+__all__ = ["FingerModel", "calibrate", "fit_coupon", "default_config", "default_data", "range_check", "STATUS", "STATUS_FLAGS",
+           "status_flag_names", "CONTACT_STATUS"]
 
 
 def _share(*parts):
@@ -38,6 +39,12 @@ def default_config():
 def default_data():
     """The package's measured joint angles, data/sierra2022_table1.csv."""
     return _share("data", "sierra2022_table1.csv")
+
+
+def status_flag_names(flags):
+    """The names of the flags set in a status_flags code (evaluate()'s), as finger_model and finger_state name them:
+    e.g. ['clamped', 'meets itself']; [] for 0. STATUS_FLAGS[b] names bit b."""
+    return [name for bit, name in enumerate(STATUS_FLAGS) if int(flags) >> bit & 1]
 
 
 def _keys(keys):

@@ -107,6 +107,13 @@ double maxSuppliedVolumeM3(const FingerModel& model, const PressureRange& range)
   return lo;
 }
 
+std::string volumeNotFollowedMessage(double supplied_volume_m3, bool solver_failure, double volume_limit_m3) {
+  return "supplied volume " + formatMessage(supplied_volume_m3) + " m^3 is " +
+         (solver_failure ? std::string("one the solver found no finite answer for")
+                         : "at or beyond the most the model follows, " + formatMessage(volume_limit_m3) +
+                               " m^3 (the gas in the drive snaps the finger there, or the wall locks)");
+}
+
 VolumeCheck checkVolumeRange(double supplied_volume_m3, double max_supplied_volume_m3) {
   VolumeCheck c;
   c.volume_m3 = supplied_volume_m3;

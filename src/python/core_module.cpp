@@ -64,7 +64,7 @@ using E = Element;
 const std::vector<OutputField> kStateFields = {
     {"stretch", E::kFloat64, {-1}},         {"bulge_m", E::kFloat64, {-1}},      {"half_angle_rad", E::kFloat64, {-1}},
     {"joint_angle_rad", E::kFloat64, {-1}}, {"backbone_m", E::kFloat64, {-2, 2}}, {"tip_angle_rad", E::kFloat64, {}},
-    {"status", E::kCode, {}},               {"supplied_volume_m3", E::kFloat64, {}}};
+    {"status", E::kCode, {}},               {"supplied_volume_m3", E::kFloat64, {}}, {"status_flags", E::kCode, {}}};
 // evaluate_volume's: the state's, and the pressure the volume makes.
 const std::vector<OutputField> kVolumeFields = [] {
   std::vector<OutputField> f = kStateFields;
@@ -74,7 +74,7 @@ const std::vector<OutputField> kVolumeFields = [] {
 const std::vector<OutputField> kDesignFields = {
     {"tip_angle_rad", E::kFloat64, {}},    {"tip_x_m", E::kFloat64, {}},       {"tip_y_m", E::kFloat64, {}},
     {"contact_gauge_pa", E::kFloat64, {}}, {"snap_gauge_pa", E::kFloat64, {}}, {"limit_gauge_pa", E::kFloat64, {}},
-    {"status", E::kCode, {}}};
+    {"status", E::kCode, {}},              {"status_flags", E::kCode, {}}};
 
 class PyFingerModel {
  public:
@@ -126,13 +126,16 @@ class PyFingerModel {
       std::vector<double> bulge_scratch, joint_scratch;
       if (volume && !rows.bulge_m) rows.bulge_m = scratch(bulge_scratch, count);
       if (!rows.joint_angle_rad) rows.joint_angle_rad = scratch(joint_scratch, count);  // for the self-contact check
+      std::uint8_t* flags = arrays.data<std::uint8_t>("status_flags");
+      std::vector<std::uint8_t> status_scratch;
+      statusForFlags(rows, flags, status_scratch, count);
       model_->evaluateMany(evaluated, count, rows, workspace);
       const auto n = static_cast<std::size_t>(model_->chamberCount());
       for (std::size_t i = 0; volume && i < count; ++i) {
         volume[i] = model_->suppliedVolumeForBulges(rows.bulge_m + i * n, evaluated[i]);  // NaN rows stay NaN
       }
-      if (clamped > 0 && rows.status) pf::markClamped(p.data(), rows.status, count, range_);
-      meets = markSelfContact(model_->parameters(), rows, count);
+      meets = reportRows(model_->parameters(), rows, flags, count,
+                         [&](std::size_t i) { return pf::checkGaugeRange(p.data()[i], range_); });
     }
     if (clamped > 0) warnClamped(p.data(), count, clamped, range_);
     warnOutsideValidated(p.data(), count, range_);
@@ -159,18 +162,23 @@ class PyFingerModel {
       std::vector<double> in_range(v.data(), v.data() + count);
       clamped = pf::clampVolumesToRange(v.data(), in_range.data(), count, max_volume_m3_);
       pf::BatchOutputs rows = stateRows(arrays);
-      std::vector<double> joint_scratch;
+      std::vector<double> joint_scratch, gauge_scratch;
       if (!rows.joint_angle_rad) rows.joint_angle_rad = scratch(joint_scratch, count);  // for the self-contact check
-      model_->evaluateVolumeMany(in_range.data(), count, rows, arrays.data<double>("gauge_pa"), workspace);
-      meets = markSelfContact(model_->parameters(), rows, count);
+      std::uint8_t* flags = arrays.data<std::uint8_t>("status_flags");
+      std::vector<std::uint8_t> status_scratch;
+      statusForFlags(rows, flags, status_scratch, count);
+      double* gauge = arrays.data<double>("gauge_pa");
+      if (!gauge) gauge_scratch.resize(count), gauge = gauge_scratch.data();  // the validated range is in pressure
+      model_->evaluateVolumeMany(in_range.data(), count, rows, gauge, workspace);
+      meets = reportRows(model_->parameters(), rows, flags, count, [&](std::size_t i) {
+        pf::RangeCheck check;  // a clamped volume is a clamped pressure: the finger at max_gauge_pa's volume
+        check.clamped = pf::checkVolumeRange(v.data()[i], max_volume_m3_).clamped;
+        check.above_validated = check.clamped || gauge[i] > range_.validated_max_gauge_pa;
+        return check;
+      });
       if (double* d = arrays.data<double>("supplied_volume_m3")) std::copy(in_range.begin(), in_range.end(), d);
-      for (std::size_t i = 0; clamped > 0 && rows.status && i < count; ++i) {
-        const auto ok = static_cast<std::uint8_t>(pf::EvaluationStatus::kOk);
-        if (in_range[i] != v.data()[i] && rows.status[i] == ok) {
-          rows.status[i] = static_cast<std::uint8_t>(pf::EvaluationStatus::kClamped);
-        }
-      }
     }
+    warnVolumeNotFollowed(v.data(), arrays.data<std::uint8_t>("status"), count, model_->volumeLimitM3());
     if (clamped > 0) {
       const double* first = std::find_if(v.data(), v.data() + count, [this](double x) { return x > max_volume_m3_; });
       warnRuntime(pf::volumeClampedMessage(*first, max_volume_m3_, range_) +
@@ -180,18 +188,6 @@ class PyFingerModel {
     return arrays.result(scalar);
   }
 
-  // Where the core's batch writes: the arrays of the outputs asked for (nullptr for the others).
-  static pf::BatchOutputs stateRows(OutputArrays& arrays) {
-    pf::BatchOutputs rows;
-    rows.stretch = arrays.data<double>("stretch");
-    rows.bulge_m = arrays.data<double>("bulge_m");
-    rows.half_angle_rad = arrays.data<double>("half_angle_rad");
-    rows.joint_angle_rad = arrays.data<double>("joint_angle_rad");
-    rows.backbone_m = arrays.data<double>("backbone_m");
-    rows.tip_angle_rad = arrays.data<double>("tip_angle_rad");
-    rows.status = arrays.data<std::uint8_t>("status");
-    return rows;
-  }
 
   // A scratch array of count x N, for an output the caller did not ask for but a check needs.
   double* scratch(std::vector<double>& storage, std::size_t count) const {
@@ -293,12 +289,13 @@ class PyFingerModel {
     const pf::DesignOutputs rows{arrays.data<double>("tip_angle_rad"),    arrays.data<double>("tip_x_m"),
                                  arrays.data<double>("tip_y_m"),          arrays.data<double>("contact_gauge_pa"),
                                  arrays.data<std::uint8_t>("status"),     arrays.data<double>("snap_gauge_pa"),
-                                 arrays.data<double>("limit_gauge_pa")};
+                                 arrays.data<double>("limit_gauge_pa"),   arrays.data<std::uint8_t>("status_flags")};
     std::vector<pf::DesignRefusal> refused;
     {
       py::gil_scoped_release release;
+      const pf::RangeCheck input = pf::checkGaugeRange(gauge_pa, range_);  // the range rule of every interface
       refused = pf::sweepDesigns(model_->parameters(), model_->options(), keys, v.data(),
-                                 static_cast<std::size_t>(v.shape(0)), gauge_pa, rows);
+                                 static_cast<std::size_t>(v.shape(0)), input.gauge_pa, rows, input);
     }
     py::dict d = arrays.result(false);
     py::list refusals;
@@ -444,8 +441,7 @@ PYBIND11_MODULE(_core, m) {
       PyErr_SetString(PyExc_ValueError, error.what());
     }
   });
-  m.attr("STATUS") = py::tuple(py::cast(evaluationStatusNames()));
-  m.attr("CONTACT_STATUS") = py::tuple(py::cast(std::vector<std::string>(kContactStatus.begin(), kContactStatus.end())));
+  defineStatusNames(m);
   defineCalibrate(m);
   defineRangeCheck(m);
   py::class_<PyFingerPath>(m, "FingerPath",
@@ -471,8 +467,9 @@ PYBIND11_MODULE(_core, m) {
            py::arg("start_branch") = "near",
            "The free finger at a gauge pressure (Pa) or a 1-D array of them: a dict of numpy arrays stretch, bulge_m, "
            "half_angle_rad, joint_angle_rad (P, N), backbone_m (P, N+2, 2), tip_angle_rad (P,) and status (P,) uint8 "
-           "codes (STATUS names them; a scalar call gives one code). A pressure above max_gauge_pa is clamped to it "
-           "(status 'clamped to max_gauge_pa', a RuntimeWarning). The pressures are a path: under the membrane law a Gent "
+           "codes (STATUS names them; a scalar call gives one code), status_flags what else holds at once (bits: "
+           "STATUS_FLAGS, status_flag_names()). A pressure above max_gauge_pa is clamped to it "
+           "(status 'clamped to max_gauge_pa', flag 'clamped', a RuntimeWarning). The pressures are a path: under the membrane law a Gent "
            "wall snaps through at its limit pressure to its far branch (status 'snapped through') and back at that "
            "branch's turning point, in order, starting from start_branch ('near' or 'far'). outputs: the names to "
            "compute (None: all); out: a dict of arrays to fill (float64, uint8 for status, C-contiguous, of the "

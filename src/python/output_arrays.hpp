@@ -12,6 +12,8 @@
 #include <utility>
 #include <vector>
 
+#include "pneumatic_finger/core/evaluation.hpp"
+
 namespace pneumatic_finger_python {
 
 namespace py = pybind11;
@@ -144,5 +146,18 @@ class OutputArrays {
   const std::vector<OutputField>& fields_;
   std::map<std::string, py::array> arrays_;
 };
+
+// Where the core's batch writes: the arrays of the state's outputs asked for (nullptr for the others).
+inline pneumatic_finger::BatchOutputs stateRows(OutputArrays& arrays) {
+  pneumatic_finger::BatchOutputs rows;
+  rows.stretch = arrays.data<double>("stretch");
+  rows.bulge_m = arrays.data<double>("bulge_m");
+  rows.half_angle_rad = arrays.data<double>("half_angle_rad");
+  rows.joint_angle_rad = arrays.data<double>("joint_angle_rad");
+  rows.backbone_m = arrays.data<double>("backbone_m");
+  rows.tip_angle_rad = arrays.data<double>("tip_angle_rad");
+  rows.status = arrays.data<std::uint8_t>("status");
+  return rows;
+}
 
 }  // namespace pneumatic_finger_python

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 
 #include "pneumatic_finger/core/pressure_range.hpp"
@@ -36,6 +37,19 @@ inline void warnOutsideValidated(const double* p, std::size_t count, const pf::P
     return c.above_validated && !c.clamped;
   });
   if (above != p + count) warnRuntime(pf::aboveValidatedMessage(*above, range));
+}
+
+/// A volume the model does not follow (its row NaN), once per call, in finger_model's and the node's words. Needs
+/// the rows' statuses; without them (not asked for) the rows' NaN says it.
+inline void warnVolumeNotFollowed(const double* v, const std::uint8_t* status, std::size_t count,
+                                  double volume_limit_m3) {
+  for (std::size_t i = 0; status && i < count; ++i) {
+    const auto s = static_cast<pf::EvaluationStatus>(status[i]);
+    if (s != pf::EvaluationStatus::kBeyondLimitPoint && s != pf::EvaluationStatus::kSolverFailure) continue;
+    warnRuntime(pf::volumeNotFollowedMessage(v[i], s == pf::EvaluationStatus::kSolverFailure, volume_limit_m3) +
+                "; its row is nan");
+    return;
+  }
 }
 
 }  // namespace pneumatic_finger_python

@@ -12,6 +12,7 @@
 
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/evaluation.hpp"
+#include "pneumatic_finger/core/evaluation_report.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/self_contact.hpp"
 
@@ -30,6 +31,16 @@ inline std::vector<const char*> evaluationStatusNames() {
 inline const std::vector<const char*> kContactStatus = {"free", "in contact", "overlaps at rest", "solver failure",
                                                         "beyond limit point"};
 
+// pf.STATUS (by code), pf.STATUS_FLAGS (by bit: status_flags' bit b is STATUS_FLAGS[b]) and pf.CONTACT_STATUS.
+inline void defineStatusNames(pybind11::module_& m) {
+  namespace py = pybind11;
+  m.attr("STATUS") = py::tuple(py::cast(evaluationStatusNames()));
+  std::vector<std::string> flag_names;
+  for (int bit = 0; bit < pf::kStatusFlagCount; ++bit) flag_names.emplace_back(pf::statusFlagName(bit));
+  m.attr("STATUS_FLAGS") = py::tuple(py::cast(flag_names));
+  m.attr("CONTACT_STATUS") = py::tuple(py::cast(std::vector<std::string>(kContactStatus.begin(), kContactStatus.end())));
+}
+
 inline std::uint8_t contactStatusCode(pf::ContactState::Status status) {
   using S = pf::ContactState::Status;
   return status == S::kFree             ? 0
@@ -39,18 +50,32 @@ inline std::uint8_t contactStatusCode(pf::ContactState::Status status) {
                                         : 4;
 }
 
-// Rows whose backbone crosses itself (self_contact.hpp) get status 'meets itself', as finger_node's; returns the
-// first one's tip angle (NaN: none). @p rows.joint_angle_rad must be written (count x N).
-inline double markSelfContact(const pf::FingerParameters& parameters, const pf::BatchOutputs& rows, std::size_t count) {
+// The flags need the model's status: into @p storage where the caller asked for flags and not for the status.
+inline void statusForFlags(pf::BatchOutputs& rows, const std::uint8_t* flags, std::vector<std::uint8_t>& storage,
+                           std::size_t count) {
+  if (!flags || rows.status) return;
+  storage.resize(count);
+  rows.status = storage.data();
+}
+
+// Each row reported by the core's one rule (evaluation_report.hpp), as finger_node reports its finger_state:
+// @p rows.status (the model's, when given) becomes the interfaces' status and @p flags (when given) its flags;
+// @p range_of(i) is row i's range check. @p rows.joint_angle_rad must be written (count x N). Returns the first
+// self-crossing row's tip angle (NaN: none), for the warning.
+template <class RangeOf>
+double reportRows(const pf::FingerParameters& parameters, const pf::BatchOutputs& rows, std::uint8_t* flags,
+                  std::size_t count, RangeOf range_of) {
   const auto n = static_cast<std::size_t>(parameters.chamber_count);
   double first = NAN;
   for (std::size_t i = 0; i < count; ++i) {
     const double* q = rows.joint_angle_rad + i * n;
-    if (!pf::jointsMeetThemselves(parameters, q)) continue;  // NaN rows never do
-    if (std::isnan(first)) first = std::accumulate(q, q + n, 0.0);
-    if (rows.status && rows.status[i] != static_cast<std::uint8_t>(pf::EvaluationStatus::kVacuum)) {
-      rows.status[i] = static_cast<std::uint8_t>(pf::EvaluationStatus::kMeetsItself);
-    }
+    const bool meets = pf::jointsMeetThemselves(parameters, q);  // NaN rows never do
+    if (meets && std::isnan(first)) first = std::accumulate(q, q + n, 0.0);
+    if (!rows.status) continue;
+    const pf::EvaluationReport report =
+        pf::reportEvaluation(static_cast<pf::EvaluationStatus>(rows.status[i]), range_of(i), meets);
+    rows.status[i] = static_cast<std::uint8_t>(report.status);
+    if (flags) flags[i] = report.flags;
   }
   return first;
 }

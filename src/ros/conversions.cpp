@@ -26,12 +26,10 @@ static_assert(FingerModelState::STATUS_OK == static_cast<int>(EvaluationStatus::
                   FingerModelState::STATUS_MEETS_ITSELF == static_cast<int>(EvaluationStatus::kMeetsItself) &&
                   kEvaluationStatusCount == 8,
               "msg/FingerModelState.msg's STATUS_* are EvaluationStatus's codes, all of them");
-std::uint8_t publishedStatus(EvaluationStatus model_status, bool clamped, bool meets_itself) {
-  EvaluationStatus shown = model_status;  // the interface's own statuses over ok (and over a snap, which the flags keep)
-  if (shown != EvaluationStatus::kVacuum && clamped) shown = EvaluationStatus::kClamped;
-  if (shown != EvaluationStatus::kVacuum && meets_itself) shown = EvaluationStatus::kMeetsItself;
-  return static_cast<std::uint8_t>(shown);
-}
+static_assert(FingerModelState::FLAG_CLAMPED == kFlagClamped && FingerModelState::FLAG_FAR_BRANCH == kFlagFarBranch &&
+                  FingerModelState::FLAG_MEETS_ITSELF == kFlagMeetsItself &&
+                  FingerModelState::FLAG_EXTRAPOLATED == kFlagExtrapolated && kStatusFlagCount == 4,
+              "msg/FingerModelState.msg's FLAG_* are StatusFlag's bits, all of them");
 
 Eigen::Isometry3d isometryFromMessage(const geometry_msgs::Transform& t) {
   return Eigen::Translation3d(t.translation.x, t.translation.y, t.translation.z) *

@@ -59,18 +59,15 @@ void FingerNode::followVolume(double volume_m3, const ros::Time& now) {
   const FingerState& state = model_->evaluateVolume(in_range.volume_m3, *workspace_);
   if (state.status == EvaluationStatus::kBeyondLimitPoint || state.status == EvaluationStatus::kSolverFailure) {
     // No invented shape: finger_state repeats the last one and says why; joint_states and tf stay as they were.
-    const std::string why =
-        "supplied volume " + formatMessage(volume_m3) + " m^3 " +
-        (state.status == EvaluationStatus::kSolverFailure
-             ? std::string("found no finite answer")
-             : "is beyond the most the model follows, " + formatMessage(model_->volumeLimitM3()) +
-                   " m^3 (the drive's gas snaps the finger there, or the wall locks)") +
-        "; last state kept";
+    const std::string why = volumeNotFollowedMessage(volume_m3, state.status == EvaluationStatus::kSolverFailure,
+                                                     model_->volumeLimitM3()) +
+                            "; last state kept";
     input_.noteVolumeNotFollowed(why, now.toSec());
     ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), why.c_str());
     if (have_pressure_) {
       finger_state_.header.stamp = now;
       finger_state_.status = FingerModelState::STATUS_BEYOND_LIMIT_POINT;
+      finger_state_.status_flags = 0;  // the core's report of a volume not followed (no pressure, so nothing else holds)
       finger_state_pub_.publish(finger_state_);
     }
     return;
@@ -113,6 +110,7 @@ void FingerNode::followVolumeInContact(double volume_m3, const ros::Time& now) {
   if (have_pressure_) {
     finger_state_.header.stamp = now;
     finger_state_.status = FingerModelState::STATUS_BEYOND_LIMIT_POINT;
+    finger_state_.status_flags = 0;
     finger_state_pub_.publish(finger_state_);
   }
 }

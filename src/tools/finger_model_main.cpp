@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "pneumatic_finger/core/drawing.hpp"
+#include "pneumatic_finger/core/evaluation_report.hpp"
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/pressure_range.hpp"
@@ -18,8 +19,10 @@
 #include "pneumatic_finger/core/self_contact.hpp"
 #include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
+#include "row_warnings.hpp"
 
 namespace pf = pneumatic_finger;
+using pneumatic_finger_tools::RowWarnings;
 
 namespace {
 
@@ -88,14 +91,40 @@ struct CsvColumns {
   const pf::Obstacle* obstacle = nullptr;
   std::vector<double> times;
   bool blocked_tip_force = false;
+  bool status = false;  // --status: each row's outcome and flags, as finger_state and Python's evaluate carry them
 };
 
+// The options that add columns or set the rows' range.
+void addColumnOptions(CLI::App& app, CsvColumns& columns, std::string& max_gauge) {
+  app.add_option("--max-gauge-pa", max_gauge,
+                 "top of the model's range (Pa; default the parameter file's max_gauge_pa, else 294199.5 = 3 kg/cm2): "
+                 "a pressure above it, or a volume that makes more, is clamped to it, with a warning, as finger_node's "
+                 "~max_gauge_pa does");
+  app.add_flag("--blocked-tip-force", columns.blocked_tip_force,
+               "add blocked_tip_force_n: the tip force (N) of the finger held straight by a plate at its tip");
+  app.add_flag("--status", columns.status,
+               "add status and status_flags: each row's outcome code and the flags that hold besides it (the codes of "
+               "finger_state and of Python's evaluate: docs/LIBRARY.md, Status)");
+}
+
 // The header row: the time first (time mode), the shape, the supplied volume, the blocked tip force last.
-void printHeader(std::ostream& out, int chamber_count, bool time, bool blocked_tip_force) {
+void printHeader(std::ostream& out, int chamber_count, bool time, bool blocked_tip_force, bool status) {
   if (time) out << "time_s,";
   out << "gauge_pa,stretch,bulge_m,half_angle_rad";
   for (int j = 1; j <= chamber_count; ++j) out << ",joint_" << j << "_rad";
-  out << ",tip_x_m,tip_y_m,supplied_volume_m3" << (blocked_tip_force ? ",blocked_tip_force_n\n" : "\n");
+  out << ",tip_x_m,tip_y_m,supplied_volume_m3" << (blocked_tip_force ? ",blocked_tip_force_n" : "")
+      << (status ? ",status,status_flags\n" : "\n");
+}
+
+// A row's outcome by the core's one rule (evaluation_report.hpp), as its codes.
+pf::EvaluationReport rowReport(const pf::FingerState& s, const pf::RangeCheck& range) {
+  const bool shaped = s.status != pf::EvaluationStatus::kNotFinite && s.status != pf::EvaluationStatus::kSolverFailure &&
+                      s.status != pf::EvaluationStatus::kBeyondLimitPoint && s.status != pf::EvaluationStatus::kVacuum;
+  return pf::reportEvaluation(s.status, range, shaped && pf::backboneMeetsItself(s.backbone_m, s.joint_angle_rad.data()));
+}
+
+void printReport(std::ostream& out, const pf::EvaluationReport& report) {
+  out << ',' << static_cast<int>(report.status) << ',' << static_cast<int>(report.flags);
 }
 
 // The shape's columns of a state, gauge_pa to tip_y_m, with joints @p q and tip @p tip.
@@ -106,58 +135,6 @@ void printShape(std::ostream& out, const pf::FingerState& s, const Eigen::Vector
   out << ',' << pf::formatExact(tip.x()) << ',' << pf::formatExact(tip.y());
 }
 
-// The warnings of finger_model's rows, each said once (on stderr), in the words every interface uses.
-struct RowWarnings {
-  bool vacuum = false, failure = false, limit = false, clamp = false, extrapolated = false, snap = false, meets = false;
-
-  // The backbone crossing itself, said once, as every interface says it (self_contact.hpp).
-  void noteShape(const pf::FingerState& s) {
-    const bool shaped = s.status != pf::EvaluationStatus::kNotFinite && s.status != pf::EvaluationStatus::kSolverFailure &&
-                        s.status != pf::EvaluationStatus::kBeyondLimitPoint;
-    if (shaped && !meets && pf::backboneMeetsItself(s.backbone_m, s.joint_angle_rad.data())) {
-      std::cerr << "finger_model: warning: at " << pf::formatMessage(s.gauge_pa) << " Pa gauge "
-                << pf::selfContactMessage(s.tip_angle_rad) << "\n";
-      meets = true;
-    }
-  }
-
-  void note(const pf::FingerModel& model, const pf::FingerState& s, const pf::RangeCheck& range, double requested,
-            const pf::PressureRange& limits) {
-    const double p = range.gauge_pa;
-    if (s.status == pf::EvaluationStatus::kVacuum && !once(vacuum)) {
-      std::cerr << "finger_model: warning: " << pf::vacuumMessage(p) << " is printed\n";
-    }
-    if (range.clamped && !once(clamp)) {
-      std::cerr << "finger_model: warning: " << pf::clampedMessage(requested, limits) << " (gauge_pa "
-                << pf::formatMessage(p) << " is printed)\n";
-    } else if (range.above_validated && !range.clamped && !once(extrapolated)) {
-      std::cerr << "finger_model: warning: " << pf::aboveValidatedMessage(p, limits) << "\n";
-    }
-    noteShape(s);
-    if (s.status == pf::EvaluationStatus::kSnappedThrough && !once(snap)) {
-      std::cerr << "finger_model: note: at " << pf::formatMessage(p) << " Pa the walls are on their far branch "
-                << "(snapped through past the limit point, " << pf::formatMessage(model.limitGaugePa())
-                << " Pa; back at or below " << pf::formatMessage(model.farTurningGaugePa())
-                << " Pa): the rows follow the path, in order\n";
-    }
-    if (s.status == pf::EvaluationStatus::kBeyondLimitPoint && !once(limit)) {
-      std::cerr << "finger_model: warning: gauge pressure " << pf::formatExact(p) << " Pa is at or beyond the "
-                << "membrane wall's limit point, " << pf::formatExact(model.limitGaugePa())
-                << " Pa, where the pressure does not determine the shape: the wall has no far branch and balloons "
-                << "without bound (a risk of bursting); such rows are nan\n";
-    } else if (s.status == pf::EvaluationStatus::kSolverFailure && !once(failure)) {
-      std::cerr << "finger_model: warning: solver '" << pf::solverName(model.options().solver)
-                << "' found no finite answer at " << pf::formatExact(p) << " Pa gauge; such rows are nan\n";
-    }
-  }
-
-  // false the first time (and marks it said), true after.
-  static bool once(bool& said) {
-    const bool before = said;
-    said = true;
-    return before;
-  }
-};
 
 void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::vector<double>& pressures,
               const CsvColumns& columns) {
@@ -167,10 +144,11 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
   bool warned_overlap = false;
   const int n = model.chamberCount();
   std::ostringstream out;
-  printHeader(out, n, !times.empty(), columns.blocked_tip_force);
+  printHeader(out, n, !times.empty(), columns.blocked_tip_force, columns.status);
   // Computed only when asked for (it costs a wall solve): the held finger's force, whatever the free shape's status.
-  auto end_row = [&](double p) {
+  auto end_row = [&](double p, const pf::FingerState& s, const pf::RangeCheck& range) {
     if (columns.blocked_tip_force) out << ',' << pf::formatExact(model.blockedTipForceN(p));
+    if (columns.status) printReport(out, rowReport(s, range));
     out << '\n';
   };
   RowWarnings warn;
@@ -186,7 +164,7 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
       // The model kept its previous state; printing it would put a wrong shape on this row.
       out << pf::formatExact(p);
       for (int j = 0; j < n + 6; ++j) out << ",nan";
-      end_row(p);
+      end_row(p, s, range);
       continue;
     }
     Eigen::VectorXd q = s.joint_angle_rad;
@@ -207,7 +185,7 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
     }
     printShape(out, s, q, tip);
     out << ',' << pf::formatExact(volume_m3);
-    end_row(p);
+    end_row(p, s, range);
   }
   std::cout << out.str();
 }
@@ -216,7 +194,9 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
 // (gaugeForVolumeInContact, up to @p max_gauge_pa), then the contact rule's shape there. false (the row is nan) with
 // a warning once where no pressure up to the top gives it.
 bool printVolumeRowInContact(const pf::FingerModel& model, pf::FingerWorkspace& ws, pf::ContactTracker& tracker,
-                             double v, double max_gauge_pa, bool& warned, std::ostream& out) {
+                             double v, const pf::PressureRange& range, bool& warned, std::ostream& out,
+                             pf::EvaluationReport& report) {
+  const double max_gauge_pa = range.max_gauge_pa;
   double gauge_pa = 0.0;
   std::string why;
   if (!pf::gaugeForVolumeInContact(model, [&tracker](double p) { return tracker.solve(p); }, v, max_gauge_pa,
@@ -232,31 +212,44 @@ bool printVolumeRowInContact(const pf::FingerModel& model, pf::FingerWorkspace& 
   } else {
     printShape(out, s, s.joint_angle_rad, s.tip());
   }
-  out << ',' << pf::formatExact(v) << '\n';
+  out << ',' << pf::formatExact(v);
+  report = rowReport(s, pf::checkGaugeRange(gauge_pa, range));
   return true;
+}
+
+// A volume whose row is nan: the solver's failure, or past the most the model follows.
+void warnVolumeNotFollowed(const pf::FingerModel& model, const pf::FingerState& s, double v) {
+  std::cerr << "finger_model: warning: "
+            << pf::volumeNotFollowedMessage(v, s.status == pf::EvaluationStatus::kSolverFailure, model.volumeLimitM3())
+            << "; such rows are nan\n";
 }
 
 // Volume as the input: a row per supplied volume, gauge_pa the pressure it makes (docs/MODEL.md, Volume); closing on
 // @p obstacle when one is given (then up to @p max_gauge_pa).
 void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::vector<double>& volumes,
-                    const pf::Obstacle* obstacle, const pf::PressureRange& range) {
+                    const pf::Obstacle* obstacle, const pf::PressureRange& range, bool status) {
   const int n = model.chamberCount();
-  const double max_gauge_pa = range.max_gauge_pa;
   const double max_volume_m3 = pf::maxSuppliedVolumeM3(model, range);  // the range rule, for a volume
   bool warned_clamp = false;
   RowWarnings shape_warnings;  // the backbone crossing itself, as for a pressure
   std::ostringstream out;
-  printHeader(out, n, false, false);
+  printHeader(out, n, false, false, status);
   bool warned_limit = false, warned_vacuum = false;
   std::unique_ptr<pf::ContactTracker> tracker;
   if (obstacle) tracker = std::make_unique<pf::ContactTracker>(model, *obstacle);
+  auto end_row = [&](const pf::EvaluationReport& report) {
+    if (status) printReport(out, report);
+    out << '\n';
+  };
   for (double v : volumes) {
     if (tracker && v >= 0.0 && !tracker->outOfReach()) {
-      if (!printVolumeRowInContact(model, ws, *tracker, v, max_gauge_pa, warned_limit, out)) {
+      pf::EvaluationReport report{pf::EvaluationStatus::kSolverFailure, 0};  // no pressure up to the top gives it
+      if (!printVolumeRowInContact(model, ws, *tracker, v, range, warned_limit, out, report)) {
         out << "nan";
         for (int j = 0; j < n + 5; ++j) out << ",nan";
-        out << ',' << pf::formatExact(v) << '\n';
+        out << ',' << pf::formatExact(v);
       }
+      end_row(report);
       continue;
     }
     const pf::VolumeCheck in_range = pf::checkVolumeRange(v, max_volume_m3);
@@ -265,18 +258,11 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
     }
     const pf::FingerState& s = model.evaluateVolume(in_range.volume_m3, ws);
     if (s.status == pf::EvaluationStatus::kBeyondLimitPoint || s.status == pf::EvaluationStatus::kSolverFailure) {
-      if (!warned_limit) {
-        std::cerr << "finger_model: warning: supplied volume " << pf::formatMessage(v) << " m^3 is "
-                  << (s.status == pf::EvaluationStatus::kSolverFailure
-                          ? "one the solver found no finite answer for"
-                          : "at or beyond the most the model follows, " + pf::formatMessage(model.volumeLimitM3()) +
-                                " m^3 (the gas in the drive snaps the finger there, or the wall locks)")
-                  << "; such rows are nan\n";
-        warned_limit = true;
-      }
+      if (!RowWarnings::once(warned_limit)) warnVolumeNotFollowed(model, s, v);
       out << "nan";
       for (int j = 0; j < n + 5; ++j) out << ",nan";
-      out << ',' << pf::formatExact(v) << '\n';
+      out << ',' << pf::formatExact(v);
+      end_row(pf::reportEvaluation(s.status, {}, false));
       continue;
     }
     if (s.status == pf::EvaluationStatus::kVacuum && !warned_vacuum) {
@@ -288,7 +274,11 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
     }
     shape_warnings.noteShape(s);
     printShape(out, s, s.joint_angle_rad, s.tip());
-    out << ',' << pf::formatExact(in_range.volume_m3) << '\n';
+    out << ',' << pf::formatExact(in_range.volume_m3);
+    pf::RangeCheck check;  // a clamped volume is a clamped pressure, as Python and the node report it
+    check.clamped = in_range.clamped;
+    check.above_validated = in_range.clamped || s.gauge_pa > range.validated_max_gauge_pa;
+    end_row(rowReport(s, check));
   }
   std::cout << out.str();
 }
@@ -435,12 +425,7 @@ int main(int argc, char** argv) {
   listings.addTo(app);
   CsvColumns columns;
   std::string max_gauge;
-  app.add_option("--max-gauge-pa", max_gauge,
-                 "top of the model's range (Pa; default the parameter file's max_gauge_pa, else 294199.5 = 3 kg/cm2): "
-                 "a pressure above it, or a volume that makes more, is clamped to it, with a warning, as finger_node's "
-                 "~max_gauge_pa does");
-  app.add_flag("--blocked-tip-force", columns.blocked_tip_force,
-               "add blocked_tip_force_n: the tip force (N) of the finger held straight by a plate at its tip");
+  addColumnOptions(app, columns, max_gauge);
   std::string flow_lpm, duration_s, step_s;
   app.add_option("--flow-lpm", flow_lpm, "time mode: constant air flow Q into the finger (L/min)");
   app.add_option("--duration-s", duration_s, "time mode: fill duration T (s)");
@@ -467,7 +452,7 @@ int main(int argc, char** argv) {
     const pf::Obstacle obstacle = parseDisk(disk);
     columns.obstacle = disk.empty() ? nullptr : &obstacle;
     if (!supplied.empty()) {
-      printVolumeCsv(model, ws, supplied, columns.obstacle, columns.range);
+      printVolumeCsv(model, ws, supplied, columns.obstacle, columns.range, columns.status);
       return 0;
     }
     columns.times = times;

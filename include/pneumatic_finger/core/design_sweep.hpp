@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "pneumatic_finger/core/finger_model.hpp"
+#include "pneumatic_finger/core/pressure_range.hpp"
 
 namespace pneumatic_finger {
 
@@ -22,6 +23,7 @@ struct DesignOutputs {
   std::uint8_t* status = nullptr;      ///< EvaluationStatus at the pressure
   double* snap_gauge_pa = nullptr;     ///< where a rising pressure bends it fastest (Pa gauge; snapGaugePa)
   double* limit_gauge_pa = nullptr;    ///< its limit point (Pa gauge; inf where no wall folds)
+  std::uint8_t* status_flags = nullptr;  ///< StatusFlag bits at the pressure (evaluation_report.hpp)
 };
 
 /// A design the parameters refuse: its index and the loader's message. Its outputs are NaN.
@@ -31,10 +33,13 @@ struct DesignRefusal {
 };
 
 /// Evaluates @p designs designs at @p gauge_pa: design d is @p base with keys[j] = values[d * keys.size() + j].
-/// @return the refused designs, in order
+/// Each design's status and flags are reported by the one rule (reportEvaluation) every interface reports by, with
+/// @p input: how the caller's range rule made @p gauge_pa of the pressure asked for (clamped, above the validated
+/// range). @return the refused designs, in order
 /// @throws ParameterError for an unknown key (before any design is evaluated)
 std::vector<DesignRefusal> sweepDesigns(const FingerParameters& base, const ModelOptions& options,
                                         const std::vector<std::string>& keys, const double* values,
-                                        std::size_t designs, double gauge_pa, const DesignOutputs& out);
+                                        std::size_t designs, double gauge_pa, const DesignOutputs& out,
+                                        const RangeCheck& input = {});
 
 }  // namespace pneumatic_finger

@@ -70,6 +70,10 @@ struct VolumeCheck {
 };
 VolumeCheck checkVolumeRange(double supplied_volume_m3, double max_supplied_volume_m3);
 
+/// The words every interface says for a volume the model does not follow: past @p volume_limit_m3 (the gas in the
+/// drive snaps the finger there, or the wall locks), or one the solver found no finite answer for.
+std::string volumeNotFollowedMessage(double supplied_volume_m3, bool solver_failure, double volume_limit_m3);
+
 /// The words every interface says for a clamped volume.
 std::string volumeClampedMessage(double supplied_volume_m3, double max_supplied_volume_m3, const PressureRange& range);
 

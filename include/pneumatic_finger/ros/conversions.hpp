@@ -13,6 +13,7 @@
 #include "pneumatic_finger/GraspObject.h"
 #include "pneumatic_finger/core/contact.hpp"
 #include "pneumatic_finger/core/evaluation.hpp"
+#include "pneumatic_finger/core/evaluation_report.hpp"
 #include "pneumatic_finger/core/grasp_object.hpp"
 #include "pneumatic_finger/core/object_section.hpp"
 
@@ -20,10 +21,6 @@ namespace pneumatic_finger {
 
 /// finger_state's object_status for a GraspObjectStatus.
 std::uint8_t toMessage(GraspObjectStatus status);
-
-/// finger_state's status (the message's STATUS_* are the core's list): the model's, or the interface's own where the
-/// pressure was clamped or the backbone meets itself (the latter first), except for a vacuum's straight finger.
-std::uint8_t publishedStatus(EvaluationStatus model_status, bool clamped, bool meets_itself);
 
 /// A transform message as an isometry.
 Eigen::Isometry3d isometryFromMessage(const geometry_msgs::Transform& t);
