@@ -383,3 +383,33 @@ def test_every_interface_driven_by_volume_gives_the_same_finger(ros, files, file
             assert float(row["gauge_pa"]) == float(python["gauge_pa"]) == state.gauge_pa, case
     finally:
         node.stop()
+
+
+@pytest.mark.parametrize("case", TABLE["not_finite"], ids=lambda c: c["words"])
+def test_every_interface_refuses_an_input_that_is_no_number_in_the_same_words(ros, files, case):
+    from diagnostic_msgs.msg import DiagnosticArray
+    path, by_volume = files[case["file"]], "supplied_volume_m3" in case
+    x = float(case["supplied_volume_m3"] if by_volume else case["gauge_pa"])
+    done = tool("finger_model", "--config", path, "--supplied-volume-m3" if by_volume else "--gauge-pa", repr(x))
+    assert done.returncode == 2 and case["words"] in done.stderr, done.stderr
+    with warnings.catch_warnings(record=True) as caught:
+        warnings.simplefilter("always")
+        model = pf.FingerModel(config=str(path))
+        state = model.evaluate_volume(x) if by_volume else model.evaluate(x)
+    assert pf.STATUS[int(state["status"])] == "not finite" and math.isnan(state["tip_angle_rad"])
+    assert any(case["words"] in str(w.message) for w in caught), [str(w.message) for w in caught]
+    node = StartedNode(ros, path, {"volume_topic": "volume"} if by_volume else None)
+    said = []
+    listener = ros.Subscriber("/diagnostics", DiagnosticArray,
+                              lambda a: said.extend(s.message for s in a.status if node.ns.lstrip("/") + "/" in s.name))
+    try:
+        node.state_at(0.0 if by_volume else 1000.0, 0.0 if by_volume else model.parameters["atmospheric_pressure_pa"])
+        for _ in range(100):  # the refusal is said in diagnostics (published every second)
+            node.publisher.publish(node.message(fluid_pressure=x))
+            if any(case["words"] in m for m in said):
+                break
+            time.sleep(0.1)
+        assert any(case["words"] in m for m in said), said[-3:]
+    finally:
+        listener.unregister()
+        node.stop()

@@ -121,7 +121,7 @@ def test_blocked_tip_force_equals_the_cli_bit_for_bit():
     assert model.blocked_tip_force(196133.0) == force[PRESSURES.index(196133.0)]
     assert force[0] == 0.0 and force[-1] > force[-2] > 0.0
     assert model.blocked_tip_force(-100.0) == 0.0
-    with pytest.raises(ValueError, match=r"gauge_pa\[1\] = nan is not a finite pressure"):
+    with pytest.raises(ValueError, match=r"gauge_pa\[1\]: pressure nan Pa is not finite"):
         model.blocked_tip_force([1.0, float("nan")])
     with pytest.raises(ValueError, match="1-D array"):
         model.blocked_tip_force(numpy.zeros((2, 2)))

@@ -77,7 +77,7 @@ bool PressureInputPolicy::refuseValue(double absolute_pa, double receive_s, Inpu
   if (!std::isfinite(absolute_pa)) {
     ++counters_.refused_not_finite;
     d.verdict = InputVerdict::kRefusedNotFinite;
-    d.problem = "pressure " + formatMessage(absolute_pa) + " Pa is not finite";
+    d.problem = notFinitePressureMessage(absolute_pa);
   } else if (absolute_pa < 0) {
     ++counters_.refused_negative_absolute;
     d.verdict = InputVerdict::kRefusedNegativeAbsolute;
@@ -167,7 +167,7 @@ InputDecision PressureInputPolicy::onVolumeMessage(double volume_m3, double rece
   if (!std::isfinite(volume_m3)) {
     ++counters_.refused_not_finite;
     d.verdict = InputVerdict::kRefusedNotFinite;
-    d.problem = "supplied volume " + formatMessage(volume_m3) + " m^3 is not finite";
+    d.problem = notFiniteVolumeMessage(volume_m3);
     problem(d.problem, receive_s);
     return d;
   }

@@ -46,6 +46,12 @@ std::string vacuumMessage(double gauge_pa) {
   return "gauge pressure " + formatMessage(gauge_pa) + " Pa is a vacuum, outside the model: the straight finger";
 }
 
+std::string notFinitePressureMessage(double pa) { return "pressure " + formatMessage(pa) + " Pa is not finite"; }
+
+std::string notFiniteVolumeMessage(double supplied_volume_m3) {
+  return "supplied volume " + formatMessage(supplied_volume_m3) + " m^3 is not finite";
+}
+
 std::string aboveValidatedMessage(double gauge_pa, const PressureRange& range) {
   if (range.validated_max_gauge_pa == 0.0) {
     return "gauge pressure " + formatMessage(gauge_pa) + " Pa: no actuator's data validate this file "

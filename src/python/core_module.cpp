@@ -203,8 +203,8 @@ class PyFingerModel {
     Array force(p.size());
     for (py::ssize_t i = 0; i < p.size(); ++i) {
       if (!std::isfinite(p.data()[i])) {
-        throw py::value_error("gauge_pa" + (scalar ? std::string() : "[" + std::to_string(i) + "]") + " = " +
-                              pf::formatMessage(p.data()[i]) + " is not a finite pressure (Pa)");
+        throw py::value_error("gauge_pa" + (scalar ? std::string() : "[" + std::to_string(i) + "]") + ": " +
+                              pf::notFinitePressureMessage(p.data()[i]));
       }
       // The range rule of every interface: above max_gauge_pa, the force there (as finger_model prints it).
       force.mutable_data()[i] = model_->blockedTipForceN(pf::checkGaugeRange(p.data()[i], range_).gauge_pa);

@@ -5,6 +5,7 @@
 #include <pybind11/pybind11.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <string>
@@ -30,6 +31,8 @@ inline void warnClamped(const double* p, std::size_t count, std::size_t clamped,
 /// The rule's other words, once per call each, for the first such pressure: a vacuum, and a pressure above the
 /// validated range that was not clamped (in a file no actuator validates: every pressure above 0).
 inline void warnOutsideValidated(const double* p, std::size_t count, const pf::PressureRange& range) {
+  const double* not_finite = std::find_if(p, p + count, [](double x) { return !std::isfinite(x); });
+  if (not_finite != p + count) warnRuntime(pf::notFinitePressureMessage(*not_finite) + ": its row is nan");
   const double* vacuum = std::find_if(p, p + count, [](double x) { return x < 0; });
   if (vacuum != p + count) warnRuntime(pf::vacuumMessage(*vacuum));
   const double* above = std::find_if(p, p + count, [&range](double x) {
@@ -39,13 +42,16 @@ inline void warnOutsideValidated(const double* p, std::size_t count, const pf::P
   if (above != p + count) warnRuntime(pf::aboveValidatedMessage(*above, range));
 }
 
-/// A volume the model does not follow (its row NaN), once per call, in finger_model's and the node's words. Needs
-/// the rows' statuses; without them (not asked for) the rows' NaN says it.
+/// A volume the model does not follow (its row NaN), once per call, in finger_model's and the node's words: one that
+/// is not finite, or (from the rows' statuses, when asked for) one past the most the model follows.
 inline void warnVolumeNotFollowed(const double* v, const std::uint8_t* status, std::size_t count,
                                   double volume_limit_m3) {
+  const double* not_finite = std::find_if(v, v + count, [](double x) { return !std::isfinite(x); });
+  if (not_finite != v + count) warnRuntime(pf::notFiniteVolumeMessage(*not_finite) + ": its row is nan");
   for (std::size_t i = 0; status && i < count; ++i) {
     const auto s = static_cast<pf::EvaluationStatus>(status[i]);
     if (s != pf::EvaluationStatus::kBeyondLimitPoint && s != pf::EvaluationStatus::kSolverFailure) continue;
+    if (!std::isfinite(v[i])) continue;  // said above
     warnRuntime(pf::volumeNotFollowedMessage(v[i], s == pf::EvaluationStatus::kSolverFailure, volume_limit_m3) +
                 "; its row is nan");
     return;

@@ -316,7 +316,11 @@ struct VolumeOptions {
 // --supplied-volume-m3 (repeated) or --sweep-volume-m3, finite numbers (m^3).
 std::vector<double> parseVolumes(const std::vector<std::string>& volumes, const std::string& volume_sweep) {
   std::vector<double> supplied;
-  for (const auto& v : volumes) supplied.push_back(pf::parseFiniteOption("--supplied-volume-m3", v));
+  for (const auto& text : volumes) {  // not finite: the words every interface refuses such a volume with
+    const double v = pf::parseNumberOption("--supplied-volume-m3", text);
+    if (!std::isfinite(v)) throw pf::ParameterError("--supplied-volume-m3: " + pf::notFiniteVolumeMessage(v));
+    supplied.push_back(v);
+  }
   if (!volumes.empty() && !volume_sweep.empty()) {
     throw pf::ParameterError("give --supplied-volume-m3 or --sweep-volume-m3, not both");
   }
@@ -384,7 +388,11 @@ void timeModeRows(const pf::FingerParameters& finger, const std::string& flow_lp
 // cannot place is an input error, not a row.
 std::vector<double> parsePressures(const std::vector<std::string>& gauges, const std::string& sweep) {
   std::vector<double> pressures;
-  for (const auto& g : gauges) pressures.push_back(pf::parseFiniteOption("--gauge-pa", g));
+  for (const auto& text : gauges) {  // not finite: the words every interface refuses such a pressure with
+    const double p = pf::parseNumberOption("--gauge-pa", text);
+    if (!std::isfinite(p)) throw pf::ParameterError("--gauge-pa: " + pf::notFinitePressureMessage(p));
+    pressures.push_back(p);
+  }
   if (!gauges.empty() && !sweep.empty()) throw pf::ParameterError("give --gauge-pa or --sweep-pa, not both");
   if (!sweep.empty()) pressures = parseSweep("--sweep-pa", sweep);
   return pressures;

@@ -44,6 +44,9 @@ RangeCheck checkGaugeRange(double gauge_pa, const PressureRange& range);
 /// The words every interface says (its log, stderr, diagnostics), with numbers in formatMessage's format.
 std::string clampedMessage(double gauge_pa, const PressureRange& range);
 std::string vacuumMessage(double gauge_pa);
+/// A pressure or a supplied volume that is not a number: refused (no shape), in the same words everywhere.
+std::string notFinitePressureMessage(double pa);
+std::string notFiniteVolumeMessage(double supplied_volume_m3);
 std::string aboveValidatedMessage(double gauge_pa, const PressureRange& range);
 
 /// A batch's pressures through the rule: @p out[i] = checkGaugeRange(in[i]).gauge_pa. Returns how many were clamped

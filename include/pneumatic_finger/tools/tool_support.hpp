@@ -53,6 +53,9 @@ int runTool(const char* tool, CLI::App& app, int argc, char** argv, const std::f
 
 /// Parses a finite double for a command-line option. @throws ParameterError naming @p option and @p text.
 double parseFiniteOption(const std::string& option, const std::string& text);
+/// A number, finite or not (NaN and inf are the caller's to refuse, in the input's own words).
+/// @throws ParameterError naming @p option for text that is no number
+double parseNumberOption(const std::string& option, const std::string& text);
 
 /// Splits "A,B,C" (or with another @p separator) into its fields; an empty text gives no field.
 std::vector<std::string> splitFields(const std::string& text, char separator = ',');
