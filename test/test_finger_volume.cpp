@@ -446,3 +446,28 @@ TEST(FingerVolume, AVolumeAboveTheOneThatMakesMaxGaugePaIsClampedToIt) {
   const pf::FingerModel balloon(membraneFinger(0.0, 0.0));
   EXPECT_TRUE(std::isinf(pf::maxSuppliedVolumeM3(balloon, pf::PressureRange::upTo(1.5 * balloon.limitGaugePa()))));
 }
+
+// The EPFL actuator as drawn with its coupon's elastomer: a Gent wall whose far branch climbs back to the top of its
+// range (50 kPa) only just before it locks, within the growth step of the search. Before, the search stepped past
+// the crossing into the lock, where the model follows no volume, and gave no top: 1 m^3 was 'beyond limit point'
+// (no shape) where 1e7 Pa is clamped. Now the crossing is found between the last followed volume and the lock.
+TEST(FingerVolume, AVolumeAboveTheTopIsClampedWhereTheWallLocksJustPastIt) {
+  pf::RawParameterMap raw;
+  pf::PressureRange range;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/epfl_ecoflex30_c7_coupon.yaml", raw,
+                                    nullptr, &range);
+  const pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
+  pf::FingerWorkspace ws(model);
+  ASSERT_LT(model.limitGaugePa(), range.max_gauge_pa) << "the limit point lies within the range";
+  const double top = pf::maxSuppliedVolumeM3(model, range);
+  ASSERT_TRUE(std::isfinite(top));
+  EXPECT_GT(top, model.limitPointVolumeM3());
+  EXPECT_LT(top, model.volumeLimitM3());
+  EXPECT_NEAR(model.evaluateVolume(top, ws).gauge_pa, range.max_gauge_pa, 1e-9 * range.max_gauge_pa);
+  for (double f = 0.0; f < 1.0; f += 0.01) {  // below the top, no volume makes more than the top's pressure
+    EXPECT_LE(model.evaluateVolume(f * top, ws).gauge_pa, range.max_gauge_pa * (1 + 1e-12)) << f;
+  }
+  const pf::VolumeCheck big = pf::checkVolumeRange(1.0, top);
+  EXPECT_TRUE(big.clamped);
+  EXPECT_NE(model.evaluateVolume(big.volume_m3, ws).status, pf::EvaluationStatus::kBeyondLimitPoint);
+}

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "pneumatic_finger/core/evaluation_report.hpp"
 #include "pneumatic_finger/core/pressure_input.hpp"
 #include "pneumatic_finger/core/pressure_range.hpp"
 
@@ -64,14 +65,41 @@ TEST(PressureRange, ABatchIsClampedAndMarkedRowByRow) {
   EXPECT_EQ(out[1], range.max_gauge_pa);
   EXPECT_EQ(out[4], range.max_gauge_pa);
   EXPECT_EQ(out[2], -5);
-  // The model's own status stays where it said more than ok (here: row 4 failed at the top of the range).
-  const auto ok = static_cast<std::uint8_t>(pf::EvaluationStatus::kOk);
-  const auto failure = static_cast<std::uint8_t>(pf::EvaluationStatus::kSolverFailure);
-  std::vector<std::uint8_t> status = {ok, ok, static_cast<std::uint8_t>(pf::EvaluationStatus::kVacuum),
-                                      static_cast<std::uint8_t>(pf::EvaluationStatus::kNotFinite), failure};
-  pf::markClamped(in.data(), status.data(), status.size(), range);
-  EXPECT_EQ(status[0], ok);
-  EXPECT_EQ(status[1], static_cast<std::uint8_t>(pf::EvaluationStatus::kClamped));
-  EXPECT_EQ(status[4], failure);
   EXPECT_STREQ(pf::evaluationStatusName(pf::EvaluationStatus::kClamped), "clamped to max_gauge_pa");
+}
+
+// The one report of every interface, case by case, written out by hand: the status keeps its old precedence (a
+// refusal, then meets itself, then clamped, then the model's own) and the flags keep what the status hides. Before,
+// a clamped pressure whose shape met itself reported "meets itself" alone in Python, the node and finger_model alike.
+TEST(EvaluationReport, TheStatusKeepsItsPrecedenceAndTheFlagsKeepTheRest) {
+  using S = pf::EvaluationStatus;
+  struct Case {
+    S model;
+    bool clamped, above_validated, meets;
+    S status;
+    std::uint8_t flags;
+  };
+  const Case cases[] = {
+      {S::kOk, false, false, false, S::kOk, 0},
+      {S::kOk, false, true, false, S::kOk, pf::kFlagExtrapolated},
+      {S::kOk, true, true, false, S::kClamped, pf::kFlagClamped | pf::kFlagExtrapolated},
+      {S::kSnappedThrough, false, false, false, S::kSnappedThrough, pf::kFlagFarBranch},
+      {S::kSnappedThrough, true, true, true, S::kMeetsItself,
+       pf::kFlagClamped | pf::kFlagFarBranch | pf::kFlagMeetsItself | pf::kFlagExtrapolated},
+      {S::kOk, false, false, true, S::kMeetsItself, pf::kFlagMeetsItself},
+      {S::kVacuum, false, false, false, S::kVacuum, 0},
+      {S::kBeyondLimitPoint, true, true, false, S::kBeyondLimitPoint, pf::kFlagClamped | pf::kFlagExtrapolated},
+      {S::kSolverFailure, false, false, false, S::kSolverFailure, 0},
+      {S::kNotFinite, false, false, false, S::kNotFinite, 0},
+  };
+  for (const Case& c : cases) {
+    pf::RangeCheck range;
+    range.clamped = c.clamped;
+    range.above_validated = c.above_validated;
+    const pf::EvaluationReport r = pf::reportEvaluation(c.model, range, c.meets);
+    EXPECT_EQ(r.status, c.status) << pf::evaluationStatusName(c.model);
+    EXPECT_EQ(r.flags, c.flags) << pf::evaluationStatusName(c.model) << ": " << pf::statusFlagNames(r.flags);
+  }
+  EXPECT_EQ(pf::statusFlagNames(0), "none");
+  EXPECT_EQ(pf::statusFlagNames(pf::kFlagClamped | pf::kFlagMeetsItself), "clamped, meets itself");
 }

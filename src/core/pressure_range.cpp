@@ -66,15 +66,6 @@ std::size_t clampToRange(const double* in, double* out, std::size_t count, const
   return clampVolumesToRange(in, out, count, range.max_gauge_pa);
 }
 
-void markClamped(const double* in, std::uint8_t* status, std::size_t count, const PressureRange& range) {
-  const auto ok = static_cast<std::uint8_t>(EvaluationStatus::kOk);
-  for (std::size_t i = 0; i < count; ++i) {
-    if (checkGaugeRange(in[i], range).clamped && status[i] == ok) {
-      status[i] = static_cast<std::uint8_t>(EvaluationStatus::kClamped);
-    }
-  }
-}
-
 namespace {
 
 // The pressure a volume makes, or NaN where the model does not follow it.
@@ -82,6 +73,21 @@ double gaugeOfVolume(const FingerModel& model, FingerWorkspace& ws, double v) {
   const FingerState& s = model.evaluateVolume(v, ws);
   const bool answered = s.status == EvaluationStatus::kOk || s.status == EvaluationStatus::kSnappedThrough;
   return answered ? s.gauge_pa : std::numeric_limits<double>::quiet_NaN();
+}
+
+// Between a followed volume @p lo (its pressure at most the top) and @p hi, which the model does not follow: where a
+// Gent wall locks, its pressure climbs without bound before the lock, so the top is crossed in between (the volume
+// there is returned); where the drive's gas snaps the finger first, it is not (+inf: the limit's own rule applies).
+double crossingBeforeVolumeLimit(const FingerModel& model, FingerWorkspace& ws, double lo, double hi, double top_pa) {
+  bool crossed = false;
+  for (int i = 0; i < 200 && hi - lo > 1e-15 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    const double p = gaugeOfVolume(model, ws, mid);
+    const bool above = std::isnan(p) || p > top_pa;  // NaN: past the limit, which lies above the crossing if any
+    crossed = crossed || (above && !std::isnan(p));
+    (above ? hi : lo) = mid;
+  }
+  return crossed ? lo : std::numeric_limits<double>::infinity();
 }
 
 }  // namespace
@@ -102,7 +108,7 @@ double maxSuppliedVolumeM3(const FingerModel& model, const PressureRange& range)
     lo = hi;
     hi = std::min(cap, hi * 1.25);
     const double p = gaugeOfVolume(model, ws, hi);
-    if (std::isnan(p)) return std::numeric_limits<double>::infinity();  // no longer followed: volumeLimitM3's rule
+    if (std::isnan(p)) return crossingBeforeVolumeLimit(model, ws, lo, hi, top_pa);  // no longer followed
     crossed = p > top_pa;
   }
   if (!crossed) return std::numeric_limits<double>::infinity();

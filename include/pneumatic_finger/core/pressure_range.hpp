@@ -53,10 +53,6 @@ std::string aboveValidatedMessage(double gauge_pa, const PressureRange& range);
 /// (0: @p out equals @p in). @p in and @p out may be the same array.
 std::size_t clampToRange(const double* in, double* out, std::size_t count, const PressureRange& range);
 
-/// After a batch of clamped pressures: the status of each row whose input was above max_gauge_pa becomes kClamped,
-/// unless the model said otherwise at max_gauge_pa (beyond a membrane wall's limit point, a solver failure).
-void markClamped(const double* in, std::uint8_t* status, std::size_t count, const PressureRange& range);
-
 /// The same rule for the volume input (one input domain for pressure and volume): the most a supply may push in is
 /// the volume that makes max_gauge_pa along the inflation, and a larger volume gives the finger at that volume, status kClamped, with
 /// volumeClampedMessage's words. Below the pressure's limit point that is suppliedVolumeAt(max_gauge_pa); with the
