@@ -115,10 +115,18 @@ def mjcf_answer(path, gauge_pa):
     return math.fsum(angles), warning_classes(done.stderr)
 
 
-def urdf_upper_limits(path):
-    done = tool("finger_urdf", "--config", path)
+def urdf_upper_limits(path, *args):
+    done = tool("finger_urdf", "--config", path, *args)
     assert done.returncode == 0, done.stderr
     return math.fsum(float(x) for x in re.findall(r'<limit [^>]*upper="([^"]+)"', done.stdout))
+
+
+def gripper_file(path, folder):
+    """A gripper file in @p folder whose one finger (prefix finger_) is the parameter file @p path: the cell's road."""
+    gripper = folder / f"gripper_{path.stem}.yaml"
+    gripper.write_text(f"fingers:\n  - {{prefix: finger_, parent: tool0, xyz: [0, 0, 0], rpy: [0, 0, 0], "
+                       f"config: {path}}}\n")
+    return gripper
 
 
 def tip_at(path, gauge_pa):
@@ -157,7 +165,7 @@ def test_every_tool_refuses_the_file_in_the_same_words(files, case):
 
 
 @pytest.mark.parametrize("case", TABLE["ranges"], ids=lambda c: c["file"])
-def test_every_tool_reads_the_file_range_alike(files, case):
+def test_every_tool_reads_the_file_range_alike(files, case, tmp_path):
     path, top, validated = files[case["file"]], case["max_gauge_pa"], case["validated_max_gauge_pa"]
     model = pf.FingerModel(config=str(path))
     assert (model.max_gauge_pa, model.validated_max_gauge_pa) == (top, validated)
@@ -170,6 +178,9 @@ def test_every_tool_reads_the_file_range_alike(files, case):
         tip, classes = answer(path, above)[:2]
         assert abs(tip - at_top) <= ANGLE_TOLERANCE_RAD and "clamped" in classes, (answer.__name__, tip, classes)
     assert abs(urdf_upper_limits(path) - at_top) <= ANGLE_TOLERANCE_RAD  # the joint limits are the finger at the top
+    # The same file through a gripper file (the cell's road): its finger keeps the file's range.
+    via_gripper = urdf_upper_limits(path, "--gripper", gripper_file(path, tmp_path), "--prefix", "finger_")
+    assert abs(via_gripper - at_top) <= ANGLE_TOLERANCE_RAD, (via_gripper, at_top)
     # Just above the validated range (below the top): the tools extrapolate and say so, with the range's number.
     if 0 < validated < top:
         done = tool("finger_model", "--config", path, "--gauge-pa", repr(validated * 1.0001))
@@ -238,7 +249,7 @@ class StartedNode:
         from pneumatic_finger.msg import FingerModelState
         StartedNode.count += 1
         self.rospy, self.ns = rospy, f"/conformance_{StartedNode.count}"
-        for params, sub_ns in rosparam.load_file(str(path), default_namespace=f"{self.ns}/finger_node/"):
+        for params, sub_ns in rosparam.load_file(str(path), default_namespace=f"{self.ns}/finger_node/") if path else []:
             rosparam.upload_params(sub_ns, params)
         for key, value in (extra or {}).items():  # a launch argument, as finger.launch sets it
             rospy.set_param(f"{self.ns}/finger_node/{key}", value)
@@ -303,7 +314,7 @@ def test_the_node_refuses_the_file_in_the_same_words(ros, files, case):
 
 
 @pytest.mark.parametrize("file", sorted({c["file"] for c in TABLE["pressures"]} | {c["file"] for c in TABLE["ranges"]}))
-def test_the_node_gives_the_same_finger_range_and_warning(ros, files, file):
+def test_the_node_gives_the_same_finger_range_and_warning(ros, files, file, tmp_path):
     path = files[file]
     model = pf.FingerModel(config=str(path))
     atmospheric_pa = model.parameters["atmospheric_pressure_pa"]
@@ -325,6 +336,14 @@ def test_the_node_gives_the_same_finger_range_and_warning(ros, files, file):
                 assert not node.state_at(validated * 1.0001 + 1e-3, atmospheric_pa).in_validated_range, case
     finally:
         node.stop()
+    # The same file through a gripper file, as the cell starts its fingers: the node keeps the file's range.
+    for case in [c for c in TABLE["ranges"] if c["file"] == file]:
+        node = StartedNode(ros, None, {"gripper_file": str(gripper_file(path, tmp_path)), "frame_prefix": "finger_"})
+        try:
+            state = node.state_at(case["max_gauge_pa"] * 1.01, atmospheric_pa)
+            assert state.gauge_pa == case["max_gauge_pa"] and state.status_flags & state.FLAG_CLAMPED, case
+        finally:
+            node.stop()
 
 
 # ---- data files: finger_calibrate and Python read a measurement or a coupon CSV alike ----
