@@ -193,8 +193,12 @@ def test_every_tool_reads_the_file_range_alike(files, case, tmp_path):
 def test_every_tool_gives_the_same_finger_and_warning(files, case):
     path, gauge_pa = files[case["file"]], float(case["gauge_pa"])
     reference = tip_at(path, gauge_pa)
-    tip, _, classes, reported = finger_model_answer(path, gauge_pa)
+    tip, printed, classes, reported = finger_model_answer(path, gauge_pa)
     answers = {"finger_model": (tip, classes, reported)}
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        evaluated = float(pf.FingerModel(config=str(path)).evaluate(gauge_pa)["gauge_pa"])
+    assert evaluated == printed, (evaluated, printed)  # the pressure evaluated: the top, for a clamped one
     # The blocked tip force through the same range rule: finger_model's column and Python's call agree.
     done = tool("finger_model", "--config", path, "--gauge-pa", repr(gauge_pa), "--blocked-tip-force")
     cli_force = float(next(csv.DictReader(io.StringIO(done.stdout)))["blocked_tip_force_n"])
@@ -393,6 +397,9 @@ def test_every_interface_driven_by_volume_gives_the_same_finger(ros, files, file
             assert report(python["status"], python["status_flags"]) == expected, case
             assert report(row["status"], row["status_flags"]) == expected, case
             assert report(state.status, state.status_flags) == expected, case
+            if "extrapolated" in case["flags"] and "clamped" not in case["flags"]:  # said, as for a pressure
+                said = warning_classes(done.stderr) + warning_classes(" ".join(str(w.message) for w in caught))
+                assert said.count("zero_shot") + said.count("extrapolated") == 2, (case, said)
             if "words" in case:  # no shape: the same words, NaN in the CLI and Python, the last shape kept by the node
                 assert case["words"] in done.stderr and any(case["words"] in str(w.message) for w in caught), case
                 assert math.isnan(cli_tip) and math.isnan(python["tip_angle_rad"]), case

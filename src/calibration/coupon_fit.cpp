@@ -136,6 +136,14 @@ CouponFit fitCoupon(const CouponTest& test, bool gent) {
                          " Pa, one sd); is the strain in percent? Give it as a ratio (0.2 for 20 %), or more of the "
                          "curve");
   }
+  // Nor is a lock the data do not reach: a short test's J_m decides whether a wall folds, and the test cannot say.
+  if (gent && fit.wall_locking_jm > 0.0 && !(fit.wall_locking_jm_sd < fit.wall_locking_jm)) {
+    throw ParameterError(test.origin + ": the coupon does not fix where the elastomer locks (wall_locking_jm " +
+                         formatMessage(fit.wall_locking_jm) + " +- " + formatMessage(fit.wall_locking_jm_sd) +
+                         ", one sd), which decides whether a wall folds: give the test up to larger strains (the "
+                         "walls stretch several times their length), or fit the Neo-Hookean law (--coupon-law "
+                         "neo-hookean; Python: law='neo-hookean')");
+  }
   double sum = 0.0;
   for (const CouponRow& r : test.rows) {
     const double stretch = (1.0 + r.engineering_strain) * (1.0 + fit.preload_strain);

@@ -25,7 +25,8 @@ const std::vector<ParameterSpec> kSpecs = {
     {"chamber_height_m", "L", "m", 0.0115, 0, false, 0.5, ParameterShape::kPerChamber,
      "chamber height (wall length at rest); the wall bulges into an ellipse with one radius L/2"},
     {"wall_critical_height_m", "b", "m", 0.00575, 0, false, 0.5, ParameterShape::kPerChamber,
-     "height of the wall's thinnest point, in (0, L]; L/2 for a uniform wall"},
+     "the paper law: height of the wall's thinnest point, in (0, L], L/2 for a uniform wall; the membrane and thick "
+     "laws: the lever at which the walls push, the body's top above the bending axis, which may exceed L"},
     {"chamber_gap_m", "c", "m", 4.9640761700127315e-05, 0, true, 0.1, ParameterShape::kPerChamber,
      "effective gap between facing walls of neighbouring chambers (calibrated)"},
     {"chamber_thickness_m", "d", "m", 0.005, 0, false, 0.5, ParameterShape::kPerChamber,
@@ -239,7 +240,8 @@ ParameterError forTheDrawing(const ParameterError& e, const RawParameterMap& giv
   const std::string key = what.substr(opening.size(), what.find('\'', opening.size()) - opening.size());
   const std::vector<std::string>& drawn = drawnModelKeys();
   if (given.count(key) > 0 || std::find(drawn.begin(), drawn.end(), key) == drawn.end()) return e;
-  return ParameterError(what + ": the drawing makes " + key + " from its drawing/ keys (docs/DRAWING.md); change those");
+  return ParameterError(what + ": the drawing makes " + key + " from its drawing/ keys (docs/DRAWING.md); change "
+                        "those");
 }
 
 }  // namespace

@@ -87,6 +87,7 @@ void drawingFromNode(const YAML::Node& node, const std::string& origin, RawParam
   if (!node.IsMap()) throw ParameterError(origin + ": 'drawing' must be a mapping of the drawing's keys to numbers");
   for (const auto& item : node) {
     const std::string key = kDrawingPrefix + item.first.as<std::string>();
+    if (!isDrawingKey(key)) throw unknownParameterError(key, origin);  // named with its file, as a top-level key is
     if (!item.second.IsScalar()) throw ParameterError(origin + ": parameter '" + key + "' must be a number");
     try {
       raw[key] = {{item.second.as<double>()}, false};

@@ -64,13 +64,9 @@ using E = Element;
 const std::vector<OutputField> kStateFields = {
     {"stretch", E::kFloat64, {-1}},         {"bulge_m", E::kFloat64, {-1}},      {"half_angle_rad", E::kFloat64, {-1}},
     {"joint_angle_rad", E::kFloat64, {-1}}, {"backbone_m", E::kFloat64, {-2, 2}}, {"tip_angle_rad", E::kFloat64, {}},
-    {"status", E::kCode, {}},               {"supplied_volume_m3", E::kFloat64, {}}, {"status_flags", E::kCode, {}}};
-// evaluate_volume's: the state's, and the pressure the volume makes.
-const std::vector<OutputField> kVolumeFields = [] {
-  std::vector<OutputField> f = kStateFields;
-  f.push_back({"gauge_pa", E::kFloat64, {}});
-  return f;
-}();
+    {"status", E::kCode, {}},               {"supplied_volume_m3", E::kFloat64, {}}, {"status_flags", E::kCode, {}},
+    {"gauge_pa", E::kFloat64, {}}};  // evaluate: the pressure evaluated (a clamped one's top); by volume: it makes
+const std::vector<OutputField>& kVolumeFields = kStateFields;
 const std::vector<OutputField> kDesignFields = {
     {"tip_angle_rad", E::kFloat64, {}},    {"tip_x_m", E::kFloat64, {}},       {"tip_y_m", E::kFloat64, {}},
     {"contact_gauge_pa", E::kFloat64, {}}, {"snap_gauge_pa", E::kFloat64, {}}, {"limit_gauge_pa", E::kFloat64, {}},
@@ -134,6 +130,7 @@ class PyFingerModel {
       for (std::size_t i = 0; volume && i < count; ++i) {
         volume[i] = model_->suppliedVolumeForBulges(rows.bulge_m + i * n, evaluated[i]);  // NaN rows stay NaN
       }
+      if (double* g = arrays.data<double>("gauge_pa")) std::copy(evaluated, evaluated + count, g);  // as finger_model
       meets = reportRows(model_->parameters(), rows, flags, count,
                          [&](std::size_t i) { return pf::checkGaugeRange(p.data()[i], range_); });
     }
@@ -154,6 +151,7 @@ class PyFingerModel {
     arrays.refuseOverlap(v.data(), count * sizeof(double));
     std::size_t clamped = 0;
     double meets = NAN;  // the first tip angle whose backbone crosses itself
+    double first_above_validated = NAN;  // the first pressure a volume made above the validated range (not clamped)
     {
       py::gil_scoped_release release;
       pf::FingerWorkspace workspace(*model_);
@@ -174,11 +172,14 @@ class PyFingerModel {
         pf::RangeCheck check;  // a clamped volume is a clamped pressure: the finger at max_gauge_pa's volume
         check.clamped = pf::checkVolumeRange(v.data()[i], max_volume_m3_).clamped;
         check.above_validated = check.clamped || gauge[i] > range_.validated_max_gauge_pa;
+        const bool extrapolated = check.above_validated && !check.clamped;
+        if (extrapolated && std::isnan(first_above_validated)) first_above_validated = gauge[i];
         return check;
       });
       if (double* d = arrays.data<double>("supplied_volume_m3")) std::copy(in_range.begin(), in_range.end(), d);
     }
     warnVolumeNotFollowed(v.data(), arrays.data<std::uint8_t>("status"), count, model_->volumeLimitM3());
+    if (std::isfinite(first_above_validated)) warnRuntime(pf::aboveValidatedMessage(first_above_validated, range_));
     if (clamped > 0) {
       const double* first = std::find_if(v.data(), v.data() + count, [this](double x) { return x > max_volume_m3_; });
       warnRuntime(pf::volumeClampedMessage(*first, max_volume_m3_, range_) +
@@ -468,7 +469,7 @@ PYBIND11_MODULE(_core, m) {
            "The free finger at a gauge pressure (Pa) or a 1-D array of them: a dict of numpy arrays stretch, bulge_m, "
            "half_angle_rad, joint_angle_rad (P, N), backbone_m (P, N+2, 2), tip_angle_rad (P,) and status (P,) uint8 "
            "codes (STATUS names them; a scalar call gives one code), status_flags what else holds at once (bits: "
-           "STATUS_FLAGS, status_flag_names()). A pressure above max_gauge_pa is clamped to it "
+           "STATUS_FLAGS, status_flag_names()), gauge_pa the pressure evaluated. A pressure above max_gauge_pa is clamped to it "
            "(status 'clamped to max_gauge_pa', flag 'clamped', a RuntimeWarning). The pressures are a path: under the membrane law a Gent "
            "wall snaps through at its limit pressure to its far branch (status 'snapped through') and back at that "
            "branch's turning point, in order, starting from start_branch ('near' or 'far'). outputs: the names to "

@@ -234,7 +234,7 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
   RowWarnings shape_warnings;  // the backbone crossing itself, as for a pressure
   std::ostringstream out;
   printHeader(out, n, false, false, status);
-  bool warned_limit = false, warned_vacuum = false;
+  bool warned_limit = false, warned_vacuum = false, warned_validated = false;
   std::unique_ptr<pf::ContactTracker> tracker;
   if (obstacle) tracker = std::make_unique<pf::ContactTracker>(model, *obstacle);
   auto end_row = [&](const pf::EvaluationReport& report) {
@@ -278,6 +278,9 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
     pf::RangeCheck check;  // a clamped volume is a clamped pressure, as Python and the node report it
     check.clamped = in_range.clamped;
     check.above_validated = in_range.clamped || s.gauge_pa > range.validated_max_gauge_pa;
+    if (check.above_validated && !check.clamped && !RowWarnings::once(warned_validated)) {
+      std::cerr << "finger_model: warning: " << pf::aboveValidatedMessage(s.gauge_pa, range) << "\n";
+    }
     end_row(rowReport(s, check));
   }
   std::cout << out.str();
