@@ -439,3 +439,36 @@ def test_every_interface_refuses_an_input_that_is_no_number_in_the_same_words(ro
     finally:
         listener.unregister()
         node.stop()
+
+
+@pytest.mark.parametrize("case", TABLE["impossible_pressures"], ids=lambda c: c["words"])
+def test_every_interface_refuses_a_negative_absolute_pressure_in_the_same_words(ros, files, case):
+    from diagnostic_msgs.msg import DiagnosticArray
+    path, p = files[case["file"]], float(case["gauge_pa"])
+    for name, args in {"finger_model": ["--gauge-pa", repr(p)], "finger_urdf": ["--mjcf", "--gauge-pa", repr(p)],
+                       "finger_design": ["--vary", "chamber_gap_m=1e-5:2e-5:2", "--quantity",
+                                         f"tip_angle_rad@{p!r}"]}.items():
+        done = tool(name, "--config", path, *args)
+        assert done.returncode == 2 and case["words"] in done.stderr, (name, done.stderr)
+    with pytest.raises(ValueError) as refused:
+        pf.FingerModel(config=str(path)).evaluate(p)
+    assert case["words"] in str(refused.value)
+    model = pf.FingerModel(config=str(path))
+    node = StartedNode(ros, path)
+    said = []
+    listener = ros.Subscriber("/diagnostics", DiagnosticArray,
+                              lambda a: said.extend(s.message for s in a.status if node.ns.lstrip("/") + "/" in s.name))
+    try:
+        atmospheric_pa = model.parameters["atmospheric_pressure_pa"]
+        node.state_at(1000.0, atmospheric_pa)
+        for _ in range(100):
+            message = node.message(fluid_pressure=p + atmospheric_pa)
+            message.header.stamp = ros.Time.now()
+            node.publisher.publish(message)
+            if any(case["words"] in m for m in said):
+                break
+            time.sleep(0.1)
+        assert any(case["words"] in m for m in said), said[-3:]
+    finally:
+        listener.unregister()
+        node.stop()

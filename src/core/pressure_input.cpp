@@ -81,7 +81,7 @@ bool PressureInputPolicy::refuseValue(double absolute_pa, double receive_s, Inpu
   } else if (absolute_pa < 0) {
     ++counters_.refused_negative_absolute;
     d.verdict = InputVerdict::kRefusedNegativeAbsolute;
-    d.problem = "absolute pressure " + formatMessage(absolute_pa) + " Pa is negative";
+    d.problem = negativeAbsoluteMessage(absolute_pa);
   } else {
     return false;
   }

@@ -46,6 +46,14 @@ std::string vacuumMessage(double gauge_pa) {
   return "gauge pressure " + formatMessage(gauge_pa) + " Pa is a vacuum, outside the model: the straight finger";
 }
 
+std::string negativeAbsoluteMessage(double absolute_pa) {
+  return "absolute pressure " + formatMessage(absolute_pa) + " Pa is negative";
+}
+
+void refuseNegativeAbsolute(double gauge_pa, double atmospheric_pa) {
+  if (gauge_pa + atmospheric_pa < 0.0) throw ParameterError(negativeAbsoluteMessage(gauge_pa + atmospheric_pa));
+}
+
 std::string notFinitePressureMessage(double pa) { return "pressure " + formatMessage(pa) + " Pa is not finite"; }
 
 std::string notFiniteVolumeMessage(double supplied_volume_m3) {

@@ -96,6 +96,7 @@ class PyFingerModel {
     const Array p = pressures(gauge_pa, scalar);
     if (scalar && !out.is_none()) throw py::value_error("out= needs gauge_pa as a 1-D array");
     const auto count = static_cast<std::size_t>(p.size());
+    refuseNegativeAbsolute(p.data(), count, scalar, model_->parameters().atmospheric_pressure_pa);
     OutputArrays arrays(kStateFields, outputs, out, p.size(), model_->chamberCount());
     arrays.refuseOverlap(p.data(), count * sizeof(double));
     pf::BatchOutputs rows = stateRows(arrays);  // (bulge_m may get a scratch array below, for the supplied volume)
@@ -286,6 +287,7 @@ class PyFingerModel {
     if (keys.empty() || !v || v.ndim() != 2 || v.shape(1) != static_cast<py::ssize_t>(keys.size())) {
       throw py::value_error("values must be an array of shape (designs, len(keys)), and keys not empty");
     }
+    refuseNegativeAbsolute(&gauge_pa, 1, true, model_->parameters().atmospheric_pressure_pa);
     OutputArrays arrays(kDesignFields, outputs, py::none(), v.shape(0), 0);
     const pf::DesignOutputs rows{arrays.data<double>("tip_angle_rad"),    arrays.data<double>("tip_x_m"),
                                  arrays.data<double>("tip_y_m"),          arrays.data<double>("contact_gauge_pa"),

@@ -58,4 +58,14 @@ inline void warnVolumeNotFollowed(const double* v, const std::uint8_t* status, s
   }
 }
 
+/// A gauge pressure below the vacuum's floor (a negative absolute pressure), refused as every interface refuses it:
+/// ValueError naming its index (none for a scalar).
+inline void refuseNegativeAbsolute(const double* p, std::size_t count, bool scalar, double atmospheric_pa) {
+  for (std::size_t i = 0; i < count; ++i) {
+    if (!(p[i] + atmospheric_pa < 0.0)) continue;
+    throw py::value_error("gauge_pa" + (scalar ? std::string() : "[" + std::to_string(i) + "]") + ": " +
+                          pf::negativeAbsoluteMessage(p[i] + atmospheric_pa));
+  }
+}
+
 }  // namespace pneumatic_finger_python

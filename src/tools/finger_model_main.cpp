@@ -401,6 +401,17 @@ std::vector<double> parsePressures(const std::vector<std::string>& gauges, const
   return pressures;
 }
 
+// A gauge pressure below the vacuum's floor is no input, in the words every interface refuses it with.
+void refuseNegativeAbsolute(const std::vector<double>& pressures, double atmospheric_pa) {
+  for (double p : pressures) {
+    try {
+      pf::refuseNegativeAbsolute(p, atmospheric_pa);
+    } catch (const pf::ParameterError& e) {
+      throw pf::ParameterError(std::string("--gauge-pa: ") + e.what());
+    }
+  }
+}
+
 // Exactly one input, and no blocked force by volume (a plate changes the volume, which is not modelled).
 void checkOneInput(const std::vector<double>& pressures, const std::vector<double>& supplied, bool time_mode,
                    bool blocked_tip_force) {
@@ -456,6 +467,7 @@ int main(int argc, char** argv) {
     pf::ModelOptions options;
     options.solver = pf::parseSolverName(solver);
     const pf::FingerParameters finger = parameters.load();
+    refuseNegativeAbsolute(pressures, finger.atmospheric_pressure_pa);
     std::vector<double> times;
     if (time_mode) timeModeRows(finger, flow_lpm, duration_s, step_s, times, pressures);
     pf::FingerModel model(finger, options);

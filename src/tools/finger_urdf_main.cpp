@@ -26,8 +26,13 @@ std::array<double, 3> parseTriple(const std::string& option, const std::string& 
 
 // --gauge-pa through the range rule of every interface (pressure_range.hpp), in its words: above --max-gauge-pa the
 // springs of the finger there; a vacuum, the straight finger's (the model has none).
-double springGaugePa(const std::string& text, const pf::PressureRange& range) {
+double springGaugePa(const std::string& text, const pf::PressureRange& range, double atmospheric_pa) {
   const double requested = pf::parseFiniteOption("--gauge-pa", text);
+  try {
+    pf::refuseNegativeAbsolute(requested, atmospheric_pa);
+  } catch (const pf::ParameterError& e) {
+    throw pf::ParameterError(std::string("--gauge-pa: ") + e.what());
+  }
   const pf::RangeCheck check = pf::checkGaugeRange(requested, range);
   if (check.clamped) {
     std::cerr << "finger_urdf: warning: " << pf::clampedMessage(requested, range) << " (the springs are written there)\n";
@@ -90,7 +95,7 @@ int main(int argc, char** argv) {
     std::string urdf;
     if (!mjcf_gauge.empty() && !mjcf) throw pf::ParameterError("--gauge-pa needs --mjcf");
     if (mjcf) {
-      if (!mjcf_gauge.empty()) mjcf_options.gauge_pa = springGaugePa(mjcf_gauge, range);
+      if (!mjcf_gauge.empty()) mjcf_options.gauge_pa = springGaugePa(mjcf_gauge, range, parameters.load().atmospheric_pressure_pa);
       if (!gripper.empty() && robot.empty()) {
         throw pf::ParameterError("--mjcf with --gripper needs --robot (the whole cell), or neither (one finger)");
       }

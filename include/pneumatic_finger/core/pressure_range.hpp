@@ -44,6 +44,11 @@ RangeCheck checkGaugeRange(double gauge_pa, const PressureRange& range);
 /// The words every interface says (its log, stderr, diagnostics), with numbers in formatMessage's format.
 std::string clampedMessage(double gauge_pa, const PressureRange& range);
 std::string vacuumMessage(double gauge_pa);
+/// A gauge pressure below -atmospheric_pressure_pa is a negative absolute pressure, which no input can be (a sensor's
+/// fault, a typo): refused by every interface in these words (finger_node keeps its last state).
+std::string negativeAbsoluteMessage(double absolute_pa);
+/// @throws ParameterError in negativeAbsoluteMessage's words when @p gauge_pa + @p atmospheric_pa < 0
+void refuseNegativeAbsolute(double gauge_pa, double atmospheric_pa);
 /// A pressure or a supplied volume that is not a number: refused (no shape), in the same words everywhere.
 std::string notFinitePressureMessage(double pa);
 std::string notFiniteVolumeMessage(double supplied_volume_m3);
