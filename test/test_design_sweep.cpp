@@ -7,6 +7,8 @@
 #include <vector>
 
 #include "pneumatic_finger/core/design_sweep.hpp"
+#include "pneumatic_finger/core/evaluation_report.hpp"
+#include "pneumatic_finger/core/self_contact.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pf = pneumatic_finger;
@@ -104,5 +106,37 @@ TEST(DesignSweep, SnapAndLimitPointAreEachDesignsOwn) {
   for (std::size_t d = 1; d < walls_m.size(); ++d) {
     EXPECT_TRUE(std::isinf(limit[d])) << walls_m[d];
     EXPECT_GT(snap[d], snap[d - 1]) << walls_m[d];
+  }
+}
+
+// A sweep reuses one workspace per chamber layout; the walls' branch (the snap's memory) must not travel from one
+// design to the next. On the ribbed segment with J_m = 40 at 32 kPa, mu = 22 kPa alone is on its near branch
+// (ok, about 1 rad); after mu = 20 kPa, whose walls snap there, it came back 'snapped through' at 15 rad. Each design,
+// in either order, is its own model evaluated from rest.
+TEST(DesignSweep, ADesignsAnswerDoesNotDependOnTheDesignBeforeIt) {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/marchese2015_ribbed.yaml", raw);
+  raw["wall_locking_jm"] = {{40.0}, false};
+  const pf::FingerParameters base = pf::FingerParameters::fromRaw(raw);
+  const double gauge_pa = 32000.0;
+  for (const std::vector<double>& mu : {std::vector<double>{20e3, 22e3}, std::vector<double>{22e3, 20e3}}) {
+    std::vector<double> tip(2);
+    std::vector<std::uint8_t> status(2);
+    pf::DesignOutputs out;
+    out.tip_angle_rad = tip.data();
+    out.status = status.data();
+    ASSERT_TRUE(pf::sweepDesigns(base, pf::ModelOptions(), {"shear_modulus_pa"}, mu.data(), 2, gauge_pa, out).empty());
+    for (std::size_t d = 0; d < 2; ++d) {
+      pf::RawParameterMap one = base.toRaw();
+      one["shear_modulus_pa"] = {{mu[d]}, false};
+      const pf::FingerModel model(pf::FingerParameters::fromRaw(one));
+      pf::FingerWorkspace ws(model);
+      const pf::FingerState& state = model.evaluate(gauge_pa, ws);
+      EXPECT_NEAR(tip[d], state.tip_angle_rad, 1e-12) << "mu " << mu[d] << " after " << mu[1 - d];
+      // The status by the one report every interface gives (a far branch whose backbone crosses itself: 7).
+      const bool meets = pf::jointsMeetThemselves(model.parameters(), state.joint_angle_rad.data());
+      EXPECT_EQ(status[d], static_cast<std::uint8_t>(pf::reportEvaluation(state.status, {}, meets).status))
+          << "mu " << mu[d];
+    }
   }
 }

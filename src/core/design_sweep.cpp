@@ -82,6 +82,7 @@ std::vector<DesignRefusal> sweepDesigns(const FingerParameters& base, const Mode
     one.backbone_m = wants_points ? row->backbone_m.data() : nullptr;
     one.status = row->status.data();
     one.joint_angle_rad = wants_report ? row->joint_angle_rad.data() : nullptr;  // for the self-contact check
+    model->startBranch(*workspace, false);  // from rest, as its own model: no branch from the design before
     model->evaluateMany(&gauge_pa, 1, one, *workspace, BatchPath::kScalar);
     if (out.tip_angle_rad) out.tip_angle_rad[d] = row->tip_angle_rad[0];
     if (out.tip_x_m) out.tip_x_m[d] = row->backbone_m[2 * static_cast<std::size_t>(n + 1)];
