@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/calibration/calibration.hpp"
 #include "pneumatic_finger/calibration/calibration_run.hpp"
 #include "pneumatic_finger/core/finger_model.hpp"
 
@@ -82,8 +83,28 @@ TEST(FirstCalibration, DegreesInARadianColumnAreRefusedNamingTheUnit) {
 
 TEST(FirstCalibration, MillimetresInAMetreColumnAreRefusedNamingTheUnit) {
   const std::string why = refusal(tipCsv("gauge_pa,tip_x_m,tip_y_m", 1000.0));
-  EXPECT_NE(why.find("farther than the finger is long (0.085 m); were the positions in mm?"), std::string::npos)
+  EXPECT_NE(why.find("farther than the finger is long (0.085 m) by more than a camera's 5 %; were the positions in "
+                     "mm?"),
+            std::string::npos)
       << why;
+}
+
+// A camera's tip lies a little past the straight finger's end: 0.01 mm and 0.5 mm past it are measurements (the first
+// was refused at its first row before); 10 % past is a wrong origin or scale, and says so.
+TEST(FirstCalibration, ATipACameraReadsJustPastTheFingersEndIsAMeasurement) {
+  const double length_m = pf::restState(pf::FingerParameters::defaults()).tip().norm();
+  auto csv = [length_m](double past_m) {
+    const std::string x = pf::formatExact(length_m + past_m);
+    return "gauge_pa,tip_x_m,tip_y_m\n0," + x + ",0\n50000,0.08,0.012\n100000,0.075,0.025\n150000,0.068,0.035\n" +
+           "200000,0.06,0.043\n";
+  };
+  const pf::FingerParameters finger = pf::FingerParameters::defaults();
+  for (double past_m : {1e-5, 5e-4}) {
+    const pf::MeasurementSet data = pf::parseMeasurementSet(csv(past_m), "tips.csv", 1);
+    EXPECT_NO_THROW(pf::checkMeasurementsPlausible(finger, data.rows)) << past_m;
+  }
+  const std::string why = refusal(csv(0.1 * length_m));
+  EXPECT_NE(why.find("by more than a camera's 5 %; is the origin at the mount"), std::string::npos) << why;
 }
 
 TEST(FirstCalibration, ColumnsNotReadAreNamedWithWhatTheyMayMean) {

@@ -327,6 +327,9 @@ void checkAngle(double value_rad, double bound_rad, const char* bound_name, cons
 
 }  // namespace
 
+// How far past the straight finger's length a measured tip may lie: a camera's noise and its marker's size.
+constexpr double kCameraReachShare = 0.05;
+
 void checkMeasurementsPlausible(const FingerParameters& parameters, const std::vector<Measurement>& data) {
   const FingerState rest = restState(parameters);
   const double length_m = rest.tip().norm();  // the straight finger's reach: no bent tip reaches farther
@@ -338,13 +341,17 @@ void checkMeasurementsPlausible(const FingerParameters& parameters, const std::v
     if (!std::isnan(m.given_average_rad)) checkAngle(m.given_average_rad, kPi, "pi (half a turn)", "the average", m.where());
     if (m.hasTipPosition()) {
       const double reach_m = std::hypot(m.tip_x_m, m.tip_y_m);
-      // 1e-9 m of slack: a tip measured at the straight finger's own end, written with a few digits, reads back a
-      // hair past it.
-      if (reach_m > length_m * (1 + 1e-9) + 1e-9) {
+      // A camera reads a tip at the straight finger's end a little past it (its noise, the marker's size): a few
+      // percent is measurement, more is a wrong origin or scale, and a thousand times is mm in a metre column.
+      if (reach_m > length_m * (1 + kCameraReachShare)) {
+        const bool mm = reach_m > 100 * length_m;
         throw ParameterError(m.where() + ": the tip (tip_x_m, tip_y_m) = (" +
                              formatMessage(m.tip_x_m) + ", " + formatMessage(m.tip_y_m) + ") m lies " +
                              formatMessage(reach_m) + " m from the mount, farther than the finger is long (" +
-                             formatMessage(length_m) + " m); were the positions in mm? (m = mm / 1000)");
+                             formatMessage(length_m) + " m) by more than a camera's " +
+                             formatMessage(100 * kCameraReachShare) + " %" +
+                             (mm ? "; were the positions in mm? (m = mm / 1000)"
+                                 : "; is the origin at the mount, with x along the straight finger?"));
       }
     }
   }
