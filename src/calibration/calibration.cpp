@@ -31,6 +31,10 @@ const char* objectiveName(CalibrationObjective objective) {
 
 
 bool isFittableKey(const std::string& key) {
+  if (key.rfind(kDrawingPrefix, 0) == 0) {
+    const std::string name = key.substr(std::string(kDrawingPrefix).size());
+    return std::find(std::begin(kFittableDrawn), std::end(kFittableDrawn), name) != std::end(kFittableDrawn);
+  }
   return std::find(std::begin(kFittable), std::end(kFittable), key) != std::end(kFittable);
 }
 
@@ -91,14 +95,35 @@ void checkTheDrive(const FingerParameters& base, const std::vector<std::string>&
   }
 }
 
+// A key the drawing makes is the drawing's: fitted by itself, the written file (the drawing, its keys as comments)
+// would not reproduce the fit. Refused, naming the drawing's keys to fit instead; a drawing key needs a drawing.
+void checkDrawnKey(const FingerParameters& base, const std::string& key) {
+  const bool drawn = !base.drawing.empty();
+  if (key.rfind(kDrawingPrefix, 0) == 0 && !drawn) {
+    throw ParameterError("parameter '" + key + "' is a drawing's: the parameter file has no drawing (docs/DRAWING.md)");
+  }
+  const std::vector<std::string>& made = drawnModelKeys();
+  if (!drawn || std::find(made.begin(), made.end(), key) == made.end()) return;
+  const std::string instead = key == "chamber_height_m"        ? "drawing/cavity_height_m"
+                              : key == "chamber_width_m"       ? "drawing/cavity_width_m"
+                              : key == "chamber_thickness_m"   ? "drawing/cavity_length_m"
+                              : key == "wall_critical_height_m" ? "drawing/roof_thickness_m or drawing/cavity_height_m"
+                              : key == "wall_thickness_m"      ? "drawing/wall_thickness_m"
+                                                               : "the drawing's sizes (drawing/KEY)";
+  throw ParameterError("parameter '" + key + "' is made by the drawing (docs/DRAWING.md), which the written file "
+                       "keeps: fit " + instead + " instead");
+}
+
 // The keys are fittable, each once, and the data has what @p quantity compares. @throws ParameterError naming it.
 void checkKeysAndData(const FingerParameters& base, const std::vector<std::string>& keys,
                       const std::vector<Measurement>& data, CalibrationQuantity quantity) {
   if (keys.empty()) throw ParameterError("calibration fits at least one parameter, got none");
   for (const auto& k : keys) {
+    checkDrawnKey(base, k);
     if (!isFittableKey(k)) {
       std::string fittable;
       for (const char* key : kFittable) fittable += (fittable.empty() ? "" : ", ") + std::string(key);
+      for (const char* key : kFittableDrawn) fittable += ", drawing/" + std::string(key);
       throw ParameterError("parameter '" + k + "' cannot be fitted; fittable: " + fittable);
     }
     if (std::count(keys.begin(), keys.end(), k) > 1) throw ParameterError("parameter '" + k + "' given twice");

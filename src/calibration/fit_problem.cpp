@@ -53,7 +53,12 @@ Eigen::VectorXd FitProblem::pointOf(const std::vector<double>& values) const {
 }
 
 bool FitProblem::terms(const Eigen::VectorXd& u, Eigen::VectorXd& out, bool squares) const {
-  const FingerParameters p = parametersAt(u);
+  FingerParameters p;
+  try {
+    p = parametersAt(u);
+  } catch (const ParameterError&) {
+    return false;  // a fitted drawing the rule refuses (a body narrower than its cavities): no point of the fit
+  }
   // The paper law's wall is bent by its root below the chamber's top: b <= L (docs/MODEL.md).
   for (std::size_t i = 0; p.wall_law == WallLaw::kPaper && i < p.chamber_height_m.size(); ++i) {
     if (p.wall_critical_height_m[i] > p.chamber_height_m[i]) return false;

@@ -4,9 +4,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/core/drawing.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 
 namespace pneumatic_finger {
@@ -22,7 +24,31 @@ inline constexpr const char* kFittable[] = {"shear_modulus_pa", "chamber_gap_m",
                                             "chamber_height_m", "base_wall_share", "wall_locking_jm",
                                             "dead_volume_m3",   "chamber_growth_ratio", "wall_bulge_share"};
 
+// The drawing's sizes a calibration may fit (drawing/KEY): each a positive length, searched logarithmically from a
+// quarter of the drawn value to four times it, within its key's range. The chamber count is a whole number (sweep it
+// with finger_design), and the floor, the gap and the base may be 0.
+inline constexpr const char* kFittableDrawn[] = {"cavity_height_m",      "cavity_width_m",   "cavity_length_m",
+                                                 "wall_thickness_m",     "end_wall_thickness_m", "roof_thickness_m",
+                                                 "body_width_m"};
+
+// The drawn value of @p name (without the prefix), its default resolved: the drawing's own rule.
+inline double drawnSize(const FingerParameters& base, const std::string& name) {
+  const std::optional<ActuatorDrawing> d = drawingFromRaw(base.drawing);
+  if (!d) return 0.0;
+  return name == "cavity_height_m"        ? d->cavity_height_m
+         : name == "cavity_width_m"       ? d->cavity_width_m
+         : name == "cavity_length_m"      ? d->cavity_length_m
+         : name == "wall_thickness_m"     ? d->wall_thickness_m
+         : name == "end_wall_thickness_m" ? d->end_wall_thickness_m
+         : name == "roof_thickness_m"     ? d->roof_thickness_m
+                                          : d->body_width_m;
+}
+
 inline SearchAxis axisFor(const std::string& key, const FingerParameters& base) {
+  if (key.rfind(kDrawingPrefix, 0) == 0) {
+    const double drawn = drawnSize(base, key.substr(std::string(kDrawingPrefix).size()));
+    return {key, true, std::log10(drawn / 4.0), std::log10(std::min(4.0 * drawn, 0.5))};
+  }
   // mu: the paper law's effective modulus over [1e5, 1e12] Pa; the membrane's and the thick wall's is a silicone's,
   // 10 kPa to 10 MPa.
   if (key == "shear_modulus_pa") {
@@ -43,6 +69,13 @@ inline SearchAxis axisFor(const std::string& key, const FingerParameters& base) 
 }
 
 inline void setKey(FingerParameters& p, const std::string& key, double value) {
+  if (key.rfind(kDrawingPrefix, 0) == 0) {  // drawn anew by the rule: the keys it makes follow the drawing
+    RawParameterMap raw = p.toRaw();
+    for (const std::string& made : drawnModelKeys()) raw.erase(made);
+    raw[key] = {{value}, false};
+    p = FingerParameters::fromRaw(raw);  // @throws ParameterError for a drawing the rule refuses
+    return;
+  }
   if (key == "base_wall_share" || key == "wall_locking_jm" || key == "dead_volume_m3" || key == "chamber_growth_ratio" ||
       key == "wall_bulge_share") {
     (key == "base_wall_share"        ? p.base_wall_share
