@@ -472,3 +472,33 @@ def test_every_interface_refuses_a_negative_absolute_pressure_in_the_same_words(
     finally:
         listener.unregister()
         node.stop()
+
+
+@pytest.mark.parametrize("case", TABLE["calibrations"], ids=lambda c: ",".join(c["fit"]))
+def test_every_written_file_reproduces_its_report_in_every_interface(ros, tmp_path, case):
+    truth = pf.FingerModel(config=str(ROOT / case["from"]), overrides=case["set"])
+    pressures = [float(p) for p in case["pressures"]]
+    tips = truth.evaluate(pressures, outputs=["tip_angle_rad"])["tip_angle_rad"]
+    data = tmp_path / "data.csv"
+    data.write_text("gauge_pa,tip_angle_rad\n" + "".join(f"{p!r},{t!r}\n" for p, t in zip(pressures, tips)))
+    written = tmp_path / "cli.yaml"
+    done = tool("finger_calibrate", "--data", data, "--config", ROOT / case["config"], "--fit", ",".join(case["fit"]),
+                "--compare", "tip_angle", "--output", written)
+    assert done.returncode == 0, done.stderr
+    fit = pf.calibrate(data=str(data), config=str(ROOT / case["config"]), keys=case["fit"], compare="tip_angle",
+                       output=str(tmp_path / "python.yaml"))
+    reported = fit["residuals"]["model_tip_angle_rad"]
+    model = pf.FingerModel(config=str(written))
+    assert model.parameters == pf.FingerModel(config=str(tmp_path / "python.yaml")).parameters
+    loaded = model.evaluate(pressures, outputs=["tip_angle_rad"])["tip_angle_rad"]
+    for p, tip, report_tip in zip(pressures, loaded, reported):
+        assert abs(tip - report_tip) <= ANGLE_TOLERANCE_RAD, (p, tip, report_tip)
+        cli_tip, *_ = finger_model_answer(written, p)
+        assert abs(cli_tip - report_tip) <= ANGLE_TOLERANCE_RAD, (p, cli_tip, report_tip)
+    node = StartedNode(ros, written)
+    try:
+        atmospheric_pa = model.parameters["atmospheric_pressure_pa"]
+        for p, report_tip in zip(pressures, reported):
+            assert abs(node.state_at(p, atmospheric_pa).tip_angle_rad - report_tip) <= ANGLE_TOLERANCE_RAD, p
+    finally:
+        node.stop()

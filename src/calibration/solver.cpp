@@ -282,6 +282,9 @@ double epigraphObjective(unsigned n, const double* x, double* gradient, void*) {
 }
 
 FitSolution minimaxFrom(const FitProblem& problem, const Eigen::VectorXd& start, double start_objective) {
+  // A start that fits every row exactly (data made by the model, a scan point on the truth) is the optimum; SLSQP
+  // would be given a zero step for the bound t, which NLopt refuses by throwing.
+  if (!(start_objective > 0.0)) return {start, start_objective};
   const auto k = static_cast<unsigned>(start.size());
   Epigraph g{&problem, {start, start_objective}, {}, {}, {}};
   nlopt::opt opt(nlopt::LD_SLSQP, k + 1);
