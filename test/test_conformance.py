@@ -329,6 +329,10 @@ def test_the_node_gives_the_same_finger_range_and_warning(ros, files, file, tmp_
             tip, status = reference_state(path, float(case["gauge_pa"]))
             assert abs(state.tip_angle_rad - tip) <= ANGLE_TOLERANCE_RAD and state.status == status, case
             assert report(state.status, state.status_flags) == (case["status"], case["flags"]), case
+            with warnings.catch_warnings():
+                warnings.simplefilter("ignore")
+                chord = float(pf.FingerModel(config=str(path)).evaluate(float(case["gauge_pa"]))["chord_angle_rad"])
+            assert abs(state.chord_angle_rad - chord) <= ANGLE_TOLERANCE_RAD or math.isnan(chord), case  # a marker's
             assert node_warning(state, model.validated_max_gauge_pa) == [case["warning"]], (case, state.status)
         for case in [c for c in TABLE["ranges"] if c["file"] == file]:
             top, validated = case["max_gauge_pa"], case["validated_max_gauge_pa"]

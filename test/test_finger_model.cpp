@@ -222,3 +222,22 @@ TEST(FingerModel, SolverFailureIsAStatusAndNeverANonFiniteNumber) {
   }
   EXPECT_GT(failures, 0) << "the paper solver's known failures were not reached: the test would prove nothing";
 }
+
+// The chord angle against a circular arc from the base, where it is exactly half the tip's turn: the arc of length s
+// and curvature k ends at (sin(ks)/k, (1 - cos(ks))/k) with direction ks. Past a half turn the chord keeps counting
+// (atan2 alone would jump by 2 pi), and the straight finger's chord is 0. (At a full turn the tip is back at the base,
+// where the finger meets itself, and the line's direction is not defined.)
+TEST(FingerModel, TheChordAngleIsHalfAUniformBendsTurn) {
+  for (double turn : {0.0, 0.3, 1.0, 3.0, 3.5, 6.0}) {
+    const double k = 20.0;  // 1/m
+    const double s = turn / k;
+    const double x = turn == 0.0 ? 0.085 : std::sin(turn) / k, y = turn == 0.0 ? 0.0 : (1 - std::cos(turn)) / k;
+    EXPECT_NEAR(pf::chordAngleRad(x, y, turn), turn / 2, 1e-12) << turn << " " << s;
+  }
+  // The model's own: the chord of its tip, measured from the base O_0.
+  const pf::FingerModel model(pf::FingerParameters::defaults());
+  pf::FingerWorkspace ws(model);
+  const pf::FingerState& state = model.evaluate(196133.0, ws);
+  EXPECT_EQ(state.chordAngle(), std::atan2(state.tip().y(), state.tip().x()));
+  EXPECT_LT(state.chordAngle(), state.tip_angle_rad);
+}

@@ -65,7 +65,8 @@ const std::vector<OutputField> kStateFields = {
     {"stretch", E::kFloat64, {-1}},         {"bulge_m", E::kFloat64, {-1}},      {"half_angle_rad", E::kFloat64, {-1}},
     {"joint_angle_rad", E::kFloat64, {-1}}, {"backbone_m", E::kFloat64, {-2, 2}}, {"tip_angle_rad", E::kFloat64, {}},
     {"status", E::kCode, {}},               {"supplied_volume_m3", E::kFloat64, {}}, {"status_flags", E::kCode, {}},
-    {"gauge_pa", E::kFloat64, {}}};  // evaluate: the pressure evaluated (a clamped one's top); by volume: it makes
+    {"gauge_pa", E::kFloat64, {}},  // evaluate: the pressure evaluated (a clamped one's top); by volume: it makes
+    {"chord_angle_rad", E::kFloat64, {}}};
 const std::vector<OutputField>& kVolumeFields = kStateFields;
 const std::vector<OutputField> kDesignFields = {
     {"tip_angle_rad", E::kFloat64, {}},    {"tip_x_m", E::kFloat64, {}},       {"tip_y_m", E::kFloat64, {}},
@@ -124,9 +125,10 @@ class PyFingerModel {
       if (volume && !rows.bulge_m) rows.bulge_m = scratch(bulge_scratch, count);
       if (!rows.joint_angle_rad) rows.joint_angle_rad = scratch(joint_scratch, count);  // for the self-contact check
       std::uint8_t* flags = arrays.data<std::uint8_t>("status_flags");
-      std::vector<std::uint8_t> status_scratch;
-      statusForFlags(rows, flags, status_scratch, count);
+      std::vector<std::uint8_t> status_scratch = statusForFlags(rows, flags, count);  // rows.status, maybe
+      const ChordScratch chord(arrays, rows, count, model_->chamberCount());
       model_->evaluateMany(evaluated, count, rows, workspace);
+      writeChord(arrays, rows, count, model_->chamberCount());
       const auto n = static_cast<std::size_t>(model_->chamberCount());
       for (std::size_t i = 0; volume && i < count; ++i) {
         volume[i] = model_->suppliedVolumeForBulges(rows.bulge_m + i * n, evaluated[i]);  // NaN rows stay NaN
@@ -164,11 +166,12 @@ class PyFingerModel {
       std::vector<double> joint_scratch, gauge_scratch;
       if (!rows.joint_angle_rad) rows.joint_angle_rad = scratch(joint_scratch, count);  // for the self-contact check
       std::uint8_t* flags = arrays.data<std::uint8_t>("status_flags");
-      std::vector<std::uint8_t> status_scratch;
-      statusForFlags(rows, flags, status_scratch, count);
+      std::vector<std::uint8_t> status_scratch = statusForFlags(rows, flags, count);  // rows.status, maybe
       double* gauge = arrays.data<double>("gauge_pa");
       if (!gauge) gauge_scratch.resize(count), gauge = gauge_scratch.data();  // the validated range is in pressure
+      const ChordScratch chord(arrays, rows, count, model_->chamberCount());
       model_->evaluateVolumeMany(in_range.data(), count, rows, gauge, workspace);
+      writeChord(arrays, rows, count, model_->chamberCount());
       meets = reportRows(model_->parameters(), rows, flags, count, [&](std::size_t i) {
         pf::RangeCheck check;  // a clamped volume is a clamped pressure: the finger at max_gauge_pa's volume
         check.clamped = pf::checkVolumeRange(v.data()[i], max_volume_m3_).clamped;

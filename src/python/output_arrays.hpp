@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "pneumatic_finger/core/chord_angle.hpp"
 #include "pneumatic_finger/core/evaluation.hpp"
 
 namespace pneumatic_finger_python {
@@ -158,6 +159,35 @@ inline pneumatic_finger::BatchOutputs stateRows(OutputArrays& arrays) {
   rows.tip_angle_rad = arrays.data<double>("tip_angle_rad");
   rows.status = arrays.data<std::uint8_t>("status");
   return rows;
+}
+
+// The chord angle (chord_angle.hpp), when asked for, from each row's tip and tip angle: the batch writes them, into
+// a scratch where the caller did not ask for them: a ChordScratch before the batch, writeChord after it.
+struct ChordScratch {
+  std::vector<double> backbone_m, tip_angle_rad;
+
+  // prepareChord: where the batch writes what the chord needs.
+  ChordScratch(OutputArrays& arrays, pneumatic_finger::BatchOutputs& rows, std::size_t count, int chamber_count) {
+    if (!arrays.data<double>("chord_angle_rad")) return;
+    if (!rows.backbone_m) {
+      backbone_m.resize(count * static_cast<std::size_t>(chamber_count + 2) * 2);
+      rows.backbone_m = backbone_m.data();
+    }
+    if (!rows.tip_angle_rad) {
+      tip_angle_rad.resize(count);
+      rows.tip_angle_rad = tip_angle_rad.data();
+    }
+  }
+};
+
+inline void writeChord(OutputArrays& arrays, const pneumatic_finger::BatchOutputs& rows, std::size_t count,
+                       int chamber_count) {
+  double* chord = arrays.data<double>("chord_angle_rad");
+  const auto points = static_cast<std::size_t>(chamber_count + 2);
+  for (std::size_t i = 0; chord && i < count; ++i) {
+    const double* tip = rows.backbone_m + (i * points + points - 1) * 2;
+    chord[i] = pneumatic_finger::chordAngleRad(tip[0], tip[1], rows.tip_angle_rad[i]);
+  }
 }
 
 }  // namespace pneumatic_finger_python

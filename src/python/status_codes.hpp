@@ -50,12 +50,14 @@ inline std::uint8_t contactStatusCode(pf::ContactState::Status status) {
                                         : 4;
 }
 
-// The flags need the model's status: into @p storage where the caller asked for flags and not for the status.
-inline void statusForFlags(pf::BatchOutputs& rows, const std::uint8_t* flags, std::vector<std::uint8_t>& storage,
-                           std::size_t count) {
-  if (!flags || rows.status) return;
+// The flags need the model's status: a scratch it is written into where the caller asked for flags and not for the
+// status (rows.status points into the returned vector, whose buffer a move keeps), else empty.
+inline std::vector<std::uint8_t> statusForFlags(pf::BatchOutputs& rows, const std::uint8_t* flags, std::size_t count) {
+  std::vector<std::uint8_t> storage;
+  if (!flags || rows.status) return storage;
   storage.resize(count);
   rows.status = storage.data();
+  return storage;
 }
 
 // Each row reported by the core's one rule (evaluation_report.hpp), as finger_node reports its finger_state:

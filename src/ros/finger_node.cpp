@@ -290,6 +290,8 @@ void FingerNode::writeShape(const FingerState& state, const Eigen::Ref<const Eig
   finger_state_.tip.orientation.z = std::sin(0.5 * tip_angle_rad);
   finger_state_.tip.orientation.w = std::cos(0.5 * tip_angle_rad);
   finger_state_.tip_angle_rad = tip_angle_rad;
+  finger_state_.chord_angle_rad =
+      chordAngleRad(finger_state_.tip.position.x, finger_state_.tip.position.y, tip_angle_rad);
 }
 
 void FingerNode::writeObject(const ContactState* contact) {

@@ -14,6 +14,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/core/chord_angle.hpp"
 #include "pneumatic_finger/core/evaluation.hpp"
 #include "pneumatic_finger/core/membrane_wall.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
@@ -71,6 +72,8 @@ struct FingerState {
 
   /// Tip position O_{N+1}.
   Eigen::Vector2d tip() const { return backbone_m.col(backbone_m.cols() - 1); }
+  /// The chord angle, base O_0 to tip (chord_angle.hpp): what a video that tracks the tip alone measures.
+  double chordAngle() const { return chordAngleRad(tip().x(), tip().y(), tip_angle_rad); }
 };
 
 /// Stages 5-6 (eq 37-38): joint angles q_n = theta_{n-1} + theta_n, the tip direction Theta_N and the backbone
