@@ -40,10 +40,12 @@ import fem_cell  # noqa: E402  (the solid cell's geometry, for the beam beside i
 
 ROOT = pathlib.Path(__file__).resolve().parent.parent
 DEG = 180.0 / math.pi
+# The EPFL source measured its bends as chords (base to tip; its data files say how): the model's are compared alike.
+CHORD = "chord_angle_rad"
 CASES = [
     ("EPFL Ecoflex 00-30, 7 chambers", "zero-shot: drawing + coupon", "config/epfl_ecoflex30_c7_coupon.yaml",
      "data/epfl_ecoflex30_c7_bending.csv", "data/epfl_ecoflex30_c7_bending_stepwise.csv"),
-    ("EPFL Ecoflex 00-30, 7 chambers", "fitted on its ramp (mu, J_m, kappa, c; tip_angle)",
+    ("EPFL Ecoflex 00-30, 7 chambers", "fitted on its ramp (mu, J_m, kappa, c; chord_angle)",
      "config/epfl_ecoflex30_c7.yaml", "data/epfl_ecoflex30_c7_bending.csv",
      "data/epfl_ecoflex30_c7_bending_stepwise.csv"),
 ]
@@ -51,7 +53,7 @@ BLOCKED = "data/epfl_ecoflex30_c7_blocked_force.csv"
 # name, drawing, bends, wall law ("auto": --wall-law auto; None: the file's), and the calibration's other arguments
 # (none: the tool's defaults). The EPFL actuator's are the shipped fit's (config/epfl_ecoflex30_c7.yaml's command,
 # docs/ACCURACY.md).
-EPFL_FIT = {"keys": "shear_modulus_pa,wall_locking_jm,wall_bulge_share,chamber_gap_m", "compare": "tip_angle"}
+EPFL_FIT = {"keys": "shear_modulus_pa,wall_locking_jm,wall_bulge_share,chamber_gap_m", "compare": "chord_angle"}
 DRAWN = [
     ("Marchese ribbed, 13 channels", "config/marchese2015_ribbed_drawing.yaml", "data/marchese2015_ribbed_bending.csv",
      "auto", {}),
@@ -85,9 +87,12 @@ SYMBOL = {"shear_modulus_pa": "mu", "chamber_gap_m": "c", "wall_locking_jm": "J_
           "wall_bulge_share": "kappa"}
 
 
-def table(path, value="bend_angle_rad"):
-    """A data file's gauge_pa and @p value columns, by their header's names, below its comments."""
+def table(path, value=None):
+    """A data file's gauge_pa and @p value columns, by their header's names, below its comments. @p value None: the
+    bend as the file measured it, its chord_angle_rad (base to tip) or else its bend_angle_rad (the tip's direction)."""
     lines = [line.split(",") for line in (ROOT / path).read_text().splitlines() if line and not line.startswith("#")]
+    if value is None:
+        value = "chord_angle_rad" if "chord_angle_rad" in lines[0] else "bend_angle_rad"
     columns = [lines[0].index("gauge_pa"), lines[0].index(value)]
     return numpy.array([[row[c] for c in columns] for row in lines[1:]], dtype=float)
 
@@ -99,23 +104,24 @@ def measured_snap(ramp):
     return 0.5 * (ramp[k, 0] + ramp[k + 1, 0])
 
 
-def path_bends(model, pressures, crossing=False):
-    """The model's bend (rad) along @p pressures as one path; NaN where it gives no usable shape (with @p crossing, a
-    shape that meets itself keeps its bend: the model's answer, only its backbone passes through itself)."""
+def path_bends(model, pressures, crossing=False, angle_name=CHORD):
+    """The model's bend (rad; its chord angle, base to tip, or with @p angle_name "tip_angle_rad" its tip's
+    direction) along @p pressures as one path; NaN where it gives no usable shape (with @p crossing, a shape that
+    meets itself keeps its bend: the model's answer, only its backbone passes through itself)."""
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        state = model.path().evaluate(pressures, outputs=["tip_angle_rad", "status"])
-    angle = state["tip_angle_rad"].astype(float)
+        state = model.path().evaluate(pressures, outputs=[angle_name, "status"])
+    angle = state[angle_name].astype(float)
     kept = ("ok", "snapped through", "clamped to max_gauge_pa") + (("meets itself",) if crossing else ())
     usable = numpy.array([pf.STATUS[s] in kept for s in state["status"]])
     angle[~usable] = math.nan
     return angle
 
 
-def errors(model, rows, zero_pa=None, crossing=False):
+def errors(model, rows, zero_pa=None, crossing=False, angle_name=CHORD):
     """Model - measured bend (rad) along @p rows as one path; NaN where the model gives no usable shape."""
     pressures = rows[:, 0] if zero_pa is None else numpy.concatenate(([zero_pa], rows[:, 0]))
-    angle = path_bends(model, pressures, crossing)
+    angle = path_bends(model, pressures, crossing, angle_name)
     if zero_pa is not None:
         angle = angle[1:] - angle[0]
     return angle - rows[:, 1]
@@ -211,7 +217,7 @@ def ramp_against_steps(config, ramp_file, step_file):
     ramp, steps = table(ramp_file), table(step_file)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        start = float(pf.FingerModel(config=str(ROOT / config)).evaluate(ramp[0, 0])["tip_angle_rad"])
+        start = float(pf.FingerModel(config=str(ROOT / config)).evaluate(ramp[0, 0])[CHORD])
     inside = steps[:, 0] <= ramp[-1, 0]
     gap = numpy.interp(steps[inside, 0], ramp[:, 0], ramp[:, 1]) + start - steps[inside, 1]
     k = int(numpy.argmax(numpy.abs(gap)))
@@ -222,32 +228,42 @@ def ramp_against_steps(config, ramp_file, step_file):
             f"rms).")
 
 
+def pressure_at_bends(model, bends):
+    """The pressure (Pa) at which the model's path first reaches each of @p bends (chord angles, rad): its chords on a
+    grid of 0.05 kPa to 60 kPa, inverted by interpolation along their running maximum."""
+    grid = numpy.linspace(0.0, 60e3, 1201)
+    chord = numpy.maximum.accumulate(numpy.nan_to_num(path_bends(model, grid, crossing=True), nan=-math.inf))
+    return numpy.interp(bends, chord, grid)
+
+
 def steps_by_pressure(config, ramp_file, step_file):
-    """A sentence: the stepwise loading read by the pressure that holds each of its bends (gauge_at_tip_angle's
-    comparison, well posed on a leap), for the fitted model and for the ramp itself (its bends, put on the absolute
-    scale as ramp_against_steps does, inverted by interpolation along their running maximum)."""
+    """A sentence: the stepwise loading read by the pressure at which each of its bends is reached (well posed on a
+    leap), for the fitted model and for the ramp itself (its bends, put on the absolute scale as ramp_against_steps
+    does, inverted by interpolation along their running maximum)."""
     ramp, steps = table(ramp_file), table(step_file)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
         model = pf.FingerModel(config=str(ROOT / config))
-        start = float(model.evaluate(ramp[0, 0])["tip_angle_rad"])
+        start = float(model.evaluate(ramp[0, 0])[CHORD])
         bends = numpy.maximum.accumulate(ramp[:, 1] + start)
         inside = (steps[:, 1] >= bends[0]) & (steps[:, 1] <= bends[-1])
-        held = numpy.array([model.gauge_for_tip_angle(b) for b in steps[inside, 1]])
+        held = pressure_at_bends(model, steps[inside, 1])
     ramp_held = numpy.interp(steps[inside, 1], bends, ramp[:, 0])
     model_gap, ramp_gap, apart = held - steps[inside, 0], ramp_held - steps[inside, 0], held - ramp_held
 
     def span(x):
         return f"{numpy.min(x) / 1e3:+.1f} to {numpy.max(x) / 1e3:+.1f} kPa"
-    return (f"Read by the pressure that holds each stepwise bend (as `gauge_at_tip_angle` compares; "
+    return (f"Read by the pressure at which each stepwise bend is reached ("
             f"{int(inside.sum())} of {len(steps)} steps, the ones within the ramp's bends), the fitted model needs "
             f"{span(model_gap)} from the steps' pressures, and the ramp itself {span(ramp_gap)}: the model is within "
             f"{numpy.max(numpy.abs(apart)) / 1e3:.2f} kPa of the ramp at every one of these bends.")
 
 
 def bend_errors(residuals):
-    """Model - measured tip angle (rad) of a calibration's rows."""
-    return residuals["model_tip_angle_rad"] - residuals["measured_tip_angle_rad"]
+    """Model - measured bend (rad) of a calibration's rows: the tip angle, or the chord where that was measured."""
+    tip = residuals["model_tip_angle_rad"] - residuals["measured_tip_angle_rad"]
+    chord = residuals["model_chord_angle_rad"] - residuals["measured_chord_angle_rad"]
+    return numpy.where(numpy.isnan(residuals["measured_tip_angle_rad"]), chord, tip)
 
 
 def fitted_value(key, value):
@@ -271,7 +287,7 @@ def transferred(fit, config, data):
     overrides["wall_law"] = fit["wall_law"]  # the law the calibration kept
     model = pf.FingerModel(config=str(ROOT / config), overrides=overrides)
     rows = table(data)
-    return errors(model, rows)
+    return errors(model, rows, angle_name="tip_angle_rad")
 
 
 def fits_table():
@@ -295,14 +311,27 @@ def fits_table():
               f"({fit['wall_law']}), on this drawing | {fit['wall_law']}; tip_angle | {summary(e)} | - |")
 
 
+def chord_of_tip_angle(tip_angle_rad):
+    """The chord angle (rad) of the drawn finger (SOLID_CONFIG) bent to @p tip_angle_rad: the law's shape there, whose
+    chambers bend alike as the solid cell's do. From the law filled by volume (one shape per tip angle, past its
+    limit point too), interpolated."""
+    model = pf.FingerModel(config=str(ROOT / SOLID_CONFIG))
+    with warnings.catch_warnings():
+        warnings.simplefilter("ignore")
+        volume = numpy.linspace(0.0, model.volume_for_tip_angle(2.5), 2001)
+        state = model.evaluate_volume(volume, outputs=["tip_angle_rad", CHORD])
+    return numpy.interp(tip_angle_rad, state["tip_angle_rad"], state[CHORD])
+
+
 def solid_bends(solid, coupon_mu_pa, mu_pa, pressures):
-    """The solid cell's bends at @p pressures with shear modulus @p mu_pa, zeroed at the ramp's start (rad); NaN
-    beyond its reach. Neo-Hookean, its bend at P with mu is its bend at P mu0/mu with its own mu0."""
+    """The solid cell's chord angles (base to tip) at @p pressures with shear modulus @p mu_pa, zeroed at the ramp's
+    start (rad); NaN beyond its reach. Neo-Hookean, its bend at P with mu is its bend at P mu0/mu with its own mu0.
+    The cell gives the tip's direction; chord_of_tip_angle puts it on the drawn finger's backbone."""
     k = coupon_mu_pa / mu_pa
     scaled = numpy.asarray(pressures) * k
-    bend = numpy.interp(scaled, solid[:, 0], solid[:, 1])
+    bend = chord_of_tip_angle(numpy.interp(scaled, solid[:, 0], solid[:, 1]))
     bend[scaled > solid[-1, 0]] = math.nan
-    return bend - numpy.interp(RAMP_START_PA * k, solid[:, 0], solid[:, 1])
+    return bend - chord_of_tip_angle(numpy.interp(RAMP_START_PA * k, solid[:, 0], solid[:, 1]))
 
 
 def thick_bends(config, mu_pa, pressures):
@@ -486,7 +515,7 @@ def plot_solid(path, ramp, solid, coupon, curves, fitted_mu):
                 ax.plot(p / 1e3, bends(mu, p) * DEG, style, color=color, lw=width, alpha=0.6 if width > 2 else 1,
                         label=f"{name}, mu {mu / 1e3:.1f} kPa ({how})")
         ax.axvline(FIT_TOP_PA / 1e3, color="0.6", lw=0.8)
-        ax.set(xlabel="gauge pressure (kPa)", ylabel="bend (deg)", ylim=(-2 * top / 120, top))
+        ax.set(xlabel="gauge pressure (kPa)", ylabel="chord angle, base to tip (deg)", ylim=(-2 * top / 120, top))
     axes[1].set_xlim(RAMP_START_PA / 1e3, measured_snap(ramp) / 1e3)
     axes[0].set_title("the whole ramp")
     axes[1].set_title("up to the measured snap (each solid curve ends where its solver stops)", fontsize=10)
@@ -519,7 +548,7 @@ def plot_snap(path):
         for ax in (bend_ax, force_ax):
             ax.axvline(model.snap_gauge_pa / 1e3, color=color, lw=0.8, ls=":")
     bend_ax.axvline(measured_snap(ramp) / 1e3, color="k", lw=0.8, ls=":")
-    bend_ax.set(xlabel="gauge pressure (kPa)", ylabel="bend (deg)", ylim=(-5, 130),
+    bend_ax.set(xlabel="gauge pressure (kPa)", ylabel="chord angle, base to tip (deg)", ylim=(-5, 130),
                 title="bend (dotted: each snap; the model's from snap_gauge_pa)")
     force_ax.set(xlabel="gauge pressure (kPa)", ylabel="blocked tip force (N)", ylim=(-0.05, 1.5),
                  title="blocked tip force")

@@ -221,6 +221,53 @@ TEST(Calibration, RecoversMuAndGapFromTipAnglesOrTipPositionsAlone) {
   EXPECT_NEAR(fit.values[0], truth.base_wall_share, 1e-6);
 }
 
+// A lab that tracks the tip alone on video measures the chord, base to tip. Written as chord_angle_rad, the fit
+// recovers the truth from chords alone, each row's measured chord is the file's, and the model's is the angle of its
+// own tip seen from its base (atan2, independent of chordAngleRad's unwrapping at these bends). The same rows as tip
+// positions give the same chords.
+TEST(Calibration, RecoversMuAndGapFromChordAnglesAlone) {
+  const pf::FingerParameters truth = truthWith(3.7e8, 8.5e-5, pf::FingerParameters::defaults().base_wall_share);
+  pf::FingerModel model(truth);
+  pf::FingerWorkspace ws(model);
+  std::string csv = "# one marker on the tip, seen from the base\ngauge_pa,chord_angle_rad\n";
+  std::vector<double> chord_rad;
+  for (double p : kPressures) {
+    const pf::FingerState& s = model.evaluate(p, ws);
+    chord_rad.push_back(std::atan2(s.tip().y(), s.tip().x()));
+    csv += pf::formatExact(p) + "," + pf::formatExact(chord_rad.back()) + "\n";
+  }
+  const auto data = pf::parseMeasurementsCsv(csv, "chord.csv", kPressures.size());
+  ASSERT_TRUE(data[0].hasChordAngle() && !data[0].hasTipAngle() && !data[0].hasTipPosition());
+  const pf::CalibrationQuantity quantity = pf::defaultQuantity(data);
+  ASSERT_EQ(quantity, pf::CalibrationQuantity::kChordAngle);
+  EXPECT_EQ(pf::parseQuantity("chord_angle"), quantity);
+  const auto fit = pf::calibrate(pf::FingerParameters::defaults(), pf::defaultFitKeys(quantity), data,
+                                 pf::CalibrationObjective::kMinimax, quantity);
+  EXPECT_NEAR(fit.values[0], 3.7e8, 3.7e8 * 1e-6);
+  EXPECT_NEAR(fit.values[1], 8.5e-5, 8.5e-5 * 1e-6);
+  for (std::size_t i = 0; i < fit.residuals.size(); ++i) {
+    const pf::Residual& r = fit.residuals[i];
+    EXPECT_EQ(r.measured_chord_angle_rad, chord_rad[i]);
+    EXPECT_NEAR(r.model_chord_angle_rad, std::atan2(r.model_tip_y_m, r.model_tip_x_m), 1e-15);
+    EXPECT_LT(std::fabs(r.chord_angle_error_rad()), 1e-9);
+    EXPECT_TRUE(std::isnan(r.measured_tip_angle_rad));  // nothing invented: a chord is not a tip angle
+  }
+  for (const pf::Residual& r : pf::residuals(truth, syntheticTipCsv(truth, kPressures, true),
+                                             pf::CalibrationQuantity::kChordAngle)) {
+    EXPECT_NEAR(r.measured_chord_angle_rad, std::atan2(r.measured_tip_y_m, r.measured_tip_x_m), 1e-15);
+  }
+  // A chord in degrees is refused as the other angles are; one beyond half a turn cannot be a finger's.
+  std::vector<pf::Measurement> degrees = data;
+  degrees[1].chord_angle_rad = 30.0;
+  try {
+    pf::checkMeasurementsPlausible(truth, degrees);
+    ADD_FAILURE() << "a chord of 30 rad was accepted";
+  } catch (const pf::ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("chord_angle_rad = 30 rad is beyond pi (half a turn)"), std::string::npos)
+        << e.what();
+  }
+}
+
 TEST(Calibration, RefusesKeysTheDataCannotDetermine) {
   const pf::FingerParameters base = pf::FingerParameters::defaults();
   const auto joints = pf::readMeasurementsCsv(kTable1, 4);

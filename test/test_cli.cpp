@@ -108,6 +108,24 @@ TEST(Cli, HeaderAndOneRowPerPressure) {
   EXPECT_EQ(r.err, "");
 }
 
+// --chord-angle: the line from the base to the printed tip, after tip_y_m, by pressure and by volume; at these bends
+// (well under a half turn) it is the tip's own atan2.
+TEST(Cli, ChordAngleIsTheLineFromTheBaseToThePrintedTip) {
+  for (const std::string input : {"--gauge-pa 0 --gauge-pa 98066.5 --gauge-pa 196133", "--supplied-volume-m3 2e-6"}) {
+    const CliRun r = run(input + " --chord-angle");
+    ASSERT_EQ(r.status, 0) << r.err;
+    const auto l = lines(r.out);
+    EXPECT_EQ(fields(l[0])[13], "chord_angle_rad");
+    EXPECT_EQ(fields(l[0])[14], "supplied_volume_m3");
+    for (std::size_t i = 1; i < l.size(); ++i) {
+      const auto f = fields(l[i]);
+      ASSERT_EQ(f.size(), 15u) << l[i];
+      EXPECT_NEAR(std::stod(f[13]), std::atan2(std::stod(f[12]), std::stod(f[11])), 1e-15) << l[i];
+    }
+    EXPECT_GT(std::stod(fields(l.back())[13]), 0.1) << r.out;  // bent: a chord worth checking
+  }
+}
+
 TEST(Cli, NumbersHaveSeventeenSignificantDigitsAndRoundTrip) {
   const CliRun r = run("--gauge-pa 150000");
   ASSERT_EQ(r.status, 0);

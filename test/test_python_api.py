@@ -636,24 +636,33 @@ def test_the_shipped_coupon_file_is_the_commands_and_python_reads_its_drawing(tm
 
 def test_the_shipped_calibrated_epfl_file_is_the_commands(tmp_path):
     # config/epfl_ecoflex30_c7.yaml is finger_calibrate's output on the actuator's ramp from the coupon file, byte for
-    # byte, with the command docs/ACCURACY.md gives: four keys, the bends compared at the measured pressures (the
-    # fitted wall rises steeply without folding, so the bend at a pressure is a usable residual).
+    # byte, with the command docs/ACCURACY.md gives: four keys, the chords (base to tip, as the lab's video measured
+    # them) compared at the measured pressures (the fitted wall rises steeply without folding, so the bend at a
+    # pressure is a usable residual).
     root = pathlib.Path(pf.default_config()).parent.parent
     tool = pathlib.Path(shutil.which(FINGER_MODEL) or FINGER_MODEL).parent / "finger_calibrate"
     out = tmp_path / "epfl.yaml"
     done = subprocess.run([str(tool), "--data", "data/epfl_ecoflex30_c7_bending.csv", "--config",
-                           "config/epfl_ecoflex30_c7_coupon.yaml", "--compare", "tip_angle", "--fit",
+                           "config/epfl_ecoflex30_c7_coupon.yaml", "--compare", "chord_angle", "--fit",
                            "shear_modulus_pa,wall_locking_jm,wall_bulge_share,chamber_gap_m", "--output", str(out)],
                           capture_output=True, text=True, cwd=root)
     assert done.returncode == 0, done.stderr
-    assert "# compared: tip_angle; objective: minimax" in done.stdout
+    assert "# compared: chord_angle; objective: minimax" in done.stdout
     assert out.read_text() == (root / "config" / "epfl_ecoflex30_c7.yaml").read_text()
     model = pf.FingerModel(config=str(root / "config" / "epfl_ecoflex30_c7.yaml"))
     assert model.parameters["drawing"]["chamber_count"] == 7 and model.validated_max_gauge_pa == 45000.0
     assert 0.0 < model.parameters["wall_bulge_share"] < 1.0
     # Its wall does not fold: no limit point, and it snaps where the bend rises fastest, within 5 % of the measured
     # snap (midway across the ramp's largest rise between two rows: 35.25 kPa).
-    ramp = numpy.loadtxt(root / "data" / "epfl_ecoflex30_c7_bending.csv", delimiter=",", comments="#", skiprows=10)
+    lines = (root / "data" / "epfl_ecoflex30_c7_bending.csv").read_text().splitlines()
+    rows = [line for line in lines if not line.startswith("#")]
+    assert rows[0] == "gauge_pa,chord_angle_rad,n"
+    ramp = numpy.array([[float(x) for x in row.split(",")] for row in rows[1:]])
     k = int(numpy.argmax(numpy.diff(ramp[:, 1])))
     assert 0.5 * (ramp[k, 0] + ramp[k + 1, 0]) == 35250.0
+    # It follows the measured chords along the ramp, as one path: within 4 deg below the snap and 8 deg above it.
+    chord = model.path().evaluate(ramp[:, 0], outputs=["chord_angle_rad"])["chord_angle_rad"]
+    below = ramp[:, 0] < 35250.0
+    assert numpy.max(numpy.abs(chord - ramp[:, 1])[below]) < math.radians(4.0)
+    assert numpy.max(numpy.abs(chord - ramp[:, 1])[~below]) < math.radians(8.0)
     assert math.isinf(model.limit_gauge_pa) and abs(model.snap_gauge_pa / 35250.0 - 1.0) < 0.05

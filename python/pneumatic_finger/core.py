@@ -73,7 +73,7 @@ def _data(data):
             columns.append(values.ravel().tolist())
         return None, names, columns
     raise ValueError("data must be a CSV path or a mapping of column names to numbers (gauge_pa and any of "
-                     "joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m), got %s" % type(data).__name__)
+                     "joint_1_rad..joint_N_rad, tip_angle_rad, chord_angle_rad, tip_x_m,tip_y_m), got %s" % type(data).__name__)
 
 
 def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=None, average_column="",
@@ -81,8 +81,9 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
     """finger_calibrate from Python: the same defaults, data check, fit and leave-one-out.
 
     data: a CSV path, or a mapping of column names to arrays: gauge_pa and/or supplied_volume_m3, and any of
-    joint_1_rad..joint_N_rad, tip_angle_rad, tip_x_m,tip_y_m (None: the package's data). keys: the keys to fit (any number), a
-    list or "a,b" (None: the tool's default). compare: "joints", "average", "joint_1", "tip_angle", "tip_position" or
+    joint_1_rad..joint_N_rad, tip_angle_rad, chord_angle_rad (base to tip), tip_x_m,tip_y_m (None: the package's data).
+    keys: the keys to fit (any number), a list or "a,b" (None: the tool's default). compare: "joints", "average",
+    "joint_1", "tip_angle", "tip_position", "chord_angle" or
     "gauge_pa" (the model's pressure at each row's volume; needs drive="volume"), "tip_angle+gauge_pa" or
     "gauge_at_tip_angle" (None: what the data has, as the CLI chooses; by volume with gauge_pa, "tip_angle+gauge_pa"). drive:
     "pressure" (each row set by its gauge_pa) or "volume" (by its supplied_volume_m3; the pressure is then an output)
@@ -91,7 +92,7 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
 
     Returns a dict: fitted (key -> value), wall_law, compared, objective_value, residuals (a dict of arrays, a row
     per measurement: gauge_pa (R,), supplied_volume_m3, measured_/model_gauge_pa (R,), measured_/model_joint_rad (R, N), measured_/model_avg_rad, _joint1_rad,
-    _tip_angle_rad (R,), measured_/model_tip_m (R, 2); NaN where nothing was measured), model_evaluations,
+    _tip_angle_rad, _chord_angle_rad (R,), measured_/model_tip_m (R, 2); NaN where nothing was measured), model_evaluations,
     uncertainty (key -> one standard deviation), correlation (keys x keys array), warnings (columns not read, keys
     that trade off or sit on their search range's end), and leave_one_out: the residuals of each row predicted by a
     fit to the others, as the CLI reports them (so the data need the CLI's rows: two more than the chamber keys);

@@ -139,14 +139,17 @@ void checkKeysAndData(const FingerParameters& base, const std::vector<std::strin
     if (quantity == CalibrationQuantity::kGaugeAtTipAngle && !m.hasGauge()) {
       throw ParameterError(m.where() + ": no gauge_pa to compare the pressure at the measured bend with");
     }
+    const bool chord = quantity == CalibrationQuantity::kChordAngle;
     const bool has = uses_joints ? m.hasJoints()
                      : angle     ? m.hasTipAngle() || m.hasJoints()
+                     : chord     ? m.hasChordAngle() || m.hasTipPosition() || m.hasJoints()
                                  : m.hasTipPosition() || m.hasJoints();
     if (!has) {
       throw ParameterError(m.where() + ": no measurement for '" + quantityName(quantity) +
                            "' (columns " +
                            (uses_joints ? "joint_1_rad..joint_N_rad"
                             : angle     ? "tip_angle_rad or the joints"
+                            : chord     ? "chord_angle_rad, tip_x_m,tip_y_m or the joints"
                                         : "tip_x_m,tip_y_m or the joints") +
                            ")");
     }
@@ -180,7 +183,8 @@ void refuseWhatTheDataCannotTell(const std::vector<std::string>& keys, std::size
   }
   if (share && keys.size() > 1 &&
       (quantity == CalibrationQuantity::kTipAngle || quantity == CalibrationQuantity::kTipPosition ||
-       quantity == CalibrationQuantity::kTipAngleAndGauge || quantity == CalibrationQuantity::kGaugeAtTipAngle)) {
+       quantity == CalibrationQuantity::kChordAngle || quantity == CalibrationQuantity::kTipAngleAndGauge ||
+       quantity == CalibrationQuantity::kGaugeAtTipAngle)) {
     throw ParameterError("base_wall_share cannot be fitted with other keys to tip data alone: the tip cannot tell "
                          "the base face's share of the bending from the chambers' (measure the joints, or fit it "
                          "alone)");

@@ -131,8 +131,12 @@ PressureRange calibratedRange(const CalibrationRun& run, const PressureRange& fi
 }
 
 std::string calibratedParameterYaml(const CalibrationRun& run, const PressureRange& file_range) {
+  // No bar where the data measured neither the tip's angle nor its position (chord angles alone): none is written.
+  const std::string bar = run.tip_uncertainty.empty()
+                              ? "# No tip_uncertainty: the data measured neither the tip's angle nor its position.\n"
+                              : tipUncertaintyToYaml(run.tip_uncertainty);
   return parametersToYaml(run.best().fit.parameters) + "\n" + rangeToYaml(calibratedRange(run, file_range)) + "\n" +
-         tipUncertaintyToYaml(run.tip_uncertainty);
+         bar;
 }
 
 }  // namespace pneumatic_finger

@@ -27,8 +27,8 @@ namespace {
 std::string where(const std::string& origin, int line) { return origin + ":" + std::to_string(line) + ": "; }
 
 // The columns calibration reads besides the joints (and the average column, named by the caller).
-constexpr const char* kMeasuredColumns[] = {"gauge_pa",      "supplied_volume_m3", "tip_angle_rad",
-                                           "bend_angle_rad", "tip_x_m",            "tip_y_m"};
+constexpr const char* kMeasuredColumns[] = {"gauge_pa", "supplied_volume_m3", "tip_angle_rad", "bend_angle_rad",
+                                           "chord_angle_rad", "tip_x_m", "tip_y_m"};
 
 // "joint_<k>" for a whole number k: the stem of a joint's column, whatever its unit.
 bool isJointStem(const std::string& stem) {
@@ -49,14 +49,15 @@ namespace {
 
 // Where each measured quantity stands in a measurement CSV (-1: absent), and the columns calibration does not read.
 struct CsvColumns {
-  int gauge = -1, volume = -1, average = -1, tip_angle = -1, tip_x = -1, tip_y = -1;
+  int gauge = -1, volume = -1, average = -1, tip_angle = -1, chord = -1, tip_x = -1, tip_y = -1;
   std::vector<int> joints;
   std::vector<std::string> unused;
 };
 
 // What calibration reads, for messages about a column it does not.
 constexpr const char* kKnownColumns =
-    "gauge_pa, supplied_volume_m3, joint_1_rad..joint_N_rad, tip_angle_rad (or bend_angle_rad), tip_x_m,tip_y_m";
+    "gauge_pa, supplied_volume_m3, joint_1_rad..joint_N_rad, tip_angle_rad (or bend_angle_rad), chord_angle_rad, "
+    "tip_x_m,tip_y_m";
 
 // A column calibration does not read that looks like one of ours under another unit ("tip_x_mm" for tip_x_m,
 // "tip_angle_deg" for tip_angle_rad, "joint_2_deg" for joint_2_rad): what it may have meant, or empty.
@@ -124,6 +125,7 @@ CsvColumns readHeader(const std::vector<std::string>& header, const std::string&
       if (c.tip_angle >= 0) throw ParameterError(at + "header has both tip_angle_rad and bend_angle_rad; give one");
       c.tip_angle = k;
     }
+    if (header[i] == "chord_angle_rad") c.chord = k;
     if (header[i] == "tip_x_m") c.tip_x = k;
     if (header[i] == "tip_y_m") c.tip_y = k;
     if (!average_column.empty() && header[i] == average_column) c.average = k;
@@ -146,11 +148,12 @@ CsvColumns readHeader(const std::vector<std::string>& header, const std::string&
     throw ParameterError(at + "header has " + (c.tip_x < 0 ? "tip_y_m" : "tip_x_m") + " without " +
                          (c.tip_x < 0 ? "tip_x_m" : "tip_y_m") + "; a tip position needs both");
   }
-  if (c.joints.empty() && c.tip_angle < 0 && c.tip_x < 0) {
+  if (c.joints.empty() && c.tip_angle < 0 && c.chord < 0 && c.tip_x < 0) {
     std::string notes;
     for (const std::string& note : unusedColumnNotes(c.unused)) notes += "; " + note;
     throw ParameterError(at + "header has nothing measured: give joint_1_rad, joint_2_rad, ... (joint angles), "
-                         "tip_angle_rad, or tip_x_m,tip_y_m (the tip in the finger's frame)" + notes);
+                         "tip_angle_rad, chord_angle_rad (base to tip), or tip_x_m,tip_y_m (the tip in the finger's "
+                         "frame)" + notes);
   }
   if (c.average >= 0 && c.joints.empty()) {
     throw ParameterError(at + "column '" + average_column +
@@ -170,6 +173,7 @@ Measurement measurementFrom(const std::function<double(int)>& number_at, const C
   for (int column : c.joints) m.joint_rad.push_back(number_at(column));
   if (c.average >= 0) m.given_average_rad = number_at(c.average);
   if (c.tip_angle >= 0) m.tip_angle_rad = number_at(c.tip_angle);
+  if (c.chord >= 0) m.chord_angle_rad = number_at(c.chord);
   if (c.tip_x >= 0) {
     m.tip_x_m = number_at(c.tip_x);
     m.tip_y_m = number_at(c.tip_y);
@@ -338,6 +342,8 @@ void checkMeasurementsPlausible(const FingerParameters& parameters, const std::v
       checkAngle(m.joint_rad[k], kPi, "pi (half a turn)", "joint_" + std::to_string(k + 1) + "_rad", m.where());
     }
     if (m.hasTipAngle()) checkAngle(m.tip_angle_rad, 2 * kPi, "2 pi (a full turn)", "tip_angle_rad", m.where());
+    // The chord turns about half as far as the tip: a full turn of the tip brings it back to its base.
+    if (m.hasChordAngle()) checkAngle(m.chord_angle_rad, kPi, "pi (half a turn)", "chord_angle_rad", m.where());
     if (!std::isnan(m.given_average_rad)) checkAngle(m.given_average_rad, kPi, "pi (half a turn)", "the average", m.where());
     if (m.hasTipPosition()) {
       const double reach_m = std::hypot(m.tip_x_m, m.tip_y_m);

@@ -10,18 +10,20 @@
 #include <vector>
 
 #include "pneumatic_finger/calibration/calibration.hpp"
+#include "pneumatic_finger/core/chord_angle.hpp"
 
 namespace pneumatic_finger {
 
 CalibrationQuantity parseQuantity(const std::string& name) {
   for (CalibrationQuantity q : {CalibrationQuantity::kOuterAverage, CalibrationQuantity::kEveryJoint,
                                 CalibrationQuantity::kFirstJoint, CalibrationQuantity::kTipAngle,
-                                CalibrationQuantity::kTipPosition, CalibrationQuantity::kGauge,
+                                CalibrationQuantity::kTipPosition, CalibrationQuantity::kChordAngle,
+                                CalibrationQuantity::kGauge,
                                 CalibrationQuantity::kTipAngleAndGauge, CalibrationQuantity::kGaugeAtTipAngle}) {
     if (name == quantityName(q)) return q;
   }
   throw ParameterError("unknown quantity '" + name + "'; known: average, joints, joint_1, tip_angle, tip_position, "
-                       "gauge_pa, tip_angle+gauge_pa, gauge_at_tip_angle");
+                       "chord_angle, gauge_pa, tip_angle+gauge_pa, gauge_at_tip_angle");
 }
 
 const char* quantityName(CalibrationQuantity quantity) {
@@ -31,6 +33,7 @@ const char* quantityName(CalibrationQuantity quantity) {
     case CalibrationQuantity::kFirstJoint: return "joint_1";
     case CalibrationQuantity::kTipAngle: return "tip_angle";
     case CalibrationQuantity::kTipPosition: return "tip_position";
+    case CalibrationQuantity::kChordAngle: return "chord_angle";
     case CalibrationQuantity::kGauge: return "gauge_pa";
     case CalibrationQuantity::kTipAngleAndGauge: return "tip_angle+gauge_pa";
     case CalibrationQuantity::kGaugeAtTipAngle: return "gauge_at_tip_angle";
@@ -63,6 +66,7 @@ CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data) {
   if (data.empty()) throw ParameterError("no measurements");
   if (data.front().hasJoints()) return CalibrationQuantity::kEveryJoint;
   if (data.front().hasTipPosition()) return CalibrationQuantity::kTipPosition;
+  if (!data.front().hasTipAngle() && data.front().hasChordAngle()) return CalibrationQuantity::kChordAngle;
   return bendLeaps(data) ? CalibrationQuantity::kGaugeAtTipAngle : CalibrationQuantity::kTipAngle;
 }
 
@@ -86,6 +90,7 @@ std::vector<double> Residual::terms(CalibrationQuantity quantity) const {
     case CalibrationQuantity::kFirstJoint: return {joint1_error_rad()};
     case CalibrationQuantity::kTipAngle: return {tip_angle_error_rad()};
     case CalibrationQuantity::kTipPosition: return {tip_position_error_m()};
+    case CalibrationQuantity::kChordAngle: return {chord_angle_error_rad()};
     case CalibrationQuantity::kGauge: return {gauge_error_pa()};
     case CalibrationQuantity::kTipAngleAndGauge:
       // One radian of bend weighs as the whole pressure: a scale both errors share, with no unit to choose.
@@ -102,10 +107,10 @@ std::vector<double> Residual::terms(CalibrationQuantity quantity) const {
 namespace {
 
 // What was measured of a row, into @p r: the joints (and the tip they make along the model's segments, eq 38), the
-// tip angle and position where the file gives them.
+// tip angle and position where the file gives them, and the chord angle: measured, or the measured tip's.
 void measuredInto(const FingerParameters& parameters, const Measurement& m, Residual& r) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
-  r.measured_avg_rad = r.measured_joint1_rad = r.measured_tip_angle_rad = nan;
+  r.measured_avg_rad = r.measured_joint1_rad = r.measured_tip_angle_rad = r.measured_chord_angle_rad = nan;
   r.measured_tip_x_m = r.measured_tip_y_m = nan;
   if (m.hasJoints()) {
     r.measured_joint_rad = m.joint_rad;
@@ -125,6 +130,11 @@ void measuredInto(const FingerParameters& parameters, const Measurement& m, Resi
     r.measured_tip_x_m = m.tip_x_m;
     r.measured_tip_y_m = m.tip_y_m;
   }
+  // A tip angle, where one is known, picks the chord's turn; without one, the line's own direction.
+  if (!std::isnan(r.measured_tip_x_m)) {
+    r.measured_chord_angle_rad = chordAngleRad(r.measured_tip_x_m, r.measured_tip_y_m, r.measured_tip_angle_rad);
+  }
+  if (m.hasChordAngle()) r.measured_chord_angle_rad = m.chord_angle_rad;
 }
 
 // The pressure of the model's equilibrium at @p tip_angle_rad: the state that holds this bend (the volume that gives
@@ -230,6 +240,7 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
     r.model_tip_angle_rad = rows.tip_angle_rad[i];
     r.model_tip_x_m = tip[0];
     r.model_tip_y_m = tip[1];
+    r.model_chord_angle_rad = chordAngleRad(tip[0], tip[1], r.model_tip_angle_rad);
     measuredInto(parameters, m, r);
     r.model_gauge_at_tip_angle_pa = quantity == CalibrationQuantity::kGaugeAtTipAngle
                                         ? gaugeOnThePath(model, r.measured_tip_angle_rad, *inverse)

@@ -62,6 +62,8 @@ py::dict residualArrays(const std::vector<pf::Residual>& rows, std::size_t n) {
   d["model_joint1_rad"] = column(r, [&](std::size_t i) { return rows[i].model_joint1_rad; });
   d["measured_tip_angle_rad"] = column(r, [&](std::size_t i) { return rows[i].measured_tip_angle_rad; });
   d["model_tip_angle_rad"] = column(r, [&](std::size_t i) { return rows[i].model_tip_angle_rad; });
+  d["measured_chord_angle_rad"] = column(r, [&](std::size_t i) { return rows[i].measured_chord_angle_rad; });
+  d["model_chord_angle_rad"] = column(r, [&](std::size_t i) { return rows[i].model_chord_angle_rad; });
   d["measured_tip_m"] = table(r, 2, [&](std::size_t i, std::size_t k) {
     return k == 0 ? rows[i].measured_tip_x_m : rows[i].measured_tip_y_m;
   });

@@ -48,15 +48,21 @@ std::string cell(double v, const char* format, int width) {
 // One table of errors (model - measured), in the data's own units: every joint, the joints 2..N average and the tip
 // angle (rad), the tip position (m), and for rows set by volume their volume and the pressure's error (Pa). Also
 // returns the largest |error| of each kind in @p worst (joint, average, tip angle, tip position, pressure, the
-// pressure's relative error where it was measured above zero, and, where @p at_bend, the pressure at the measured bend).
+// pressure's relative error where it was measured above zero, where @p at_bend the pressure at the measured bend, and
+// the chord angle where a row measured one).
 std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_volume, bool at_bend,
-                       std::array<double, 7>& worst) {
+                       std::array<double, 8>& worst) {
+  // The chord's column only where a row measured one: the reports of other data keep their columns.
+  const bool chord = std::any_of(rows.begin(), rows.end(), [](const pf::Residual& r) {
+    return !std::isnan(r.measured_chord_angle_rad) && std::isnan(r.measured_tip_x_m);
+  });
   std::ostringstream t;
   t << "# " << (by_volume ? pad("volume_m3", 11) : "") << pad("gauge_pa", 10);
   for (int k = 1; k <= n; ++k) t << pad("joint_" + std::to_string(k), 9);
-  t << pad("avg_2.." + std::to_string(n), 10) << pad("tip_angle", 10) << pad("tip_m", 9)
-    << (by_volume ? pad("gauge_err_pa", 13) : "") << (at_bend ? pad("at_bend_err_pa", 15) : "") << "\n";
-  worst = {0, 0, 0, 0, 0, 0, 0};
+  t << pad("avg_2.." + std::to_string(n), 10) << pad("tip_angle", 10) << (chord ? pad("chord", 10) : "")
+    << pad("tip_m", 9) << (by_volume ? pad("gauge_err_pa", 13) : "") << (at_bend ? pad("at_bend_err_pa", 15) : "")
+    << "\n";
+  worst = {0, 0, 0, 0, 0, 0, 0, 0};
   auto keep = [](double& w, double e) {
     if (!std::isnan(e)) w = std::max(w, std::fabs(e));
   };
@@ -74,8 +80,9 @@ std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_vol
     keep(worst[4], r.gauge_error_pa());
     keep(worst[5], r.measured_gauge_pa != 0.0 ? r.gauge_relative_error() : NAN);
     if (at_bend) keep(worst[6], r.gauge_at_tip_angle_error_pa());
+    if (chord) keep(worst[7], r.chord_angle_error_rad());
     t << cell(r.error_rad(), "%*.4f", 10) << cell(r.tip_angle_error_rad(), "%*.4f", 10)
-      << cell(r.tip_position_error_m(), "%*.5f", 9) << (by_volume ? cell(r.gauge_error_pa(), "%*.0f", 13) : "")
+      << (chord ? cell(r.chord_angle_error_rad(), "%*.4f", 10) : "") << cell(r.tip_position_error_m(), "%*.5f", 9) << (by_volume ? cell(r.gauge_error_pa(), "%*.0f", 13) : "")
       << (at_bend ? cell(r.gauge_at_tip_angle_error_pa(), "%*.0f", 15) : "") << "\n";
   }
   return t.str();
@@ -85,7 +92,7 @@ std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_vol
 std::string angle(double rad) { return pf::formatMessage(rad) + " rad (" + fmt("%.3f", rad * kDeg) + " deg)"; }
 std::string length(double m) { return pf::formatMessage(m) + " m (" + fmt("%.3f", m * 1e3) + " mm)"; }
 
-std::string largest(const std::array<double, 7>& w, int n, bool paper) {
+std::string largest(const std::array<double, 8>& w, int n, bool paper) {
   std::vector<std::string> parts;
   if (w[0] > 0) parts.push_back("joints " + angle(w[0]));
   if (w[1] > 0) {
@@ -93,6 +100,7 @@ std::string largest(const std::array<double, 7>& w, int n, bool paper) {
                     (paper ? " (the paper's own model on these data: 0.647 deg)" : ""));
   }
   if (w[2] > 0) parts.push_back("tip angle " + angle(w[2]));
+  if (w[7] > 0) parts.push_back("chord angle " + angle(w[7]));
   if (w[3] > 0) parts.push_back("tip position " + length(w[3]));
   if (w[4] > 0) {
     parts.push_back("pressure " + fmt("%.0f", w[4]) + " Pa (largest relative " + fmt("%.1f", 100.0 * w[5]) + " %)");
@@ -127,6 +135,7 @@ std::string uncertaintyLines(const pf::CalibrationRun& run) {
 
 // The error bar's line: at each calibrated pressure, the tip angle's and the tip position's bar.
 std::string errorBarLine(const pf::TipUncertainty& bar) {
+  if (bar.empty()) return "# no error bar written: the data measured neither the tip's angle nor its position\n";
   std::string line = "# error bar written to the parameter file (tip_uncertainty: the largest of fit, leave-one-out "
                      "and the fit's scatter):";
   for (std::size_t i = 0; i < bar.gauge_pa.size(); ++i) {
@@ -154,7 +163,7 @@ std::string report(const std::string& data_name, bool paper_data, std::size_t ro
         << "; objective: " << pf::objectiveName(run.objective) << "; error = model - measured\n# fitted:";
   for (std::size_t i = 0; i < fit.keys.size(); ++i) table << " " << fit.keys[i] << " = " << pf::formatExact(fit.values[i]);
   table << uncertaintyLines(run);
-  std::array<double, 7> worst{}, worst_loo{};
+  std::array<double, 8> worst{}, worst_loo{};
   const bool by_volume = run.by_volume;
   const bool at_bend = run.quantity == pf::CalibrationQuantity::kGaugeAtTipAngle;
   const std::string fit_table = errorTable(fit.residuals, n, by_volume, at_bend, worst);
@@ -231,7 +240,8 @@ struct DataOptions {
 void addDataOptions(CLI::App& app, DataOptions& o) {
   app.add_option("--data", o.data_path,
                  "measured CSV: gauge_pa and/or supplied_volume_m3, and any of joint_1_rad..joint_N_rad, "
-                 "tip_angle_rad, tip_x_m,tip_y_m (the tip in the finger's frame); default: the package's "
+                 "tip_angle_rad, chord_angle_rad (base to tip, as one marker on a video gives it), tip_x_m,tip_y_m "
+                 "(the tip in the finger's frame); default: the package's "
                  "data/sierra2022_table1.csv");
   app.add_option("--drive", o.drive,
                  "what set each row: pressure (gauge_pa) or volume (supplied_volume_m3: a syringe pump or a "
@@ -241,12 +251,12 @@ void addDataOptions(CLI::App& app, DataOptions& o) {
   app.add_option("--compare", o.compare,
                  "what the fit compares: joints (with base_wall_share: the chamber keys to the joints 2..N average, "
                  "then base_wall_share to joint 1), average (of joints 2..N, the paper's measure), joint_1, tip_angle, "
-                 "tip_position, gauge_pa (the pressure at each row's volume, with --drive volume) or "
+                 "tip_position, chord_angle (base to tip), gauge_pa (the pressure at each row's volume, with --drive volume) or "
                  "tip_angle+gauge_pa (both, with --drive volume: the tip angle's error in rad and the pressure's "
                  "relative error, 1 deg of bend weighing as 1.75 % of the pressure) or gauge_at_tip_angle (the "
                  "pressure that holds each measured bend, against the measured, in Pa: continuous through a snap); "
-                 "default: joints if the file has them, else tip_position, else tip_angle, or gauge_at_tip_angle "
-                 "where the bend leaps (by a quarter of its range within 5 % of the pressures': a snap); with --drive "
+                 "default: joints if the file has them, else tip_position, else tip_angle (chord_angle where only the "
+                 "chord was measured), or gauge_at_tip_angle where the tip angle leaps (by a quarter of its range within 5 % of the pressures': a snap); with --drive "
                  "volume and gauge_pa measured, tip_angle+gauge_pa instead of the bend alone");
   app.add_option("--fit", o.fit_keys,
                  "parameter keys to fit (any number, each once), comma-separated; default: shear_modulus_pa,chamber_gap_m and, "

@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/core/chord_angle.hpp"
 #include "pneumatic_finger/core/drawing.hpp"
 #include "pneumatic_finger/core/evaluation_report.hpp"
 #include "pneumatic_finger/core/contact.hpp"
@@ -92,6 +93,7 @@ struct CsvColumns {
   std::vector<double> times;
   bool blocked_tip_force = false;
   bool status = false;  // --status: each row's outcome and flags, as finger_state and Python's evaluate carry them
+  bool chord_angle = false;  // --chord-angle: the angle of the line base to tip, as finger_state carries it
 };
 
 // The options that add columns or set the rows' range.
@@ -102,18 +104,26 @@ void addColumnOptions(CLI::App& app, CsvColumns& columns, std::string& max_gauge
                  "~max_gauge_pa does");
   app.add_flag("--blocked-tip-force", columns.blocked_tip_force,
                "add blocked_tip_force_n: the tip force (N) of the finger held straight by a plate at its tip");
+  app.add_flag("--chord-angle", columns.chord_angle,
+               "add chord_angle_rad after tip_y_m: the angle from the finger's rest direction to the line from its "
+               "base to its tip (rad), what one marker tracked on a video measures (finger_state.chord_angle_rad)");
   app.add_flag("--status", columns.status,
                "add status and status_flags: each row's outcome code and the flags that hold besides it (the codes of "
                "finger_state and of Python's evaluate: docs/LIBRARY.md, Status)");
 }
 
 // The header row: the time first (time mode), the shape, the supplied volume, the blocked tip force last.
-void printHeader(std::ostream& out, int chamber_count, bool time, bool blocked_tip_force, bool status) {
+void printHeader(std::ostream& out, int chamber_count, bool time, const CsvColumns& columns) {
   if (time) out << "time_s,";
   out << "gauge_pa,stretch,bulge_m,half_angle_rad";
   for (int j = 1; j <= chamber_count; ++j) out << ",joint_" << j << "_rad";
-  out << ",tip_x_m,tip_y_m,supplied_volume_m3" << (blocked_tip_force ? ",blocked_tip_force_n" : "")
-      << (status ? ",status,status_flags\n" : "\n");
+  out << ",tip_x_m,tip_y_m" << (columns.chord_angle ? ",chord_angle_rad" : "") << ",supplied_volume_m3"
+      << (columns.blocked_tip_force ? ",blocked_tip_force_n" : "") << (columns.status ? ",status,status_flags\n" : "\n");
+}
+
+// The fields of a row with no shape, after its first (the pressure, or nan): the shape's and the supplied volume's.
+int shapelessFields(int chamber_count, const CsvColumns& columns) {
+  return chamber_count + 5 + (columns.chord_angle ? 1 : 0);
 }
 
 // A row's outcome by the core's one rule (evaluation_report.hpp), as its codes.
@@ -127,12 +137,15 @@ void printReport(std::ostream& out, const pf::EvaluationReport& report) {
   out << ',' << static_cast<int>(report.status) << ',' << static_cast<int>(report.flags);
 }
 
-// The shape's columns of a state, gauge_pa to tip_y_m, with joints @p q and tip @p tip.
-void printShape(std::ostream& out, const pf::FingerState& s, const Eigen::VectorXd& q, const Eigen::Vector2d& tip) {
+// The shape's columns of a state, gauge_pa to tip_y_m (and the chord angle), with joints @p q and tip @p tip.
+void printShape(std::ostream& out, const pf::FingerState& s, const Eigen::VectorXd& q, const Eigen::Vector2d& tip,
+                bool chord_angle) {
   out << pf::formatExact(s.gauge_pa) << ',' << pf::formatExact(s.stretch[0]) << ',' << pf::formatExact(s.bulge_m[0])
       << ',' << pf::formatExact(s.half_angle_rad[0]);
   for (Eigen::Index j = 0; j < q.size(); ++j) out << ',' << pf::formatExact(q[j]);
   out << ',' << pf::formatExact(tip.x()) << ',' << pf::formatExact(tip.y());
+  // The tip's direction is the sum of the joints (held ones included, on an obstacle).
+  if (chord_angle) out << ',' << pf::formatExact(pf::chordAngleRad(tip.x(), tip.y(), q.sum()));
 }
 
 
@@ -144,7 +157,7 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
   bool warned_overlap = false;
   const int n = model.chamberCount();
   std::ostringstream out;
-  printHeader(out, n, !times.empty(), columns.blocked_tip_force, columns.status);
+  printHeader(out, n, !times.empty(), columns);
   // Computed only when asked for (it costs a wall solve): the held finger's force, whatever the free shape's status.
   auto end_row = [&](double p, const pf::FingerState& s, const pf::RangeCheck& range) {
     if (columns.blocked_tip_force) out << ',' << pf::formatExact(model.blockedTipForceN(p));
@@ -163,7 +176,7 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
     if (s.status == pf::EvaluationStatus::kSolverFailure || s.status == pf::EvaluationStatus::kBeyondLimitPoint) {
       // The model kept its previous state; printing it would put a wrong shape on this row.
       out << pf::formatExact(p);
-      for (int j = 0; j < n + 6; ++j) out << ",nan";
+      for (int j = 0; j <= shapelessFields(n, columns); ++j) out << ",nan";
       end_row(p, s, range);
       continue;
     }
@@ -183,7 +196,7 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
         volume_m3 = pf::suppliedVolumeInContact(model, c, p);  // the held walls keep their growth
       }
     }
-    printShape(out, s, q, tip);
+    printShape(out, s, q, tip, columns.chord_angle);
     out << ',' << pf::formatExact(volume_m3);
     end_row(p, s, range);
   }
@@ -194,8 +207,9 @@ void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::
 // (gaugeForVolumeInContact, up to @p max_gauge_pa), then the contact rule's shape there. false (the row is nan) with
 // a warning once where no pressure up to the top gives it.
 bool printVolumeRowInContact(const pf::FingerModel& model, pf::FingerWorkspace& ws, pf::ContactTracker& tracker,
-                             double v, const pf::PressureRange& range, bool& warned, std::ostream& out,
+                             double v, const CsvColumns& columns, bool& warned, std::ostream& out,
                              pf::EvaluationReport& report) {
+  const pf::PressureRange& range = columns.range;
   const double max_gauge_pa = range.max_gauge_pa;
   double gauge_pa = 0.0;
   std::string why;
@@ -208,9 +222,9 @@ bool printVolumeRowInContact(const pf::FingerModel& model, pf::FingerWorkspace& 
   const pf::FingerState& s = model.evaluate(gauge_pa, ws);
   const pf::ContactState c = tracker.solve(gauge_pa);
   if (c.status == pf::ContactState::Status::kInContact) {
-    printShape(out, s, c.joint_angle_rad, c.backbone_m.col(c.backbone_m.cols() - 1));
+    printShape(out, s, c.joint_angle_rad, c.backbone_m.col(c.backbone_m.cols() - 1), columns.chord_angle);
   } else {
-    printShape(out, s, s.joint_angle_rad, s.tip());
+    printShape(out, s, s.joint_angle_rad, s.tip(), columns.chord_angle);
   }
   out << ',' << pf::formatExact(v);
   report = rowReport(s, pf::checkGaugeRange(gauge_pa, range));
@@ -227,26 +241,29 @@ void warnVolumeNotFollowed(const pf::FingerModel& model, const pf::FingerState& 
 // Volume as the input: a row per supplied volume, gauge_pa the pressure it makes (docs/MODEL.md, Volume); closing on
 // @p obstacle when one is given (then up to @p max_gauge_pa).
 void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::vector<double>& volumes,
-                    const pf::Obstacle* obstacle, const pf::PressureRange& range, bool status) {
+                    const CsvColumns& columns) {
+  const pf::PressureRange& range = columns.range;
   const int n = model.chamberCount();
   const double max_volume_m3 = pf::maxSuppliedVolumeM3(model, range);  // the range rule, for a volume
   bool warned_clamp = false;
   RowWarnings shape_warnings;  // the backbone crossing itself, as for a pressure
   std::ostringstream out;
-  printHeader(out, n, false, false, status);
+  CsvColumns shown = columns;
+  shown.blocked_tip_force = false;  // not a column by volume
+  printHeader(out, n, false, shown);
   bool warned_limit = false, warned_vacuum = false, warned_validated = false;
   std::unique_ptr<pf::ContactTracker> tracker;
-  if (obstacle) tracker = std::make_unique<pf::ContactTracker>(model, *obstacle);
+  if (columns.obstacle) tracker = std::make_unique<pf::ContactTracker>(model, *columns.obstacle);
   auto end_row = [&](const pf::EvaluationReport& report) {
-    if (status) printReport(out, report);
+    if (columns.status) printReport(out, report);
     out << '\n';
   };
   for (double v : volumes) {
     if (tracker && v >= 0.0 && !tracker->outOfReach()) {
       pf::EvaluationReport report{pf::EvaluationStatus::kSolverFailure, 0};  // no pressure up to the top gives it
-      if (!printVolumeRowInContact(model, ws, *tracker, v, range, warned_limit, out, report)) {
+      if (!printVolumeRowInContact(model, ws, *tracker, v, columns, warned_limit, out, report)) {
         out << "nan";
-        for (int j = 0; j < n + 5; ++j) out << ",nan";
+        for (int j = 0; j < shapelessFields(n, columns); ++j) out << ",nan";
         out << ',' << pf::formatExact(v);
       }
       end_row(report);
@@ -260,7 +277,7 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
     if (s.status == pf::EvaluationStatus::kBeyondLimitPoint || s.status == pf::EvaluationStatus::kSolverFailure) {
       if (!RowWarnings::once(warned_limit)) warnVolumeNotFollowed(model, s, v);
       out << "nan";
-      for (int j = 0; j < n + 5; ++j) out << ",nan";
+      for (int j = 0; j < shapelessFields(n, columns); ++j) out << ",nan";
       out << ',' << pf::formatExact(v);
       end_row(pf::reportEvaluation(s.status, {}, false));
       continue;
@@ -273,7 +290,7 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
       warned_vacuum = true;
     }
     shape_warnings.noteShape(s);
-    printShape(out, s, s.joint_angle_rad, s.tip());
+    printShape(out, s, s.joint_angle_rad, s.tip(), columns.chord_angle);
     out << ',' << pf::formatExact(in_range.volume_m3);
     pf::RangeCheck check;  // a clamped volume is a clamped pressure, as Python and the node report it
     check.clamped = in_range.clamped;
@@ -475,7 +492,7 @@ int main(int argc, char** argv) {
     const pf::Obstacle obstacle = parseDisk(disk);
     columns.obstacle = disk.empty() ? nullptr : &obstacle;
     if (!supplied.empty()) {
-      printVolumeCsv(model, ws, supplied, columns.obstacle, columns.range, columns.status);
+      printVolumeCsv(model, ws, supplied, columns);
       return 0;
     }
     columns.times = times;

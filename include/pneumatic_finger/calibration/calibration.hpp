@@ -26,6 +26,9 @@ struct Measurement {
   std::vector<double> joint_rad;   ///< measured joint angles q_1..q_N (rad), columns joint_1_rad..joint_N_rad
   double given_average_rad = NAN;  ///< average of joints 2..N read from a column instead (NaN: compute it)
   double tip_angle_rad = NAN;      ///< measured tip direction Theta_N (rad), column tip_angle_rad
+  /// measured chord angle (rad), column chord_angle_rad: from the finger's rest direction to the line from its base
+  /// O_0 to its tip (chordAngleRad), what one marker tracked on a video gives; about half the tip angle
+  double chord_angle_rad = NAN;
   double tip_x_m = NAN, tip_y_m = NAN;  ///< measured tip O_{N+1} in the finger's frame (m), columns tip_x_m, tip_y_m
   double supplied_volume_m3 = NAN;  ///< volume the supply pushed in (m^3), column supplied_volume_m3; NaN: not measured
   /// What set the finger's state: its supplied volume (a syringe pump, a displacement-controlled cylinder: the model is
@@ -39,6 +42,7 @@ struct Measurement {
   bool hasGauge() const { return !std::isnan(gauge_pa); }
   bool hasSuppliedVolume() const { return !std::isnan(supplied_volume_m3); }
   bool hasTipAngle() const { return !std::isnan(tip_angle_rad); }
+  bool hasChordAngle() const { return !std::isnan(chord_angle_rad); }
   bool hasTipPosition() const { return !std::isnan(tip_x_m); }
 
   /// Average of joints 2..N, the quantity the paper compares with the model: the mean of the measured joints, or the
@@ -47,8 +51,8 @@ struct Measurement {
 };
 
 /// Reads measurements. Lines starting with '#' and blank lines are skipped; the first other line is the header:
-/// gauge_pa or supplied_volume_m3 (or both), and any of joint_1_rad..joint_N_rad (without a gap, at least two), tip_angle_rad, tip_x_m and tip_y_m
-/// (both). When @p average_column is not empty, that column gives the joints 2..N average (e.g. the paper's printed
+/// gauge_pa or supplied_volume_m3 (or both), and any of joint_1_rad..joint_N_rad (without a gap, at least two),
+/// tip_angle_rad, chord_angle_rad, tip_x_m and tip_y_m (both). When @p average_column is not empty, that column gives the joints 2..N average (e.g. the paper's printed
 /// paper_avg_rad, which differs from the mean of its printed joints by up to 0.001 rad).
 /// @throws ParameterError naming the file and line: no gauge_pa, none of the measured columns, tip_x_m without
 ///         tip_y_m, a field that is not a finite number, a row with the wrong number of fields, or fewer than
@@ -109,6 +113,8 @@ enum class CalibrationQuantity {
   kFirstJoint,    ///< "joint_1": joint 1 alone, between the passive base segment and chamber 1 (rad)
   kTipAngle,      ///< "tip_angle": the tip direction Theta_N (rad)
   kTipPosition,   ///< "tip_position": the distance of the model's tip from the measured one (m)
+  kChordAngle,    ///< "chord_angle": the chord angle, base O_0 to tip (rad; chordAngleRad), as a video that tracks
+                  ///< the tip alone measures it. Measured tip positions and joints give it too
   kGauge,         ///< "gauge_pa": the model's pressure at the row's supplied volume against the measured (Pa); needs
                   ///< rows driven by volume with gauge_pa measured
   kTipAngleAndGauge,  ///< "tip_angle+gauge_pa": both at once, rows driven by volume: the tip angle's error (rad) and
@@ -121,7 +127,7 @@ enum class CalibrationQuantity {
                       ///< A row with a measured bend of zero or less gives no term
 };
 
-/// "average", "joints", "joint_1", "tip_angle", "tip_position", "gauge_pa", "tip_angle+gauge_pa" or
+/// "average", "joints", "joint_1", "tip_angle", "tip_position", "chord_angle", "gauge_pa", "tip_angle+gauge_pa" or
 /// "gauge_at_tip_angle". @throws ParameterError for anything else.
 CalibrationQuantity parseQuantity(const std::string& name);
 const char* quantityName(CalibrationQuantity quantity);
@@ -132,8 +138,8 @@ const char* quantityName(CalibrationQuantity quantity);
 inline constexpr double kLeapWindow = 0.05, kLeapShare = 0.25, kLeapSteepness = 3.0;
 bool bendLeaps(const std::vector<Measurement>& data);
 
-/// What a file's rows have, in this order of preference: every joint, the tip position, the tip angle; the tip angle
-/// compared as the pressure that holds it (gauge_at_tip_angle) where the bend leaps (bendLeaps).
+/// What a file's rows have, in this order of preference: every joint, the tip position, the tip angle, the chord
+/// angle; the tip angle compared as the pressure that holds it (gauge_at_tip_angle) where the bend leaps (bendLeaps).
 /// @throws ParameterError when @p data is empty
 CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data);
 
@@ -160,12 +166,14 @@ struct Residual {
   double measured_joint1_rad, model_joint1_rad;  ///< joint 1 (the paper left it out)
   std::vector<double> measured_joint_rad, model_joint_rad;  ///< q_1..q_N (measured empty without joints)
   double measured_tip_angle_rad, model_tip_angle_rad;       ///< Theta_N
+  double measured_chord_angle_rad, model_chord_angle_rad;   ///< base to tip (chordAngleRad)
   double measured_tip_x_m, measured_tip_y_m, model_tip_x_m, model_tip_y_m;  ///< O_{N+1}
   /// The pressure of the model's equilibrium at the measured tip angle (Pa); NaN unless gauge_at_tip_angle is compared
   double model_gauge_at_tip_angle_pa;
   double error_rad() const { return model_avg_rad - measured_avg_rad; }
   double joint1_error_rad() const { return model_joint1_rad - measured_joint1_rad; }
   double tip_angle_error_rad() const { return model_tip_angle_rad - measured_tip_angle_rad; }
+  double chord_angle_error_rad() const { return model_chord_angle_rad - measured_chord_angle_rad; }
   double gauge_error_pa() const { return model_gauge_pa - measured_gauge_pa; }
   double gauge_at_tip_angle_error_pa() const { return model_gauge_at_tip_angle_pa - measured_gauge_pa; }
   /// model/measured - 1 (NaN where the model has no pressure; not defined at a measured zero)
