@@ -666,3 +666,28 @@ def test_the_shipped_calibrated_epfl_file_is_the_commands(tmp_path):
     assert numpy.max(numpy.abs(chord - ramp[:, 1])[below]) < math.radians(4.0)
     assert numpy.max(numpy.abs(chord - ramp[:, 1])[~below]) < math.radians(8.0)
     assert math.isinf(model.limit_gauge_pa) and abs(model.snap_gauge_pa / 35250.0 - 1.0) < 0.05
+
+
+def test_auto_alone_follows_the_epfl_chords(tmp_path):
+    # --wall-law auto with no keys and no comparison on the EPFL ramp of chords: it chooses the law, the keys and the
+    # comparison, reports every candidate it tried, and the file it writes follows the measured chords within 4 deg
+    # below the snap and 8 deg above it, with its snap within 5 % of the measured (35.25 kPa).
+    root = pathlib.Path(pf.default_config()).parent.parent
+    out = tmp_path / "auto.yaml"
+    fit = pf.calibrate(data=str(root / "data" / "epfl_ecoflex30_c7_bending.csv"),
+                       config=str(root / "config" / "epfl_ecoflex30_c7_coupon.yaml"), wall_law="auto", output=str(out))
+    assert fit["compared"] == "chord_angle"
+    chosen = [c for c in fit["candidates"] if c["chosen"]]
+    assert len(chosen) == 1 and chosen[0]["wall_law"] == fit["wall_law"]
+    assert sorted(chosen[0]["keys"]) == sorted(fit["fitted"])
+    assert {c["wall_law"] for c in fit["candidates"]} == {"paper", "membrane", "thick"}
+    assert all(c["seconds"] > 0 for c in fit["candidates"])
+    model = pf.FingerModel(config=str(out))
+    rows = [line for line in (root / "data" / "epfl_ecoflex30_c7_bending.csv").read_text().splitlines()
+            if not line.startswith("#")]
+    ramp = numpy.array([[float(x) for x in row.split(",")] for row in rows[1:]])
+    chord = model.path().evaluate(ramp[:, 0], outputs=["chord_angle_rad"])["chord_angle_rad"]
+    below = ramp[:, 0] < 35250.0
+    assert numpy.max(numpy.abs(chord - ramp[:, 1])[below]) < math.radians(4.0)
+    assert numpy.max(numpy.abs(chord - ramp[:, 1])[~below]) < math.radians(8.0)
+    assert abs(model.snap_gauge_pa / 35250.0 - 1.0) < 0.05

@@ -343,6 +343,37 @@ std::vector<Residual> leaveOneOutFromScan(const FingerParameters& base, const st
                                           const std::vector<Measurement>& data, CalibrationObjective objective,
                                           CalibrationQuantity quantity, const CalibrationProgress& progress,
                                           const std::string& step, ScanRecord record) {
+  std::vector<std::size_t> fold_of_row(data.size());
+  for (std::size_t i = 0; i < data.size(); ++i) fold_of_row[i] = i;
+  return heldOutFromScan(base, keys, data, objective, quantity, progress, step, std::move(record), fold_of_row);
+}
+
+namespace {
+
+// Reports a long run's folds to @p progress from several threads, one at a time.
+class FoldListener {
+ public:
+  explicit FoldListener(const CalibrationProgress& progress) : progress_(progress) {}
+  CalibrationProgress operator()(const std::string& prefix) {
+    if (!progress_) return {};
+    return [this, prefix](const std::string& s) {
+      const std::lock_guard<std::mutex> lock(mutex_);
+      progress_(prefix + s);
+    };
+  }
+
+ private:
+  const CalibrationProgress& progress_;
+  std::mutex mutex_;
+};
+
+}  // namespace
+
+std::vector<Residual> heldOutFromScan(const FingerParameters& base, const std::vector<std::string>& keys,
+                                      const std::vector<Measurement>& data, CalibrationObjective objective,
+                                      CalibrationQuantity quantity, const CalibrationProgress& progress,
+                                      const std::string& step, ScanRecord record,
+                                      const std::vector<std::size_t>& fold_of_row) {
   const std::size_t chamber_keys =
       keys.size() - static_cast<std::size_t>(std::count(keys.begin(), keys.end(), std::string("base_wall_share")));
   if (data.size() < chamber_keys + 2) {
@@ -352,31 +383,33 @@ std::vector<Residual> leaveOneOutFromScan(const FingerParameters& base, const st
   checkKeysAndData(base, keys, data, quantity);
   const bool two_steps = std::count(keys.begin(), keys.end(), "base_wall_share") > 0 && keys.size() > 1 &&
                          quantity == CalibrationQuantity::kEveryJoint;
-  std::mutex heard_mutex;  // the folds report from several threads
-  auto heard = [&](const std::string& prefix) {
-    return progress ? CalibrationProgress([&, prefix](const std::string& s) {
-      const std::lock_guard<std::mutex> lock(heard_mutex);
-      progress(prefix + s);
-    })
-                    : CalibrationProgress();
-  };
+  FoldListener heard(progress);
   // One scan of every row (the fit's, where given); each fold starts from its best points measured without the
-  // held-out row.
+  // held-out rows.
   const FitProblem full(base, keys, data, quantity, heard(step + ", the scan: "));
   if (!two_steps && record.points.empty()) scanInto(full, objective, record);
+  const std::size_t folds = fold_of_row.empty() ? 0 : *std::max_element(fold_of_row.begin(), fold_of_row.end()) + 1;
   std::vector<Residual> predicted(data.size());
-  onEveryCore(data.size(), [&](std::size_t i) {
-    const std::string row = step + ", row " + std::to_string(i + 1) + " of " + std::to_string(data.size()) + ": ";
-    std::vector<Measurement> others = data;
-    others.erase(others.begin() + static_cast<long>(i));
+  onEveryCore(folds, [&](std::size_t f) {
+    const std::string name = step + ", " + (folds == data.size() ? "row " : "fold ") + std::to_string(f + 1) + " of " +
+                             std::to_string(folds) + ": ";
+    std::vector<Measurement> others, held;
+    std::vector<bool> kept(full.termCount(), true);
+    for (std::size_t i = 0; i < data.size(); ++i) {
+      (fold_of_row[i] == f ? held : others).push_back(data[i]);
+      if (fold_of_row[i] == f) std::fill_n(kept.begin() + static_cast<long>(full.firstTermOf(i)), full.termCountOf(i), false);
+    }
     FingerParameters without;
     if (two_steps) {  // every joint with the base face's share: fitted in two steps, each fold in full
-      without = calibrate(base, keys, others, objective, quantity, heard(row)).parameters;
+      without = calibrate(base, keys, others, objective, quantity, heard(name)).parameters;
     } else {
-      const FitProblem fold(base, keys, others, quantity, heard(row));
-      without = fold.parametersAt(solveFold(fold, objective, record, full.firstTermOf(i), full.termCountOf(i)).u);
+      const FitProblem fold(base, keys, others, quantity, heard(name));
+      without = fold.parametersAt(solveFold(fold, objective, record, kept).u);
     }
-    predicted[i] = residuals(without, {data[i]}, quantity)[0];
+    const std::vector<Residual> rows = residuals(without, held, quantity);
+    for (std::size_t i = 0, k = 0; i < data.size(); ++i) {
+      if (fold_of_row[i] == f) predicted[i] = rows[k++];
+    }
   });
   return predicted;
 }

@@ -21,20 +21,10 @@ std::vector<WallLaw> parseWallLawChoice(const std::string& name) {
 
 namespace {
 
-// The key sets @p law is fitted with: @p keys where named; else its defaultFitKeys and, where auto compares the laws
-// (@p comparing), the thick wall's with its lock as well: J_m fitted always lowers the fit's error but, on some
-// segments, raises the prediction's (the cylindrical segment's), so leave-one-out chooses, as it chooses the law.
-std::vector<std::vector<std::string>> keySets(const std::vector<std::string>& keys, CalibrationQuantity quantity,
-                                              WallLaw law, bool comparing) {
-  if (!keys.empty()) return {keys};
-  std::vector<std::vector<std::string>> sets = {defaultFitKeys(quantity, law)};
-  const auto& own = sets.front();
-  const auto has = [&own](const char* k) { return std::find(own.begin(), own.end(), k) != own.end(); };
-  if (comparing && law == WallLaw::kThick && !has("wall_locking_jm") && !has("base_wall_share")) {
-    sets.push_back(own);
-    sets.back().push_back("wall_locking_jm");
-  }
-  return sets;
+// The keys @p law is fitted with: @p keys where named, else its defaultFitKeys (with no keys and several laws, auto
+// chooses the keys too: selectModel, model_selection.hpp).
+std::vector<std::string> keysFor(const std::vector<std::string>& keys, CalibrationQuantity quantity, WallLaw law) {
+  return keys.empty() ? defaultFitKeys(quantity, law) : keys;
 }
 
 // One law with one key set: its fit, and each row predicted by a fit to the others from the fit's own scan.
@@ -61,28 +51,31 @@ WallLawFit fitAndPredict(const FingerParameters& start, WallLaw law, const std::
 
 }  // namespace
 
+FingerParameters lawStart(const FingerParameters& base, WallLaw law, std::string& note) {
+  FingerParameters start = base;
+  start.wall_law = law;
+  for (std::size_t k = 0; law == WallLaw::kPaper && k < start.wall_critical_height_m.size(); ++k) {
+    if (start.wall_critical_height_m[k] > start.chamber_height_m[k]) {
+      note = "wall_critical_height_m exceeds chamber_height_m, which the paper law does not allow: it starts from "
+             "its uniform wall, b = L/2";
+      start.wall_critical_height_m[k] = 0.5 * start.chamber_height_m[k];
+    }
+  }
+  return start;
+}
+
 std::vector<WallLawFit> calibrateWallLaws(const FingerParameters& base, const std::vector<WallLaw>& laws,
                                           const std::vector<std::string>& keys, const std::vector<Measurement>& data,
                                           CalibrationObjective objective, CalibrationQuantity quantity,
                                           const CalibrationProgress& progress) {
   std::vector<WallLawFit> fits;
   for (WallLaw law : laws) {
-    FingerParameters start = base;
-    start.wall_law = law;
     std::string note;
-    for (std::size_t k = 0; law == WallLaw::kPaper && k < start.wall_critical_height_m.size(); ++k) {
-      if (start.wall_critical_height_m[k] > start.chamber_height_m[k]) {
-        note = "wall_critical_height_m exceeds chamber_height_m, which the paper law does not allow: it starts from "
-               "its uniform wall, b = L/2";
-        start.wall_critical_height_m[k] = 0.5 * start.chamber_height_m[k];
-      }
-    }
-    const auto sets = keySets(keys, quantity, law, laws.size() > 1);
-    for (std::size_t i = 0; i < sets.size(); ++i) {
-      const std::string name = std::string(wallLawName(law)) + " law" + (i > 0 ? " with its lock fitted" : "");
-      fits.push_back(fitAndPredict(start, law, sets[i], data, objective, quantity, progress, name));
-      fits.back().note = note;
-    }
+    const FingerParameters start = lawStart(base, law, note);
+    fits.push_back(fitAndPredict(start, law, keysFor(keys, quantity, law), data, objective, quantity, progress,
+                                 std::string(wallLawName(law)) + " law"));
+    fits.back().note = note;
+    fits.back().quantity = quantity;
   }
   return fits;
 }

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/calibration/model_selection.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pneumatic_finger {
@@ -39,6 +40,13 @@ CalibrationQuantity quantityFor(const CalibrationRequest& request, const std::ve
   const CalibrationQuantity bend = defaultQuantity(rows);
   const bool bend_alone = bend == CalibrationQuantity::kTipAngle || bend == CalibrationQuantity::kGaugeAtTipAngle;
   return by_volume && bend_alone && rows.front().hasGauge() ? CalibrationQuantity::kTipAngleAndGauge : bend;
+}
+
+// The comparisons auto tries: the one asked for; else the data's default and, where that compares the pressure at
+// each bend (a tip angle that leaps), the bend at its pressure too, which the yardstick then judges alike.
+std::vector<CalibrationQuantity> comparisonsFor(const CalibrationRequest& request, CalibrationQuantity quantity) {
+  if (!request.compare.empty() || quantity != CalibrationQuantity::kGaugeAtTipAngle) return {quantity};
+  return {quantity, CalibrationQuantity::kTipAngle};
 }
 
 // One law without leave-one-out: the fit alone (Python's quick fit).
@@ -81,7 +89,16 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
   checkMeasurementsPlausible(base, driven.rows);  // before any law's fit, so that its message names no law
   const std::vector<WallLaw> laws =
       request.wall_law.empty() ? std::vector<WallLaw>{base.wall_law} : parseWallLawChoice(request.wall_law);
-  if (laws.size() == 1 && !request.leave_one_out) {
+  if (laws.size() > 1 && request.keys.empty()) {  // auto chooses the keys and the comparison too
+    ModelSelection selection = selectModel(base, laws, comparisonsFor(request, run.quantity), driven.rows,
+                                           run.objective, run.by_volume, request.progress);
+    run.quantity = selection.chosen.quantity;
+    run.fits = {std::move(selection.chosen)};
+    run.candidates = std::move(selection.tried);
+    run.chosen_candidate = selection.chosen_index;
+    run.tip_uncertainty =
+        tipUncertainty(run.best().fit.residuals, run.best().leave_one_out, run.best().fit.keys.size());
+  } else if (laws.size() == 1 && !request.leave_one_out) {
     FingerParameters one = base;
     one.wall_law = laws[0];
     run.fits.push_back(fitOnly(one, request.keys, driven, run.objective, run.quantity, request.progress));

@@ -73,8 +73,8 @@ CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data) {
 std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity, WallLaw law) {
   if (quantity == CalibrationQuantity::kEveryJoint) return {"shear_modulus_pa", "chamber_gap_m", "base_wall_share"};
   if (quantity == CalibrationQuantity::kFirstJoint) return {"base_wall_share"};
-  // The thick wall keeps the file's J_m: fitting it lowers the fit's error but not always the prediction's (the
-  // cylindrical drawing's), so --wall-law auto fits it both ways (calibration_laws.cpp, keySets) and keeps the better.
+  // The thick wall keeps the file's J_m: fitting it lowers the fit's error but not always the prediction's, so
+  // --wall-law auto adds it only where it predicts clearly better (model_selection.cpp).
   if (law == WallLaw::kMembrane) return {"shear_modulus_pa", "chamber_gap_m", "wall_locking_jm"};
   return {"shear_modulus_pa", "chamber_gap_m"};
 }

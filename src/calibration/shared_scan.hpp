@@ -25,4 +25,17 @@ std::vector<Residual> leaveOneOutFromScan(const FingerParameters& base, const st
                                           CalibrationQuantity quantity, const CalibrationProgress& progress,
                                           const std::string& step, ScanRecord record);
 
+/// The same with several rows held out at once: row i is predicted by a fit to the rows of other folds than
+/// @p fold_of_row[i] (folds numbered from 0; one row per fold is leave-one-out), its starts from @p record measured
+/// without the fold's rows.
+std::vector<Residual> heldOutFromScan(const FingerParameters& base, const std::vector<std::string>& keys,
+                                      const std::vector<Measurement>& data, CalibrationObjective objective,
+                                      CalibrationQuantity quantity, const CalibrationProgress& progress,
+                                      const std::string& step, ScanRecord record,
+                                      const std::vector<std::size_t>& fold_of_row);
+
+/// @p base under @p law, as each law's fit starts: the paper law's lever b brought within the chamber (b = L/2) where
+/// @p base's exceeds it, which @p note then says.
+FingerParameters lawStart(const FingerParameters& base, WallLaw law, std::string& note);
+
 }  // namespace pneumatic_finger

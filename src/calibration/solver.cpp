@@ -387,12 +387,22 @@ void scanInto(const FitProblem& problem, CalibrationObjective objective, ScanRec
 
 FitSolution solveFold(const FitProblem& fold, CalibrationObjective objective, const ScanRecord& full,
                       std::size_t first_term, std::size_t terms) {
+  std::vector<bool> kept(full.points.empty() ? 0 : static_cast<std::size_t>(full.points.front().second.size()), true);
+  std::fill_n(kept.begin() + static_cast<long>(first_term), terms, false);
+  return solveFold(fold, objective, full, kept);
+}
+
+FitSolution solveFold(const FitProblem& fold, CalibrationObjective objective, const ScanRecord& full,
+                      const std::vector<bool>& kept_terms) {
   std::vector<std::pair<double, Eigen::VectorXd>> scanned;
   const bool huber = objective == CalibrationObjective::kHuber;  // its starts: the least-squares fit's
-  const auto head = static_cast<Eigen::Index>(first_term), gone = static_cast<Eigen::Index>(terms);
+  const auto kept_count = static_cast<Eigen::Index>(std::count(kept_terms.begin(), kept_terms.end(), true));
   for (const auto& [u, e] : full.points) {
-    Eigen::VectorXd others(e.size() - gone);
-    others << e.head(head), e.tail(e.size() - head - gone);
+    Eigen::VectorXd others(kept_count);
+    Eigen::Index j = 0;
+    for (Eigen::Index t = 0; t < e.size(); ++t) {
+      if (kept_terms[static_cast<std::size_t>(t)]) others[j++] = e[t];
+    }
     scanned.emplace_back(reduce(others, huber ? CalibrationObjective::kLeastSquares : objective), u);
   }
   if (huber) return huberFrom(fold, fromTheBestOf(fold, CalibrationObjective::kLeastSquares, std::move(scanned)).u);

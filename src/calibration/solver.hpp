@@ -36,6 +36,11 @@ void scanInto(const FitProblem& problem, CalibrationObjective objective, ScanRec
 FitSolution solveFold(const FitProblem& fold, CalibrationObjective objective, const ScanRecord& full,
                       std::size_t first_term, std::size_t terms);
 
+/// The same for a fold that holds out several rows: @p kept_terms[t] says whether the full problem's term t is the
+/// fold's (the held-out rows' terms are not), in order.
+FitSolution solveFold(const FitProblem& fold, CalibrationObjective objective, const ScanRecord& full,
+                      const std::vector<bool>& kept_terms);
+
 
 
 /// How many scan points a fit of @p keys keys takes: 41 for one key, 32 more for each further one.

@@ -86,6 +86,27 @@ py::dict uncertaintyOf(const pf::CalibrationResult& fit) {
   return uncertainty;
 }
 
+// --wall-law auto's candidates, each a dict (empty where nothing was chosen among candidates).
+py::list candidateList(const pf::CalibrationRun& run) {
+  py::list out;
+  for (std::size_t i = 0; i < run.candidates.size(); ++i) {
+    const pf::CandidateFit& c = run.candidates[i];
+    py::dict d;
+    d["wall_law"] = pf::wallLawName(c.law);
+    d["compared"] = pf::quantityName(c.quantity);
+    d["keys"] = py::cast(c.keys);
+    d["held_out_bend_rad"] = c.skipped.empty() ? c.held_out.bend_rad : NAN;
+    d["held_out_pressure"] = c.skipped.empty() ? c.held_out.pressure : NAN;
+    d["rows_without_shape"] = c.held_out.unshaped;
+    d["seconds"] = c.seconds;
+    d["skipped"] = c.skipped;
+    d["selected"] = c.selected;
+    d["chosen"] = i == run.chosen_candidate;
+    out.append(d);
+  }
+  return out;
+}
+
 py::dict calibrate(const py::object& path, const std::vector<std::string>& names,
                    const std::vector<std::vector<double>>& columns, const pf::CalibrationRequest& request,
                    const std::string& config, const py::dict& overrides) {
@@ -113,6 +134,7 @@ py::dict calibrate(const py::object& path, const std::vector<std::string>& names
   const std::size_t k = best.fit.keys.size();
   d["correlation"] = table(k, k, [&](std::size_t a, std::size_t b) { return best.fit.correlation[a * k + b]; });
   d["warnings"] = py::cast(run.warnings);
+  d["candidates"] = candidateList(run);
   // The file finger_calibrate --output writes (its keys; the Python wrapper adds the header): calibrate(output=).
   d["parameter_file"] = pf::calibratedParameterYaml(run, file_range);
   return d;

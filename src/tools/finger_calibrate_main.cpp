@@ -11,6 +11,7 @@
 
 #include "pneumatic_finger/calibration/coupon.hpp"
 #include "pneumatic_finger/calibration/calibration_run.hpp"
+#include "pneumatic_finger/calibration/model_selection.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
 #include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
@@ -301,7 +302,10 @@ int calibrateOnData(const pf::ParameterOptions& parameters, DataOptions o, const
   } catch (const pf::ParameterError& e) {
     throw pf::ParameterError(o.data_path + ": " + e.what());
   }
-  const std::string table = (run.fits.size() > 1 ? lawComparison(run) : std::string()) +
+  const std::string choice = !run.candidates.empty()
+                                 ? pf::candidatesTable(run.candidates, run.chosen_candidate)
+                                 : run.fits.size() > 1 ? lawComparison(run) : std::string();
+  const std::string table = choice +
                             report(default_data ? "the package's data/sierra2022_table1.csv" : o.data_path,
                                    default_data, data.rows.size(), o.average_column, run, base.chamber_count);
   std::cout << table;

@@ -104,9 +104,8 @@ void addColumnOptions(CLI::App& app, CsvColumns& columns, std::string& max_gauge
                  "~max_gauge_pa does");
   app.add_flag("--blocked-tip-force", columns.blocked_tip_force,
                "add blocked_tip_force_n: the tip force (N) of the finger held straight by a plate at its tip");
-  app.add_flag("--chord-angle", columns.chord_angle,
-               "add chord_angle_rad after tip_y_m: the angle from the finger's rest direction to the line from its "
-               "base to its tip (rad), what one marker tracked on a video measures (finger_state.chord_angle_rad)");
+  app.add_flag("--chord-angle", columns.chord_angle, "add chord_angle_rad after tip_y_m: from the finger's rest "
+               "direction to the line from its base to its tip (rad), what one marker on a video measures");
   app.add_flag("--status", columns.status,
                "add status and status_flags: each row's outcome code and the flags that hold besides it (the codes of "
                "finger_state and of Python's evaluate: docs/LIBRARY.md, Status)");
@@ -126,6 +125,13 @@ int shapelessFields(int chamber_count, const CsvColumns& columns) {
   return chamber_count + 5 + (columns.chord_angle ? 1 : 0);
 }
 
+// A row by volume with no shape: nan for the pressure and the shape, then its volume @p v.
+void printShapelessVolumeRow(std::ostream& out, int chamber_count, const CsvColumns& columns, double v) {
+  out << "nan";
+  for (int j = 0; j < shapelessFields(chamber_count, columns); ++j) out << ",nan";
+  out << ',' << pf::formatExact(v);
+}
+
 // A row's outcome by the core's one rule (evaluation_report.hpp), as its codes.
 pf::EvaluationReport rowReport(const pf::FingerState& s, const pf::RangeCheck& range) {
   const bool shaped = s.status != pf::EvaluationStatus::kNotFinite && s.status != pf::EvaluationStatus::kSolverFailure &&
@@ -137,17 +143,16 @@ void printReport(std::ostream& out, const pf::EvaluationReport& report) {
   out << ',' << static_cast<int>(report.status) << ',' << static_cast<int>(report.flags);
 }
 
-// The shape's columns of a state, gauge_pa to tip_y_m (and the chord angle), with joints @p q and tip @p tip.
+// The shape's columns of a state, gauge_pa to tip_y_m (and the chord angle, the tip's direction the joints' sum),
+// with joints @p q (held ones included, on an obstacle) and tip @p tip.
 void printShape(std::ostream& out, const pf::FingerState& s, const Eigen::VectorXd& q, const Eigen::Vector2d& tip,
                 bool chord_angle) {
   out << pf::formatExact(s.gauge_pa) << ',' << pf::formatExact(s.stretch[0]) << ',' << pf::formatExact(s.bulge_m[0])
       << ',' << pf::formatExact(s.half_angle_rad[0]);
   for (Eigen::Index j = 0; j < q.size(); ++j) out << ',' << pf::formatExact(q[j]);
   out << ',' << pf::formatExact(tip.x()) << ',' << pf::formatExact(tip.y());
-  // The tip's direction is the sum of the joints (held ones included, on an obstacle).
   if (chord_angle) out << ',' << pf::formatExact(pf::chordAngleRad(tip.x(), tip.y(), q.sum()));
 }
-
 
 void printCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const std::vector<double>& pressures,
               const CsvColumns& columns) {
@@ -248,9 +253,7 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
   bool warned_clamp = false;
   RowWarnings shape_warnings;  // the backbone crossing itself, as for a pressure
   std::ostringstream out;
-  CsvColumns shown = columns;
-  shown.blocked_tip_force = false;  // not a column by volume
-  printHeader(out, n, false, shown);
+  printHeader(out, n, false, columns);  // no blocked force by volume (checkOneInput refuses it)
   bool warned_limit = false, warned_vacuum = false, warned_validated = false;
   std::unique_ptr<pf::ContactTracker> tracker;
   if (columns.obstacle) tracker = std::make_unique<pf::ContactTracker>(model, *columns.obstacle);
@@ -262,9 +265,7 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
     if (tracker && v >= 0.0 && !tracker->outOfReach()) {
       pf::EvaluationReport report{pf::EvaluationStatus::kSolverFailure, 0};  // no pressure up to the top gives it
       if (!printVolumeRowInContact(model, ws, *tracker, v, columns, warned_limit, out, report)) {
-        out << "nan";
-        for (int j = 0; j < shapelessFields(n, columns); ++j) out << ",nan";
-        out << ',' << pf::formatExact(v);
+        printShapelessVolumeRow(out, n, columns, v);
       }
       end_row(report);
       continue;
@@ -276,9 +277,7 @@ void printVolumeCsv(const pf::FingerModel& model, pf::FingerWorkspace& ws, const
     const pf::FingerState& s = model.evaluateVolume(in_range.volume_m3, ws);
     if (s.status == pf::EvaluationStatus::kBeyondLimitPoint || s.status == pf::EvaluationStatus::kSolverFailure) {
       if (!RowWarnings::once(warned_limit)) warnVolumeNotFollowed(model, s, v);
-      out << "nan";
-      for (int j = 0; j < shapelessFields(n, columns); ++j) out << ",nan";
-      out << ',' << pf::formatExact(v);
+      printShapelessVolumeRow(out, n, columns, v);
       end_row(pf::reportEvaluation(s.status, {}, false));
       continue;
     }
@@ -314,7 +313,6 @@ pf::Obstacle parseDisk(const std::string& disk) {
   if (!obstacle.problem().empty()) throw pf::ParameterError("--obstacle-disk: " + obstacle.problem());
   return obstacle;
 }
-
 
 // The options of docs/MODEL.md's last sections: volume as the input, and the branch a snap-through starts from.
 struct VolumeOptions {

@@ -146,7 +146,7 @@ CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data);
 /// The keys a fit over @p quantity takes when none are named: shear_modulus_pa and chamber_gap_m, and base_wall_share
 /// too when every joint is compared. Under the membrane law, wall_locking_jm as the third key where base_wall_share is
 /// not one (the Gent lock shapes the bend's rise after the limit point's bend); the thick wall keeps the file's J_m
-/// (calibrateWallLaws under auto fits it a second time with J_m too, and keeps the better prediction).
+/// (--wall-law auto adds it, and kappa, where they predict clearly better: selectModel).
 std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity, WallLaw law = WallLaw::kPaper);
 
 /// "minimax", "least_squares" or "huber". @throws ParameterError for anything else.
@@ -258,15 +258,16 @@ double leaveOneOutObjective(const std::vector<Residual>& leave_one_out, Calibrat
 /// One wall law's calibration: its keys, its fit, and each row predicted by a fit to the others.
 struct WallLawFit {
   WallLaw law = WallLaw::kPaper;
+  CalibrationQuantity quantity = CalibrationQuantity::kTipAngle;  ///< what the fit compared
   CalibrationResult fit;
   std::vector<Residual> leave_one_out;
   double leave_one_out_objective = 0.0;  ///< leaveOneOutObjective of leave_one_out
   std::string note;  ///< what the law's start changed in the base parameters (empty: nothing), for the report
 };
 
-/// `finger_calibrate --wall-law`: each law of @p laws fitted to @p data (with @p keys, or each law's defaultFitKeys
-/// when empty; with several laws and no @p keys, the thick wall twice, with its defaultFitKeys and with
-/// wall_locking_jm too: one entry each) and predicted row by row (leaveOneOut). A law with more keys fits at least as
+/// `finger_calibrate --wall-law` with keys named: each law of @p laws fitted to @p data (with @p keys, or each law's
+/// defaultFitKeys when empty) and predicted row by row (leaveOneOut). With several laws and no keys, runCalibration
+/// chooses the keys too (selectModel). A law with more keys fits at least as
 /// well; which law the data support is the one that predicts better: chosenWallLaw picks the smallest leave-one-out
 /// objective. The membrane law's lever b may exceed the chamber height; the paper law's may not (docs/MODEL.md), so
 /// where @p base's does, the paper law starts from its uniform wall, b = L/2, and says so in its note.

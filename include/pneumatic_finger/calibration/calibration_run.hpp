@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "pneumatic_finger/calibration/calibration.hpp"
+#include "pneumatic_finger/calibration/model_selection.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/pressure_range.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
@@ -50,6 +51,10 @@ struct CalibrationRun {
   bool by_volume = false;  ///< the rows were set by their supplied volume (CalibrationRequest::drive)
   std::vector<WallLawFit> fits;
   std::size_t chosen = 0;
+  /// --wall-law auto with no keys named: every candidate it tried (selectModel), and the chosen one's place among
+  /// them. Empty otherwise.
+  std::vector<CandidateFit> candidates;
+  std::size_t chosen_candidate = 0;
   /// The error bar (tipUncertainty of the chosen fit and its leave-one-out); empty without leave-one-out.
   TipUncertainty tip_uncertainty;
   /// Every warning, the data's first (columns not read), then the fit's (keys that trade off, keys on a bound).

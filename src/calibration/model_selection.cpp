@@ -1,0 +1,262 @@
+// What --wall-law auto chooses (model_selection.hpp): forward selection of the keys for each law and comparison,
+// every candidate judged by its bends held out at their measured pressures.
+#include "pneumatic_finger/calibration/model_selection.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "shared_scan.hpp"
+
+namespace pneumatic_finger {
+
+namespace {
+
+// One held-out row's squared error: the mean of its bends' squared errors (a row without a shape: kUnshapedBendRad
+// each) plus, where compared, its pressure's squared relative error (none: the whole pressure). NaN: nothing measured.
+double rowSquaredError(const Residual& r, bool by_volume, int& unshaped) {
+  std::vector<double> bends;
+  if (!r.measured_joint_rad.empty()) {  // every joint is a bend the row measured
+    for (std::size_t k = 0; k < r.measured_joint_rad.size(); ++k) {
+      bends.push_back(r.model_joint_rad[k] - r.measured_joint_rad[k]);
+    }
+  } else if (!std::isnan(r.measured_tip_angle_rad)) {
+    bends.push_back(r.tip_angle_error_rad());
+  } else if (!std::isnan(r.measured_chord_angle_rad)) {
+    bends.push_back(r.chord_angle_error_rad());
+  }
+  double sum = 0.0;
+  bool without_shape = false;
+  for (double e : bends) {
+    without_shape = without_shape || std::isnan(e);
+    sum += std::isnan(e) ? kUnshapedBendRad * kUnshapedBendRad : e * e;
+  }
+  unshaped += without_shape ? 1 : 0;
+  const bool pressure = by_volume && r.measured_gauge_pa > 0.0;
+  if (bends.empty() && !pressure) return std::numeric_limits<double>::quiet_NaN();
+  const double p = pressure ? r.gauge_relative_error() : 0.0;
+  return (bends.empty() ? 0.0 : sum / static_cast<double>(bends.size())) + (std::isnan(p) ? 1.0 : p * p);
+}
+
+}  // namespace
+
+HeldOutError heldOutError(const std::vector<Residual>& held_out, bool by_volume) {
+  HeldOutError out;
+  std::vector<double> rows;
+  double bend_sq = 0.0, pressure_sq = 0.0;
+  for (const Residual& r : held_out) {
+    const double row = rowSquaredError(r, by_volume, out.unshaped);
+    out.row_squared.push_back(row);
+    if (std::isnan(row)) continue;
+    rows.push_back(row);
+    const double p = by_volume && r.measured_gauge_pa > 0.0 ? r.gauge_relative_error() : 0.0;
+    const double p_sq = std::isnan(p) ? 1.0 : p * p;
+    pressure_sq += p_sq;
+    bend_sq += row - p_sq;
+  }
+  if (rows.empty()) return out;
+  const auto n = static_cast<double>(rows.size());
+  out.bend_rad = std::sqrt(bend_sq / n);
+  out.pressure = std::sqrt(pressure_sq / n);
+  const double mean = (bend_sq + pressure_sq) / n;
+  out.score = std::sqrt(mean);
+  double var = 0.0;
+  for (double x : rows) var += (x - mean) * (x - mean);
+  // The standard error of the mean square, sd / sqrt(n), carried to its root: d sqrt(m) = dm / (2 sqrt(m)).
+  out.standard_error = rows.size() > 1 && mean > 0.0 ? std::sqrt(var / (n - 1.0) / n) / (2.0 * out.score) : 0.0;
+  return out;
+}
+
+bool clearlyBetter(const HeldOutError& candidate, const HeldOutError& current) {
+  std::vector<double> gain;  // per row: how much less the candidate misses it (squared)
+  for (std::size_t i = 0; i < candidate.row_squared.size() && i < current.row_squared.size(); ++i) {
+    const double d = current.row_squared[i] - candidate.row_squared[i];
+    if (!std::isnan(d)) gain.push_back(d);
+  }
+  if (gain.size() < 2) return candidate.score < current.score;
+  const auto n = static_cast<double>(gain.size());
+  double mean = 0.0, var = 0.0;
+  for (double d : gain) mean += d / n;
+  for (double d : gain) var += (d - mean) * (d - mean) / (n - 1.0);
+  return mean > std::sqrt(var / n);
+}
+
+namespace {
+
+// The keys forward selection may add to @p keys under @p law: the wall's lock and tilt where the law has them, and
+// where the rows were set by their volume with their pressure measured, the drive's gas and the skin's share.
+std::vector<std::string> furtherKeys(WallLaw law, const std::vector<std::string>& keys, bool by_volume,
+                                     bool has_gauge) {
+  std::vector<std::string> extra;
+  if (law != WallLaw::kPaper) extra = {"wall_locking_jm", "wall_bulge_share"};
+  if (by_volume && has_gauge) {
+    extra.push_back("dead_volume_m3");
+    extra.push_back("chamber_growth_ratio");
+  }
+  extra.erase(std::remove_if(extra.begin(), extra.end(),
+                             [&keys](const std::string& k) { return std::count(keys.begin(), keys.end(), k) > 0; }),
+              extra.end());
+  return extra;
+}
+
+// Row i's fold: i mod kCrossValidationFolds (each row its own where there are no more rows than folds).
+std::vector<std::size_t> interleavedFolds(std::size_t rows) {
+  std::vector<std::size_t> fold(rows);
+  for (std::size_t i = 0; i < rows; ++i) fold[i] = rows <= kCrossValidationFolds ? i : i % kCrossValidationFolds;
+  return fold;
+}
+
+// A candidate fitted and cross-validated, or skipped with the reason; its fit and scan kept for the one chosen.
+struct Tried {
+  CandidateFit candidate;
+  CalibrationResult fit;
+  ScanRecord scan;
+  std::vector<Residual> held_out;
+};
+
+Tried tryCandidate(const FingerParameters& start, CandidateFit c, const std::vector<Measurement>& data,
+                   CalibrationObjective objective, bool by_volume, const CalibrationProgress& progress) {
+  const auto began = std::chrono::steady_clock::now();
+  Tried t;
+  std::string name = std::string(wallLawName(c.law)) + " law, " + quantityName(c.quantity) + ", ";
+  for (std::size_t k = 0; k < c.keys.size(); ++k) name += (k ? "+" : "") + c.keys[k];
+  try {
+    const CalibrationProgress heard =
+        progress ? CalibrationProgress([&](const std::string& s) { progress(name + ": the fit: " + s); })
+                 : CalibrationProgress();
+    t.fit = calibrateKeepingScan(start, c.keys, data, objective, c.quantity, heard, &t.scan);
+    t.held_out = heldOutFromScan(start, c.keys, data, objective, c.quantity, progress, name + ": cross-validation",
+                                 t.scan, interleavedFolds(data.size()));
+    c.held_out = heldOutError(t.held_out, by_volume);
+  } catch (const ParameterError& e) {
+    c.skipped = e.what();
+  }
+  c.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  t.candidate = std::move(c);
+  return t;
+}
+
+// Forward selection for one law and comparison: from its default keys, the further key that lowers the yardstick
+// most, while it is clearlyBetter. Every candidate goes to @p tried; returns the selected one.
+Tried selectKeys(const FingerParameters& start, WallLaw law, CalibrationQuantity quantity,
+                 const std::vector<Measurement>& data, CalibrationObjective objective, bool by_volume,
+                 const CalibrationProgress& progress, std::vector<CandidateFit>& tried) {
+  CandidateFit first{law, quantity, defaultFitKeys(quantity, law), {}, 0.0, "", false};
+  Tried current = tryCandidate(start, first, data, objective, by_volume, progress);
+  tried.push_back(current.candidate);
+  if (!current.candidate.skipped.empty()) return current;
+  const bool has_gauge = !data.empty() && data.front().hasGauge();
+  while (true) {
+    Tried best;
+    best.candidate.held_out.score = std::numeric_limits<double>::infinity();
+    for (const std::string& key : furtherKeys(law, current.candidate.keys, by_volume, has_gauge)) {
+      CandidateFit grown = current.candidate;
+      grown.keys.push_back(key);
+      Tried t = tryCandidate(start, grown, data, objective, by_volume, progress);
+      tried.push_back(t.candidate);
+      if (t.candidate.skipped.empty() && t.candidate.held_out.score < best.candidate.held_out.score) best = std::move(t);
+    }
+    if (!std::isfinite(best.candidate.held_out.score) || !clearlyBetter(best.candidate.held_out, current.candidate.held_out)) {
+      break;
+    }
+    current = std::move(best);
+  }
+  return current;
+}
+
+// Every candidate's reason, for a run in which none could be fitted.
+std::string noCandidateMessage(const std::vector<CandidateFit>& tried) {
+  std::string message = "no candidate could be fitted:";
+  for (const CandidateFit& c : tried) {
+    message += std::string(" ") + wallLawName(c.law) + " law, " + quantityName(c.quantity) + ": " + c.skipped + ";";
+  }
+  return message;
+}
+
+}  // namespace
+
+ModelSelection selectModel(const FingerParameters& base, const std::vector<WallLaw>& laws,
+                           const std::vector<CalibrationQuantity>& comparisons, const std::vector<Measurement>& data,
+                           CalibrationObjective objective, bool by_volume, const CalibrationProgress& progress) {
+  ModelSelection s;
+  Tried chosen;
+  chosen.candidate.held_out.score = std::numeric_limits<double>::infinity();
+  FingerParameters chosen_start = base;
+  std::string chosen_note;
+  for (WallLaw law : laws) {
+    std::string note;
+    const FingerParameters start = lawStart(base, law, note);
+    for (CalibrationQuantity quantity : comparisons) {
+      Tried t = selectKeys(start, law, quantity, data, objective, by_volume, progress, s.tried);
+      if (!t.candidate.skipped.empty()) continue;
+      const auto it = std::find_if(s.tried.begin(), s.tried.end(), [&t](const CandidateFit& c) {
+        return c.law == t.candidate.law && c.quantity == t.candidate.quantity && c.keys == t.candidate.keys;
+      });
+      it->selected = true;
+      // A later law or comparison replaces the chosen one only where it predicts clearly better (the laws in the
+      // order paper, membrane, thick): where the data cannot tell them apart, the first stays.
+      if (!std::isfinite(chosen.candidate.held_out.score) ||
+          clearlyBetter(t.candidate.held_out, chosen.candidate.held_out)) {
+        s.chosen_index = static_cast<std::size_t>(it - s.tried.begin());
+        chosen = std::move(t);
+        chosen_start = start;
+        chosen_note = note;
+      }
+    }
+  }
+  if (!std::isfinite(chosen.candidate.held_out.score)) throw ParameterError(noCandidateMessage(s.tried));
+  const CandidateFit& c = chosen.candidate;
+  s.chosen.law = c.law;
+  s.chosen.quantity = c.quantity;
+  s.chosen.note = chosen_note;
+  s.chosen.fit = std::move(chosen.fit);
+  s.chosen.leave_one_out = data.size() <= kCrossValidationFolds
+                               ? std::move(chosen.held_out)
+                               : leaveOneOutFromScan(chosen_start, c.keys, data, objective, c.quantity, progress,
+                                                     std::string(wallLawName(c.law)) + " law: leave-one-out",
+                                                     std::move(chosen.scan));
+  s.chosen.leave_one_out_objective = leaveOneOutObjective(s.chosen.leave_one_out, c.quantity, objective);
+  return s;
+}
+
+namespace {
+
+std::string fixed(const char* format, double value) {
+  char b[64];
+  std::snprintf(b, sizeof b, format, value);
+  return b;
+}
+
+}  // namespace
+
+std::string candidatesTable(const std::vector<CandidateFit>& tried, std::size_t chosen) {
+  std::string t = "# auto: every candidate tried, judged by its bends held out at their measured pressures (rms over " +
+                  std::to_string(kCrossValidationFolds) + " interleaved folds; each row alone with " +
+                  std::to_string(kCrossValidationFolds) + " rows or fewer; score +- one standard error); a further "
+                  "key, a later law or comparison, is kept where it lowers the rows' squared errors by more than their standard "
+                  "error, row by row\n";
+  for (std::size_t i = 0; i < tried.size(); ++i) {
+    const CandidateFit& c = tried[i];
+    std::string keys;
+    for (std::size_t k = 0; k < c.keys.size(); ++k) keys += (k ? "," : "") + c.keys[k];
+    t += std::string("#   ") + wallLawName(c.law) + "; " + quantityName(c.quantity) + "; " + keys + ": ";
+    if (!c.skipped.empty()) {
+      t += "skipped: " + c.skipped + "\n";
+      continue;
+    }
+    t += "held out " + fixed("%.2f", c.held_out.bend_rad * 180.0 / M_PI) + " deg" +
+         " (score " + fixed("%.2f", c.held_out.score * 180.0 / M_PI) + " +- " +
+         fixed("%.2f", c.held_out.standard_error * 180.0 / M_PI) + ")" +
+         (c.held_out.pressure > 0.0 ? ", pressure " + fixed("%.1f", 100.0 * c.held_out.pressure) + " %" : "") +
+         (c.held_out.unshaped > 0 ? ", " + std::to_string(c.held_out.unshaped) + " rows without a shape" : "") + "; " +
+         fixed("%.2f", c.seconds) + " s" + (i == chosen ? "  <- chosen" : c.selected ? "  (selected)" : "") + "\n";
+  }
+  return t + "#\n";
+}
+
+}  // namespace pneumatic_finger

@@ -1,0 +1,127 @@
+// --wall-law auto's choice (model_selection.hpp): the yardstick against hand-computed values, the paired rule, and
+// the selection recovering the keys a known actuator was made with.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include "pneumatic_finger/calibration/model_selection.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+pf::Residual residual(double measured_tip, double model_tip, double measured_chord, double model_chord) {
+  const double nan = std::nan("");
+  pf::Residual r{};
+  r.gauge_pa = r.measured_gauge_pa = r.model_gauge_pa = 1e4;
+  r.supplied_volume_m3 = nan;
+  r.measured_avg_rad = r.model_avg_rad = r.measured_joint1_rad = r.model_joint1_rad = nan;
+  r.measured_tip_x_m = r.measured_tip_y_m = r.model_tip_x_m = r.model_tip_y_m = nan;
+  r.model_gauge_at_tip_angle_pa = nan;
+  r.measured_tip_angle_rad = measured_tip;
+  r.model_tip_angle_rad = model_tip;
+  r.measured_chord_angle_rad = measured_chord;
+  r.model_chord_angle_rad = model_chord;
+  return r;
+}
+
+pf::FingerParameters load(const std::string& file) {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/" + file, raw);
+  return pf::FingerParameters::fromRaw(raw);
+}
+
+}  // namespace
+
+// Each row's squared bend error: the tip angle where measured, else the chord; a row without a shape a quarter turn.
+TEST(ModelSelection, TheYardstickIsTheRowsBendsHeldOut) {
+  const double nan = std::nan("");
+  const std::vector<pf::Residual> rows = {residual(0.5, 0.6, nan, nan), residual(0.5, 0.3, 0.2, 0.9),
+                                          residual(nan, nan, 0.2, 0.5), residual(0.4, nan, nan, nan)};
+  const pf::HeldOutError e = pf::heldOutError(rows, false);
+  const double q = M_PI / 2;
+  const std::vector<double> expected = {0.01, 0.04, 0.09, q * q};
+  ASSERT_EQ(e.row_squared.size(), 4u);
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(e.row_squared[i], expected[i], 1e-15);
+  const double mean = (0.01 + 0.04 + 0.09 + q * q) / 4;
+  EXPECT_NEAR(e.score, std::sqrt(mean), 1e-15);
+  EXPECT_NEAR(e.bend_rad, std::sqrt(mean), 1e-15);
+  EXPECT_EQ(e.pressure, 0.0);
+  EXPECT_EQ(e.unshaped, 1);
+  double var = 0.0;
+  for (double x : expected) var += (x - mean) * (x - mean) / 3.0;
+  EXPECT_NEAR(e.standard_error, std::sqrt(var / 4.0) / (2.0 * std::sqrt(mean)), 1e-15);
+  // By volume, a row's pressure joins its bend: 1 rad of bend weighs as the whole pressure.
+  std::vector<pf::Residual> by_volume = {residual(0.5, 0.6, nan, nan)};
+  by_volume[0].model_gauge_pa = 1.2e4;  // 20 % high
+  const pf::HeldOutError v = pf::heldOutError(by_volume, true);
+  EXPECT_NEAR(v.row_squared[0], 0.01 + 0.04, 1e-15);
+  EXPECT_NEAR(v.pressure, 0.2, 1e-15);
+  EXPECT_NEAR(v.bend_rad, 0.1, 1e-15);
+}
+
+// Paired: a gain on every row clears the bar; one row's large gain against the others' losses does not.
+TEST(ModelSelection, ClearlyBetterIsAPairedOneStandardErrorTest) {
+  pf::HeldOutError a, b;
+  a.row_squared = {1.0, 1.0, 1.0, 1.0, 1.0};
+  b.row_squared = {0.9, 0.88, 0.91, 0.89, 0.9};
+  a.score = 1.0, b.score = std::sqrt(0.896);
+  EXPECT_TRUE(pf::clearlyBetter(b, a));
+  EXPECT_FALSE(pf::clearlyBetter(a, b));
+  pf::HeldOutError c = b;
+  c.row_squared = {0.0, 1.05, 1.05, 1.05, 1.05};  // mean gain 0.16, its standard error 0.21
+  EXPECT_FALSE(pf::clearlyBetter(c, a));
+}
+
+// Chords made by a known thick wall (the shipped EPFL fit: its lock and its tilt), fitted from the coupon's file:
+// the selection must grow the keys to both, and its chosen fit must then follow the chords.
+TEST(ModelSelection, ForwardSelectionFindsTheKeysTheDataWereMadeWith) {
+  const pf::FingerParameters truth = load("epfl_ecoflex30_c7.yaml");
+  const pf::FingerModel model(truth);
+  pf::FingerWorkspace ws(model);
+  std::vector<pf::Measurement> data;
+  for (int k = 0; k < 16; ++k) {
+    pf::Measurement m;
+    m.line = k + 1;
+    m.gauge_pa = 12e3 + 2e3 * k;  // 12 to 42 kPa, through the steep rise
+    m.chord_angle_rad = model.evaluate(m.gauge_pa, ws).chordAngle();
+    data.push_back(m);
+  }
+  const pf::ModelSelection s = pf::selectModel(load("epfl_ecoflex30_c7_coupon.yaml"), {pf::WallLaw::kThick},
+                                               {pf::CalibrationQuantity::kChordAngle}, data,
+                                               pf::CalibrationObjective::kMinimax, false);
+  const std::vector<std::string>& keys = s.chosen.fit.keys;
+  EXPECT_EQ(s.chosen.law, pf::WallLaw::kThick);
+  EXPECT_EQ(std::count(keys.begin(), keys.end(), "wall_bulge_share"), 1) << s.tried.size();
+  EXPECT_EQ(std::count(keys.begin(), keys.end(), "wall_locking_jm"), 1);
+  EXPECT_LT(s.tried[s.chosen_index].held_out.bend_rad, 1e-3);
+  EXPECT_GT(s.tried.front().held_out.bend_rad, 0.02);  // mu and c alone cannot follow them
+  EXPECT_EQ(s.chosen.leave_one_out.size(), data.size());
+}
+
+// A candidate the data cannot identify is skipped with its reason, and the run goes on (Table 1: four rows).
+TEST(ModelSelection, ACandidateTheDataCannotIdentifyIsSkippedNotFatal) {
+  pf::FingerParameters base = pf::FingerParameters::defaults();
+  const std::vector<pf::Measurement> data =
+      pf::readMeasurementsCsv(std::string(PACKAGE_SOURCE_DIR) + "/data/sierra2022_table1.csv", 1);
+  const pf::ModelSelection s = pf::selectModel(base, {pf::WallLaw::kPaper, pf::WallLaw::kMembrane},
+                                               {pf::CalibrationQuantity::kEveryJoint}, data,
+                                               pf::CalibrationObjective::kMinimax, false);
+  int skipped = 0;
+  for (const pf::CandidateFit& c : s.tried) {
+    if (c.skipped.empty()) continue;
+    ++skipped;
+    EXPECT_NE(c.skipped.find("4 rows; fitting 3 chamber keys with leave-one-out needs at least 5"), std::string::npos)
+        << c.skipped;
+  }
+  EXPECT_EQ(skipped, 2);
+  EXPECT_EQ(s.chosen.law, pf::WallLaw::kPaper);  // the membrane does not predict Table 1 clearly better
+  const std::string table = pf::candidatesTable(s.tried, s.chosen_index);
+  EXPECT_NE(table.find("#   paper; joints; shear_modulus_pa,chamber_gap_m,base_wall_share: held out"), std::string::npos)
+      << table;
+  EXPECT_NE(table.find("<- chosen"), std::string::npos);
+}
