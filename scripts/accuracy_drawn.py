@@ -61,6 +61,8 @@ DRAWN = [
      "data/marchese2015_cylindrical_bending.csv", "auto", {}),
     ("EPFL Ecoflex 00-30, 7 chambers", "config/epfl_ecoflex30_c7_coupon.yaml", "data/epfl_ecoflex30_c7_bending.csv",
      None, EPFL_FIT),
+    ("EPFL Ecoflex 00-30, 7 chambers, auto alone", "config/epfl_ecoflex30_c7_coupon.yaml",
+     "data/epfl_ecoflex30_c7_bending.csv", "auto", {}),
 ]
 MATERIAL = ("wall_law", "shear_modulus_pa", "wall_locking_jm")
 # --solid: the finite-element cell of the drawing (scripts/fem_cell.py with this file's coupon modulus), and the ramp's
