@@ -299,6 +299,28 @@ class StartedNode:
             self.process.wait(timeout=30)
 
 
+class Diagnostics:
+    """The /diagnostics statuses of @p node as they arrive: their messages and their key/value pairs."""
+
+    def __init__(self, rospy, node):
+        from diagnostic_msgs.msg import DiagnosticArray
+        self.messages, self.values = [], {}
+        prefix = node.ns.lstrip("/") + "/"
+        self.listener = rospy.Subscriber("/diagnostics", DiagnosticArray, lambda a: self._heard(a, prefix))
+
+    def _heard(self, array, prefix):
+        for status in array.status:
+            if prefix in status.name:
+                self.messages.append(status.message)
+                self.values.update({kv.key: kv.value for kv in status.values})
+
+    def said(self, words):
+        return any(words in m for m in self.messages)
+
+    def stop(self):
+        self.listener.unregister()
+
+
 def node_warning(state, validated):
     if state.status_flags & state.FLAG_CLAMPED:
         return ["clamped"]
@@ -417,7 +439,6 @@ def test_every_interface_driven_by_volume_gives_the_same_finger(ros, files, file
 
 @pytest.mark.parametrize("case", TABLE["not_finite"], ids=lambda c: c["words"])
 def test_every_interface_refuses_an_input_that_is_no_number_in_the_same_words(ros, files, case):
-    from diagnostic_msgs.msg import DiagnosticArray
     path, by_volume = files[case["file"]], "supplied_volume_m3" in case
     x = float(case["supplied_volume_m3"] if by_volume else case["gauge_pa"])
     done = tool("finger_model", "--config", path, "--supplied-volume-m3" if by_volume else "--gauge-pa", repr(x))
@@ -429,25 +450,22 @@ def test_every_interface_refuses_an_input_that_is_no_number_in_the_same_words(ro
     assert pf.STATUS[int(state["status"])] == "not finite" and math.isnan(state["tip_angle_rad"])
     assert any(case["words"] in str(w.message) for w in caught), [str(w.message) for w in caught]
     node = StartedNode(ros, path, {"volume_topic": "volume"} if by_volume else None)
-    said = []
-    listener = ros.Subscriber("/diagnostics", DiagnosticArray,
-                              lambda a: said.extend(s.message for s in a.status if node.ns.lstrip("/") + "/" in s.name))
+    diagnostics = Diagnostics(ros, node)
     try:
         node.state_at(0.0 if by_volume else 1000.0, 0.0 if by_volume else model.parameters["atmospheric_pressure_pa"])
         for _ in range(100):  # the refusal is said in diagnostics (published every second)
             node.publisher.publish(node.message(fluid_pressure=x))
-            if any(case["words"] in m for m in said):
+            if diagnostics.said(case["words"]):
                 break
             time.sleep(0.1)
-        assert any(case["words"] in m for m in said), said[-3:]
+        assert diagnostics.said(case["words"]), diagnostics.messages[-3:]
     finally:
-        listener.unregister()
+        diagnostics.stop()
         node.stop()
 
 
 @pytest.mark.parametrize("case", TABLE["impossible_pressures"], ids=lambda c: c["words"])
 def test_every_interface_refuses_a_negative_absolute_pressure_in_the_same_words(ros, files, case):
-    from diagnostic_msgs.msg import DiagnosticArray
     path, p = files[case["file"]], float(case["gauge_pa"])
     for name, args in {"finger_model": ["--gauge-pa", repr(p)], "finger_urdf": ["--mjcf", "--gauge-pa", repr(p)],
                        "finger_design": ["--vary", "chamber_gap_m=1e-5:2e-5:2", "--quantity",
@@ -459,9 +477,7 @@ def test_every_interface_refuses_a_negative_absolute_pressure_in_the_same_words(
     assert case["words"] in str(refused.value)
     model = pf.FingerModel(config=str(path))
     node = StartedNode(ros, path)
-    said = []
-    listener = ros.Subscriber("/diagnostics", DiagnosticArray,
-                              lambda a: said.extend(s.message for s in a.status if node.ns.lstrip("/") + "/" in s.name))
+    diagnostics = Diagnostics(ros, node)
     try:
         atmospheric_pa = model.parameters["atmospheric_pressure_pa"]
         node.state_at(1000.0, atmospheric_pa)
@@ -469,12 +485,12 @@ def test_every_interface_refuses_a_negative_absolute_pressure_in_the_same_words(
             message = node.message(fluid_pressure=p + atmospheric_pa)
             message.header.stamp = ros.Time.now()
             node.publisher.publish(message)
-            if any(case["words"] in m for m in said):
+            if diagnostics.said(case["words"]):
                 break
             time.sleep(0.1)
-        assert any(case["words"] in m for m in said), said[-3:]
+        assert diagnostics.said(case["words"]), diagnostics.messages[-3:]
     finally:
-        listener.unregister()
+        diagnostics.stop()
         node.stop()
 
 
@@ -505,4 +521,33 @@ def test_every_written_file_reproduces_its_report_in_every_interface(ros, tmp_pa
         for p, report_tip in zip(pressures, reported):
             assert abs(node.state_at(p, atmospheric_pa).tip_angle_rad - report_tip) <= ANGLE_TOLERANCE_RAD, p
     finally:
+        node.stop()
+
+
+@pytest.mark.parametrize("case", TABLE["follows"], ids=lambda c: c["wall_law"])
+def test_every_interface_says_whether_a_calibration_follows_its_data(ros, tmp_path, case):
+    written = tmp_path / "cli.yaml"
+    done = tool("finger_calibrate", "--data", ROOT / case["data"], "--config", ROOT / case["config"], "--wall-law",
+                case["wall_law"], "--output", written)
+    assert done.returncode == 0, done.stderr
+    assert (case["words"] in done.stdout) == (not case["follows"]), done.stdout
+    fit = pf.calibrate(data=str(ROOT / case["data"]), config=str(ROOT / case["config"]), wall_law=case["wall_law"])
+    assert fit["calibration_error"]["follows_data"] == case["follows"]
+    assert any(case["words"] in w for w in fit["warnings"]) == (not case["follows"]), fit["warnings"]
+    text = written.read_text()
+    assert f"follows_data: {str(case['follows']).lower()}" in text
+    model = pf.FingerModel(config=str(written))
+    node = StartedNode(ros, written)
+    diagnostics = Diagnostics(ros, node)
+    try:
+        node.state_at(20000.0, model.parameters["atmospheric_pressure_pa"])
+        for _ in range(50):  # published every second
+            if "calibration" in diagnostics.values:
+                break
+            time.sleep(0.1)
+        said = diagnostics.values.get("calibration", "")
+        assert ("does NOT follow its data" in said) == (not case["follows"]), said
+        assert diagnostics.said("calibration does not follow its data") == (not case["follows"])
+    finally:
+        diagnostics.stop()
         node.stop()

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "pneumatic_finger/calibration/fit_check.hpp"
 #include "pneumatic_finger/calibration/model_selection.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 
@@ -114,6 +115,12 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
     if (!gas.empty()) run.warnings.push_back(gas);
   }
   for (const std::string& w : run.best().fit.warnings) run.warnings.push_back(w);
+  if (!run.best().leave_one_out.empty()) {  // what a row the fit has not seen gets: does it follow the data?
+    FitCheck check = checkFollows(run.best().leave_one_out, driven.rows, run.quantity, run.by_volume,
+                                  !run.candidates.empty());
+    run.calibration_error = check.error;
+    if (!check.warning.empty()) run.warnings.push_back(check.warning);
+  }
   if (!run.tip_uncertainty.empty()) {
     const std::string unpredicted = unpredictedRowsWarning(run.best().fit.residuals, run.best().leave_one_out);
     if (!unpredicted.empty()) run.warnings.push_back(unpredicted);
@@ -152,8 +159,9 @@ std::string calibratedParameterYaml(const CalibrationRun& run, const PressureRan
   const std::string bar = run.tip_uncertainty.empty()
                               ? "# No tip_uncertainty: the data measured neither the tip's angle nor its position.\n"
                               : tipUncertaintyToYaml(run.tip_uncertainty);
+  const std::string record = calibrationErrorToYaml(run.calibration_error);
   return parametersToYaml(run.best().fit.parameters) + "\n" + rangeToYaml(calibratedRange(run, file_range)) + "\n" +
-         bar;
+         bar + (record.empty() ? "" : "\n" + record);
 }
 
 }  // namespace pneumatic_finger

@@ -7,6 +7,7 @@
 
 #include <string>
 
+#include "pneumatic_finger/core/calibration_error.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 
 namespace pneumatic_finger {
@@ -14,5 +15,9 @@ namespace pneumatic_finger {
 /// The tip_uncertainty mapping of the document @p root (empty when it has none). @throws ParameterError naming
 /// @p origin for a malformed entry
 TipUncertainty tipUncertaintyFromYamlNode(const YAML::Node& root, const std::string& origin);
+
+/// The calibration_error mapping of the document @p root (empty when it has none). @throws ParameterError naming
+/// @p origin for a malformed entry
+CalibrationError calibrationErrorFromYamlNode(const YAML::Node& root, const std::string& origin);
 
 }  // namespace pneumatic_finger

@@ -106,6 +106,7 @@ void fromNode(const YAML::Node& root, const std::string& origin, RawParameterMap
   for (const auto& item : root) {
     const std::string key = item.first.as<std::string>();
     if (key == kTipUncertaintyKey) continue;  // not the actuator: the calibration's error bar (tip_uncertainty.hpp)
+    if (key == kCalibrationErrorKey) continue;  // nor how well it followed its data (calibration_error.hpp)
     if (key == "drawing") {
       drawingFromNode(item.second, origin, raw);
       continue;
@@ -172,11 +173,13 @@ ParameterTree readParameterTree(const YAML::Node& root, const std::string& origi
   fromNode(root, origin, tree.raw, tree.node_keys);
   rangeFromNode(root, origin, tree.range);  // checked for every reader, as the error bar is
   tree.tip_uncertainty = tipUncertaintyFromYamlNode(root, origin);
+  tree.calibration_error = calibrationErrorFromYamlNode(root, origin);
   return tree;
 }
 
 void loadRawParametersFromYamlText(const std::string& text, const std::string& origin, RawParameterMap& raw,
-                                   TipUncertainty* tip_uncertainty, PressureRange* range) {
+                                   TipUncertainty* tip_uncertainty, PressureRange* range,
+                                   CalibrationError* calibration_error) {
   YAML::Node root;
   try {
     root = YAML::Load(text);
@@ -188,15 +191,16 @@ void loadRawParametersFromYamlText(const std::string& text, const std::string& o
   // A malformed range or error bar is refused by every reader of the file, whether it asked for it or not.
   if (range != nullptr) *range = tree.range;
   if (tip_uncertainty != nullptr) *tip_uncertainty = tree.tip_uncertainty;
+  if (calibration_error != nullptr) *calibration_error = tree.calibration_error;
 }
 
 void loadRawParametersFromYamlFile(const std::string& path, RawParameterMap& raw, TipUncertainty* tip_uncertainty,
-                                   PressureRange* range) {
+                                   PressureRange* range, CalibrationError* calibration_error) {
   std::ifstream in(path);
   if (!in) throw ParameterError("cannot read parameter file '" + path + "'");
   std::stringstream text;
   text << in.rdbuf();
-  loadRawParametersFromYamlText(text.str(), path, raw, tip_uncertainty, range);
+  loadRawParametersFromYamlText(text.str(), path, raw, tip_uncertainty, range, calibration_error);
 }
 
 std::string parametersToYaml(const FingerParameters& parameters) {

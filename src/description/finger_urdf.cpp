@@ -312,7 +312,7 @@ std::vector<GripperFinger> loadGripperFile(const std::string& path) {
     if (f["config"]) {
       const std::string config = f["config"].as<std::string>();
       g.config_path = !config.empty() && config[0] == '/' ? config : folder + "/" + config;
-      loadRawParametersFromYamlFile(g.config_path, raw, &g.tip_uncertainty, &g.range);
+      loadRawParametersFromYamlFile(g.config_path, raw, &g.tip_uncertainty, &g.range, &g.calibration_error);
     }
     g.mount.max_gauge_pa = g.range.max_gauge_pa;  // the joint limits at the top of its own range
     try {

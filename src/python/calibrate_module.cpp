@@ -86,6 +86,19 @@ py::dict uncertaintyOf(const pf::CalibrationResult& fit) {
   return uncertainty;
 }
 
+// How well the fit followed its data (None without leave-one-out), as the written file records it.
+py::object calibrationErrorDict(const pf::CalibrationError& e) {
+  if (e.empty()) return py::none();
+  py::dict d;
+  d["compared"] = e.compared;
+  d["held_out_rms_rad"] = e.held_out_rms_rad;
+  d["held_out_largest_rad"] = e.held_out_largest_rad;
+  d["largest_at_gauge_pa"] = e.largest_at_gauge_pa;
+  d["missed_rows"] = e.missed_rows;
+  d["follows_data"] = e.follows_data;
+  return std::move(d);
+}
+
 // --wall-law auto's candidates, each a dict (empty where nothing was chosen among candidates).
 py::list candidateList(const pf::CalibrationRun& run) {
   py::list out;
@@ -135,6 +148,7 @@ py::dict calibrate(const py::object& path, const std::vector<std::string>& names
   d["correlation"] = table(k, k, [&](std::size_t a, std::size_t b) { return best.fit.correlation[a * k + b]; });
   d["warnings"] = py::cast(run.warnings);
   d["candidates"] = candidateList(run);
+  d["calibration_error"] = calibrationErrorDict(run.calibration_error);
   // The file finger_calibrate --output writes (its keys; the Python wrapper adds the header): calibrate(output=).
   d["parameter_file"] = pf::calibratedParameterYaml(run, file_range);
   return d;

@@ -49,11 +49,7 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   // Where a rising pressure bends the finger fastest: its limit point, or where a wall that does not fold is softest.
   status.add("snap pressure (Pa gauge)", formatMessage(model_->snapGaugePa()));
   if (!input_.lastProblem().empty()) status.add("last problem", input_.lastProblem());
-  status.add("tip error bar", tip_uncertainty_.empty()
-                                   ? std::string("none (NaN in finger_state)")
-                                   : "calibrated at " + std::to_string(tip_uncertainty_.gauge_pa.size()) +
-                                         " pressures up to " + formatMessage(tip_uncertainty_.gauge_pa.back()) +
-                                         " Pa gauge; above: extrapolated");
+  diagnoseCalibration(status);
   status.add("grasp object", object_ ? object_->id : std::string("(none)"));
   status.add("grasp object status", graspObjectStatusName(grasp_->status()));
   status.add("predicted first touch (Pa gauge)", grasp_->touchGaugePa());
@@ -65,6 +61,22 @@ void FingerNode::diagnose(diagnostic_updater::DiagnosticStatusWrapper& status) {
   if (!problem.empty()) {
     status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN, problem);
     status.add("grasp object problem", problem);
+  }
+}
+
+// What the parameter file says of its calibration: the tip's error bar, and how well the fit followed its data; a
+// fit that does not is a warning, since every shape this node publishes comes from it.
+void FingerNode::diagnoseCalibration(diagnostic_updater::DiagnosticStatusWrapper& status) {
+  status.add("tip error bar", tip_uncertainty_.empty()
+                                   ? std::string("none (NaN in finger_state)")
+                                   : "calibrated at " + std::to_string(tip_uncertainty_.gauge_pa.size()) +
+                                         " pressures up to " + formatMessage(tip_uncertainty_.gauge_pa.back()) +
+                                         " Pa gauge; above: extrapolated");
+  const CalibrationError& e = settings_.calibration_error;
+  status.add("calibration", e.describe());
+  if (!e.empty() && !e.follows_data) {
+    status.mergeSummary(diagnostic_msgs::DiagnosticStatus::WARN,
+                        "the parameter file's calibration does not follow its data (" + e.describe() + ")");
   }
 }
 

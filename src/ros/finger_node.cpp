@@ -406,6 +406,7 @@ void FingerNode::onReconfigure(FingerNodeConfig& config, uint32_t /*level*/) {
         tip_marker_pub_.publish(tip_marker_);
         marker_bar_m_ = -1.0;
       }
+      settings_.calibration_error = CalibrationError{};  // nor does the record of how well it followed its data
       buildModel(nh_);
       ROS_INFO("%s: reconfigured: shear_modulus_pa %s Pa, chamber_gap_m %s m, base_wall_share %s, "
                "wall_locking_jm %s; URDF republished", log_name_.c_str(), formatMessage(config.shear_modulus_pa).c_str(),

@@ -132,6 +132,7 @@ void resumeLiveActuatorKeys(const RawParameterMap& live, NodeSettings& s) {
   if (changed.empty()) return;
   s.finger = FingerParameters::fromRaw(raw);
   s.tip_uncertainty = TipUncertainty{};
+  s.calibration_error = CalibrationError{};
   ROS_INFO("finger_node: resuming the live values on the parameter server (a previous run's dynamic_reconfigure): "
            "%s, over the gripper file's; the tip error bar no longer applies", changed.c_str());
 }
@@ -160,6 +161,7 @@ void readGripperFile(const ros::NodeHandle& nh, const RawParameterMap& actuator_
     s.urdf = f.mount;
     s.finger = f.parameters;
     s.tip_uncertainty = f.tip_uncertainty;
+    s.calibration_error = f.calibration_error;
     s.range = f.range;
     resumeLiveActuatorKeys(live, s);
     return;
@@ -207,13 +209,15 @@ NodeSettings readNodeSettings(const ros::NodeHandle& nh) {
   const ParameterTree tree = readNamespaceTree(nh);  // refuses a key that is no one's, as every interface does
   s.finger = FingerParameters::fromRaw(tree.raw);
   s.tip_uncertainty = tree.tip_uncertainty;
+  s.calibration_error = tree.calibration_error;
   s.range = tree.range;
   readMount(in, s);
   s.gripper_file = in.text("gripper_file");
   if (!s.gripper_file.empty()) {
-    if (!tree.tip_uncertainty.empty()) {
-      throw ParameterError("parameter 'tip_uncertainty/*' is set, but gripper_file defines the actuator (and its "
-                           "error bar)");
+    if (!tree.tip_uncertainty.empty() || !tree.calibration_error.empty()) {
+      throw ParameterError(std::string("parameter '") +
+                           (tree.tip_uncertainty.empty() ? "calibration_error" : "tip_uncertainty") +
+                           "/*' is set, but gripper_file defines the actuator (and its calibration's record)");
     }
     readGripperFile(nh, tree.raw, s);
   }

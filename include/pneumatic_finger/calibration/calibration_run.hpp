@@ -12,6 +12,7 @@
 #include "pneumatic_finger/calibration/model_selection.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/pressure_range.hpp"
+#include "pneumatic_finger/core/calibration_error.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 
 namespace pneumatic_finger {
@@ -57,8 +58,11 @@ struct CalibrationRun {
   std::size_t chosen_candidate = 0;
   /// The error bar (tipUncertainty of the chosen fit and its leave-one-out); empty without leave-one-out.
   TipUncertainty tip_uncertainty;
-  /// Every warning, the data's first (columns not read), then the fit's (keys that trade off, keys on a bound).
+  /// Every warning, the data's first (columns not read), then the fit's (keys that trade off, keys on a bound), and
+  /// last, where the fit does not follow its data, which rows it misses and what to try (checkFollows).
   std::vector<std::string> warnings;
+  /// How well the chosen fit followed its data, held out (checkFollows); empty without leave-one-out.
+  CalibrationError calibration_error;
 
   const WallLawFit& best() const { return fits.at(chosen); }
 };

@@ -8,6 +8,7 @@
 
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/pressure_range.hpp"
+#include "pneumatic_finger/core/calibration_error.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 
 namespace YAML {
@@ -23,6 +24,7 @@ struct ParameterTree {
   RawParameterMap raw;              ///< the actuator's keys as given (model keys; the drawing's as drawing/KEY)
   PressureRange range;              ///< max_gauge_pa and validated_max_gauge_pa, by the one rule (rangeParameterSpecs)
   TipUncertainty tip_uncertainty;   ///< the calibration's error bar (empty without one)
+  CalibrationError calibration_error;  ///< how well the calibration followed its data (empty without one)
   std::vector<std::string> node_keys;  ///< the keys left unclaimed: finger_node's own (nodeInterfaceKeys), for it
 };
 
@@ -42,12 +44,15 @@ ParameterTree readParameterTree(const YAML::Node& root, const std::string& origi
 ///        its fields; the keys are checked whether it is given or not
 /// One file serves every interface: the range keys are read by each (finger_node, finger_model, Python),
 /// and finger_node's own keys (nodeInterfaceKeys: topics, rates, frames) are left to the node by the others.
+/// @param[out] calibration_error when given, the file's calibration_error (how well its calibration followed its data)
 void loadRawParametersFromYamlFile(const std::string& path, RawParameterMap& raw,
-                                   TipUncertainty* tip_uncertainty = nullptr, PressureRange* range = nullptr);
+                                   TipUncertainty* tip_uncertainty = nullptr, PressureRange* range = nullptr,
+                                   CalibrationError* calibration_error = nullptr);
 
 /// Same as loadRawParametersFromYamlFile for YAML text; @p origin names it in messages.
 void loadRawParametersFromYamlText(const std::string& text, const std::string& origin, RawParameterMap& raw,
-                                   TipUncertainty* tip_uncertainty = nullptr, PressureRange* range = nullptr);
+                                   TipUncertainty* tip_uncertainty = nullptr, PressureRange* range = nullptr,
+                                   CalibrationError* calibration_error = nullptr);
 
 /// The parameter file's range keys: max_gauge_pa (the top of the model's range) and validated_max_gauge_pa (the top
 /// of the pressures its calibration saw: finger_calibrate writes it). Every interface reads them from the file.

@@ -17,6 +17,7 @@
 
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/pressure_range.hpp"
+#include "pneumatic_finger/core/calibration_error.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 
 namespace pneumatic_finger {
@@ -50,6 +51,7 @@ struct GripperFinger {
   FingerParameters parameters;  ///< the actuator
   std::string config_path;      ///< the parameter file it was read from (for messages)
   TipUncertainty tip_uncertainty;  ///< that file's error bar (empty when it has none)
+  CalibrationError calibration_error;  ///< how well that file's calibration followed its data (empty: none)
   PressureRange range;             ///< that file's range (max_gauge_pa, validated_max_gauge_pa); mount.max_gauge_pa
 };
 

@@ -54,6 +54,7 @@ class FingerNode {
   bool onInverse(PressureForTipAngle::Request& req, PressureForTipAngle::Response& res);  // finger_services.cpp
   bool onContactForce(PressureForContactForce::Request& req, PressureForContactForce::Response& res);
   void diagnose(diagnostic_updater::DiagnosticStatusWrapper& status);
+  void diagnoseCalibration(diagnostic_updater::DiagnosticStatusWrapper& status);
   void onReconfigure(FingerNodeConfig& config, uint32_t level);
   /// The live values as the node has them (chamber 1's for per-chamber keys).
   FingerNodeConfig currentConfig() const;

@@ -10,6 +10,7 @@
 #include "pneumatic_finger/core/finger_model.hpp"
 #include "pneumatic_finger/core/parameters.hpp"
 #include "pneumatic_finger/core/pressure_input.hpp"
+#include "pneumatic_finger/core/calibration_error.hpp"
 #include "pneumatic_finger/core/tip_uncertainty.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
 #include "pneumatic_finger/ros/parameter_reader.hpp"
@@ -23,6 +24,8 @@ const std::vector<NodeParameterSpec>& nodeParameterSpecs();
 struct NodeSettings {
   FingerParameters finger;
   TipUncertainty tip_uncertainty;  ///< the calibration's error bar (rosparam tip_uncertainty/*, or the gripper file's)
+  CalibrationError calibration_error;  ///< how well the calibration followed its data (calibration_error/*, or the
+                                       ///< gripper file's); empty: none recorded
   PressureRange range;  ///< the parameter file's range (or the gripper file's finger's), by the loader's one rule
   FingerUrdfOptions urdf;
   PressureInputSettings input;  ///< the input rules' settings (atmospheric_pa and max_gauge_pa follow finger, urdf)
