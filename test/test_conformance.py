@@ -551,3 +551,39 @@ def test_every_interface_says_whether_a_calibration_follows_its_data(ros, tmp_pa
     finally:
         diagnostics.stop()
         node.stop()
+
+
+@pytest.mark.parametrize("case", TABLE["designs"], ids=lambda c: c["target"])
+def test_every_designed_file_reproduces_its_prediction_in_every_interface(ros, tmp_path, case):
+    written = tmp_path / "cli.yaml"
+    counts = ["--chamber-count", str(case["chamber_count"])] if "chamber_count" in case else []
+    done = tool("finger_design", "--config", ROOT / case["config"], "--target", case["target"], "--free", case["free"],
+                *counts, "--output", written)
+    assert done.returncode == 0 and "# met" in done.stdout, done.stdout + done.stderr
+    design = pf.design_to_target([case["target"]], [case["free"]], config=str(ROOT / case["config"]),
+                                 chamber_counts=[case["chamber_count"]] if "chamber_count" in case else None)
+    assert written.read_text() == design["parameter_file"]  # the CLI's file is Python's, byte for byte
+    achieved = design["achieved"][case["target"]]
+    quantity, _, rest = case["target"].partition("@")
+    quantity = quantity.partition("=")[0]
+    model = pf.FingerModel(config=str(written))
+    assert model.validated_max_gauge_pa == 0.0  # a drawing not yet cast: every answer a zero-shot prediction
+    if quantity == "snap_gauge_pa":
+        assert abs(model.snap_gauge_pa / achieved - 1.0) <= 1e-12
+        done = tool("finger_model", "--config", written, "--pressures")
+        row = next(csv.DictReader(io.StringIO(done.stdout)))
+        assert abs(float(row["snap_gauge_pa"]) / achieved - 1.0) <= 1e-12, row
+        pressure = achieved / 2
+    else:
+        pressure = float(rest.partition("=")[0])
+        tip = float(model.evaluate(pressure)["tip_angle_rad"])
+        assert abs(tip - achieved) <= ANGLE_TOLERANCE_RAD
+        cli_tip, *_ = finger_model_answer(written, pressure)
+        assert abs(cli_tip - achieved) <= ANGLE_TOLERANCE_RAD
+    assert tool("finger_urdf", "--config", written, "--mjcf").returncode == 0
+    node = StartedNode(ros, written)
+    try:
+        state = node.state_at(pressure, model.parameters["atmospheric_pressure_pa"])
+        assert abs(state.tip_angle_rad - float(model.evaluate(pressure)["tip_angle_rad"])) <= ANGLE_TOLERANCE_RAD
+    finally:
+        node.stop()

@@ -19,6 +19,7 @@ import os
 from pneumatic_finger._core import CONTACT_STATUS, STATUS, STATUS_FLAGS
 from pneumatic_finger._core import FingerModel as _FingerModel
 from pneumatic_finger._core import calibrate as _calibrate
+from pneumatic_finger._core import design_to_target as _design_to_target
 from pneumatic_finger._core import fit_coupon as _fit_coupon
 from pneumatic_finger._core import range_check
 
@@ -112,6 +113,29 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
             f.write("# A calibrated actuator, written by pneumatic_finger.core.calibrate(output=): the base parameters "
                     "with the\n# fitted keys replaced (docs/CALIBRATE.md). Load it with finger.launch config:=FILE.\n"
                     + result["parameter_file"])
+    return result
+
+
+def design_to_target(targets, free, config=None, overrides=None, chamber_counts=None, castable_m=1e-3,
+                     max_body_m=(0.0, 0.0, 0.0), output=None):
+    """finger_design --target from Python: the drawing that meets the targets, from a calibrated file's material.
+
+    targets: "QUANTITY=VALUE" or "QUANTITY@AT=VALUE" strings (snap_gauge_pa, limit_gauge_pa, contact_gauge_pa in Pa;
+    tip_angle_rad, chord_angle_rad at a pressure, blocked_tip_force_n at a pressure; gauge_for_tip_angle at an angle
+    in rad). free: the drawing sizes it may change, a list of "drawing/KEY" (bounds: a quarter to four times the drawn
+    size) or a dict {"drawing/KEY": (lo, hi)} in m. chamber_counts: the whole numbers to try (None: the drawing's).
+    castable_m: the thinnest wall, end wall or roof. max_body_m: the body's largest (length, width, height), 0: none.
+
+    Returns a dict: values (key -> m), drawn (key -> the base drawing's size, m), chamber_count, achieved (target -> value), miss (the largest relative miss),
+    met, at_bound (the keys that stop it, where not met), reach (the largest |ln(size / drawn)|: how far the answer
+    leaves the base drawing), seconds, parameter_file (its text; output= writes it, as finger_design --output)."""
+    bounds = dict(free) if isinstance(free, dict) else {key: (0.0, 0.0) for key in free}
+    result = _design_to_target(config if config is not None else default_config(), dict(overrides or {}),
+                               list(targets), {k: list(v) for k, v in bounds.items()}, list(chamber_counts or []),
+                               float(castable_m), [float(x) for x in max_body_m])
+    if output is not None:
+        with open(output, "w") as f:
+            f.write(result["parameter_file"])
     return result
 
 

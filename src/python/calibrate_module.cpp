@@ -187,6 +187,7 @@ py::dict fitCoupon(const py::object& path, const std::vector<double>& strain, co
 }  // namespace
 
 void defineCalibrate(py::module_& m) {
+  defineDesign(m);
   m.def("fit_coupon", &fitCoupon, py::arg("path"), py::arg("strain"), py::arg("stress"), py::arg("law"),
         py::arg("config"), py::arg("overrides"),
         "finger_calibrate --coupon (use pneumatic_finger.core.fit_coupon): a CSV path, or strain and stress");

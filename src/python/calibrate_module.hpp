@@ -6,7 +6,10 @@
 
 namespace pneumatic_finger_python {
 
-/// Defines _core.calibrate in @p m.
+/// Defines _core.calibrate (and design_to_target, defineDesign) in @p m.
 void defineCalibrate(pybind11::module_& m);
+
+/// Defines _core.design_to_target in @p m (design_module.cpp).
+void defineDesign(pybind11::module_& m);
 
 }  // namespace pneumatic_finger_python

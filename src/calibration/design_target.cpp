@@ -1,0 +1,319 @@
+// Design to spec (design_target.hpp): the drawing's free sizes searched for the targets, the chamber count enumerated.
+#include "pneumatic_finger/calibration/design_target.hpp"
+
+#include <nlopt.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "fit_space.hpp"
+#include "pneumatic_finger/core/drawing.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
+
+namespace pneumatic_finger {
+
+namespace {
+
+constexpr const char* kAtPressure[] = {"tip_angle_rad", "chord_angle_rad", "blocked_tip_force_n"};
+constexpr const char* kOwn[] = {"snap_gauge_pa", "limit_gauge_pa", "contact_gauge_pa"};
+
+bool among(const std::string& q, const char* const* first, const char* const* last) {
+  return std::find_if(first, last, [&q](const char* k) { return q == k; }) != last;
+}
+
+// A number of a target's text. @throws ParameterError naming the target
+double targetNumber(const std::string& text, const std::string& field, const char* what) {
+  char* end = nullptr;
+  const double v = std::strtod(field.c_str(), &end);
+  if (field.empty() || *end != '\0' || !std::isfinite(v)) {
+    throw ParameterError("--target " + text + ": '" + field + "' is not a finite number (" + what + ")");
+  }
+  return v;
+}
+
+}  // namespace
+
+DesignTarget parseDesignTarget(const std::string& text) {
+  const auto eq = text.find('=');
+  const std::string usage = "; expected QUANTITY=VALUE (snap_gauge_pa, limit_gauge_pa, contact_gauge_pa) or "
+                            "QUANTITY@P=VALUE (tip_angle_rad, chord_angle_rad, blocked_tip_force_n at P Pa gauge; "
+                            "gauge_for_tip_angle at a tip angle in rad)";
+  if (eq == std::string::npos) throw ParameterError("--target " + text + ": no '='" + usage);
+  DesignTarget t;
+  t.text = text;
+  std::string left = text.substr(0, eq);
+  const auto at = left.find('@');
+  t.quantity = left.substr(0, at);
+  const bool pressure = among(t.quantity, std::begin(kAtPressure), std::end(kAtPressure));
+  const bool angle = t.quantity == "gauge_for_tip_angle";
+  if (!pressure && !angle && !among(t.quantity, std::begin(kOwn), std::end(kOwn))) {
+    throw ParameterError("--target " + text + ": unknown quantity '" + t.quantity + "'" + usage);
+  }
+  if ((pressure || angle) != (at != std::string::npos)) {
+    throw ParameterError("--target " + text + ": " + t.quantity + (pressure || angle ? " needs" : " takes no") +
+                         " '@'" + usage);
+  }
+  if (at != std::string::npos) t.at = targetNumber(text, left.substr(at + 1), angle ? "rad" : "Pa gauge");
+  t.value = targetNumber(text, text.substr(eq + 1), "the quantity's unit");
+  return t;
+}
+
+double designQuantity(const FingerParameters& p, const DesignTarget& t) {
+  ModelOptions options;
+  options.wall_inverse = false;  // one model per design, asked once or twice
+  options.snap_point = t.quantity == "snap_gauge_pa";
+  const FingerModel model(p, options);
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  if (t.quantity == "snap_gauge_pa") return model.snapGaugePa();
+  if (t.quantity == "limit_gauge_pa") return model.limitGaugePa();
+  if (t.quantity == "contact_gauge_pa") return model.contactGaugePa();
+  if (t.quantity == "blocked_tip_force_n") return model.blockedTipForceN(t.at);
+  if (t.quantity == "gauge_for_tip_angle") {
+    double gauge_pa = nan;
+    std::string why;
+    return model.gaugeForTipAngle(t.at, std::numeric_limits<double>::infinity(), gauge_pa, why) ? gauge_pa : nan;
+  }
+  FingerWorkspace ws(model);
+  const FingerState& s = model.evaluate(t.at, ws);
+  if (s.status != EvaluationStatus::kOk && s.status != EvaluationStatus::kSnappedThrough) return nan;
+  return t.quantity == "tip_angle_rad" ? s.tip_angle_rad : s.chordAngle();
+}
+
+namespace {
+
+// The body's outline as drawn (m): along (base, end walls, cavities and the walls between), across, up.
+struct BodySize {
+  double length_m, width_m, height_m;
+};
+
+BodySize bodyOf(const ActuatorDrawing& d) {
+  return {d.base_length_m + 2.0 * d.end_wall_thickness_m + d.chamber_count * d.cavity_length_m +
+              (d.chamber_count - 1) * d.wall_thickness_m,
+          d.body_width_m, d.floor_height_m + d.cavity_height_m + d.roof_thickness_m};
+}
+
+bool castableKey(const std::string& key) {
+  return key == "drawing/wall_thickness_m" || key == "drawing/end_wall_thickness_m" ||
+         key == "drawing/roof_thickness_m";
+}
+
+// The search over one chamber count: each free key's bracket in log10, the base drawing with that count.
+class DesignSpace {
+ public:
+  DesignSpace(const FingerParameters& base, const DesignRequest& request, int count);
+  std::size_t size() const { return keys_.size(); }
+  /// The design at @p u in the unit cube; false where the drawing is refused or the body exceeds its limits.
+  bool design(const double* u, FingerParameters& p) const;
+  /// The targets' relative misses squared and summed; a large number where there is no design or no quantity.
+  double objective(const double* u) const;
+  std::vector<double> values(const double* u) const;
+  const FingerParameters& start() const { return start_; }
+  const std::vector<double>& drawn() const { return drawn_; }
+  const std::vector<double>& lo() const { return lo_; }
+  const std::vector<double>& hi() const { return hi_; }
+
+ private:
+  FingerParameters start_;
+  const DesignRequest* request_;
+  std::vector<std::string> keys_;
+  std::vector<double> lo_, hi_, drawn_;  // log10 of m; the drawn sizes (m)
+};
+
+DesignSpace::DesignSpace(const FingerParameters& base, const DesignRequest& request, int count)
+    : start_(base), request_(&request) {
+  if (count > 0) setKey(start_, "drawing/chamber_count", count);
+  for (const FreeDrawingKey& f : request.free) {
+    const double drawn = drawnSize(start_, f.key.substr(std::string(kDrawingPrefix).size()));
+    const double floor = castableKey(f.key) ? request.castable_m : 0.0;
+    const double lo = std::max(f.lo > 0.0 ? f.lo : drawn / 4.0, floor), hi = f.hi > 0.0 ? f.hi : 4.0 * drawn;
+    if (!(hi > lo)) {
+      throw ParameterError(f.key + ": its bounds [" + formatMessage(lo) + ", " + formatMessage(hi) +
+                           "] m hold no size (the castable thickness is " + formatMessage(request.castable_m) + " m)");
+    }
+    keys_.push_back(f.key);
+    lo_.push_back(std::log10(lo));
+    hi_.push_back(std::log10(hi));
+    drawn_.push_back(drawn);
+  }
+}
+
+std::vector<double> DesignSpace::values(const double* u) const {
+  std::vector<double> v;
+  for (std::size_t k = 0; k < keys_.size(); ++k) v.push_back(std::pow(10.0, lo_[k] + u[k] * (hi_[k] - lo_[k])));
+  return v;
+}
+
+bool DesignSpace::design(const double* u, FingerParameters& p) const {
+  p = start_;
+  const std::vector<double> v = values(u);
+  try {
+    for (std::size_t k = 0; k < keys_.size(); ++k) setKey(p, keys_[k], v[k]);
+  } catch (const ParameterError&) {
+    return false;  // a drawing the rule refuses (a wall the gap leaves no elastomer in, ...)
+  }
+  const BodySize body = bodyOf(*drawingFromRaw(p.drawing));
+  const auto over = [](double size, double most) { return most > 0.0 && size > most; };
+  return !over(body.length_m, request_->max_body_length_m) && !over(body.width_m, request_->max_body_width_m) &&
+         !over(body.height_m, request_->max_body_height_m);
+}
+
+// How far @p achieved misses @p target, as a share of the value (the value itself where it is 0).
+double relativeMiss(double achieved, const DesignTarget& target) {
+  return target.value != 0.0 ? achieved / target.value - 1.0 : achieved;
+}
+
+double DesignSpace::objective(const double* u) const {
+  constexpr double kNoDesign = 1e6;  // beyond every real miss, so that the search leaves it
+  FingerParameters p;
+  if (!design(u, p)) return kNoDesign;
+  double sum = 0.0;
+  for (const DesignTarget& t : request_->targets) {
+    const double e = relativeMiss(designQuantity(p, t), t);
+    if (!std::isfinite(e)) return kNoDesign;
+    sum += e * e;
+  }
+  return sum;
+}
+
+// The grid's points of a search over @p k keys, in the unit cube: 17 along one key, 9 by 9 for two, a 3^k lattice
+// for more.
+std::vector<std::vector<double>> gridPoints(std::size_t k) {
+  const int per = k == 1 ? 17 : k == 2 ? 9 : 3;
+  std::vector<std::vector<double>> points;
+  std::vector<int> index(k, 0);
+  while (true) {
+    std::vector<double> u(k);
+    for (std::size_t j = 0; j < k; ++j) u[j] = static_cast<double>(index[j]) / (per - 1);
+    points.push_back(u);
+    std::size_t j = 0;
+    while (j < k && ++index[j] == per) index[j++] = 0;
+    if (j == k) return points;
+  }
+}
+
+// NLopt's Subplex from @p start, bounded by the cube: it needs no derivative and steps over the region with no
+// design (whose objective is a constant).
+std::pair<double, std::vector<double>> localSearch(const DesignSpace& space, std::vector<double> u) {
+  const auto k = static_cast<unsigned>(u.size());
+  nlopt::opt opt(nlopt::LN_SBPLX, k);
+  opt.set_lower_bounds(std::vector<double>(k, 0.0));
+  opt.set_upper_bounds(std::vector<double>(k, 1.0));
+  opt.set_min_objective([](unsigned, const double* x, double*, void* s) {
+    return static_cast<const DesignSpace*>(s)->objective(x);
+  }, const_cast<DesignSpace*>(&space));
+  opt.set_xtol_abs(1e-12);
+  opt.set_ftol_abs(1e-24);
+  opt.set_maxeval(1000 * static_cast<int>(k));
+  opt.set_initial_step(std::vector<double>(k, 0.05));
+  double value = HUGE_VAL;
+  try {
+    opt.optimize(u, value);
+  } catch (const std::exception&) {
+    value = space.objective(u.data());  // a roundoff limit: the point reached stands
+  }
+  return {value, u};
+}
+
+// The best point over one chamber count: the grid's five best, each searched locally, the best searched again from
+// where it ended (Subplex's simplex, restarted, leaves a narrow valley it had stalled in).
+std::pair<double, std::vector<double>> searchCount(const DesignSpace& space) {
+  std::vector<std::pair<double, std::vector<double>>> scanned;
+  for (const auto& u : gridPoints(space.size())) scanned.emplace_back(space.objective(u.data()), u);
+  std::stable_sort(scanned.begin(), scanned.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  std::pair<double, std::vector<double>> best{HUGE_VAL, {}};
+  for (std::size_t i = 0; i < scanned.size() && i < 5; ++i) {
+    auto found = localSearch(space, scanned[i].second);
+    if (found.first < best.first) best = std::move(found);
+  }
+  auto again = localSearch(space, best.second);
+  return again.first < best.first ? again : best;
+}
+
+// The answer at @p u: the design, what it achieves, how far it reaches, and the keys at a bound.
+DesignAnswer answerAt(const DesignSpace& space, const DesignRequest& request, const std::vector<double>& u) {
+  DesignAnswer a;
+  if (!space.design(u.data(), a.parameters)) throw ParameterError("no design in the bounds that the model accepts");
+  a.chamber_count = a.parameters.chamber_count;
+  a.values = space.values(u.data());
+  a.drawn = space.drawn();
+  for (const DesignTarget& t : request.targets) {
+    a.achieved.push_back(designQuantity(a.parameters, t));
+    a.miss = std::max(a.miss, std::fabs(relativeMiss(a.achieved.back(), t)));
+  }
+  a.met = a.miss <= kDesignTolerance;
+  for (std::size_t k = 0; k < u.size(); ++k) {
+    a.reach = std::max(a.reach, std::fabs(std::log(a.values[k] / space.drawn()[k])));
+    if (u[k] > 1e-9 && u[k] < 1.0 - 1e-9) continue;
+    a.at_bound.push_back(request.free[k].key + " at its " + (u[k] <= 1e-9 ? "lower" : "upper") + " bound " +
+                         formatMessage(a.values[k]) + " m");
+  }
+  return a;
+}
+
+}  // namespace
+
+DesignAnswer designToTarget(const FingerParameters& base, const DesignRequest& request) {
+  const auto began = std::chrono::steady_clock::now();
+  if (!drawingFromRaw(base.drawing)) throw ParameterError("the base parameters have no drawing to design from");
+  if (request.targets.empty() || request.free.empty()) {
+    throw ParameterError("a design needs a target (--target) and a drawing size to change (--free drawing/KEY)");
+  }
+  for (const FreeDrawingKey& f : request.free) {
+    const std::string name = f.key.substr(std::min(f.key.size(), std::string(kDrawingPrefix).size()));
+    const bool known = f.key.rfind(kDrawingPrefix, 0) == 0 && std::count(std::begin(kFittableDrawn),
+                                                                          std::end(kFittableDrawn), name) > 0;
+    if (!known) throw ParameterError("--free " + f.key + ": not a drawing size the search may change");
+    const auto same = [&f](const FreeDrawingKey& g) { return g.key == f.key; };
+    if (std::count_if(request.free.begin(), request.free.end(), same) > 1) {
+      throw ParameterError("--free " + f.key + " given twice");
+    }
+  }
+  const std::vector<int> counts =
+      request.chamber_counts.empty() ? std::vector<int>{base.chamber_count} : request.chamber_counts;
+  DesignAnswer best;
+  bool found = false;
+  for (int count : counts) {
+    const DesignSpace space(base, request, count);
+    const auto point = searchCount(space);
+    if (!(point.first < 1e6)) continue;  // no design of this count in the bounds
+    DesignAnswer a = answerAt(space, request, point.second);
+    // Of the counts that meet the targets, the one nearest the base drawing; else the one that misses least.
+    const bool better = !found || (a.met && !best.met) ||
+                        (a.met == best.met && (a.met ? a.reach < best.reach : a.miss < best.miss));
+    if (better) best = std::move(a), found = true;
+  }
+  if (!found) throw ParameterError("no design in the bounds that the model accepts");
+  best.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
+  return best;
+}
+
+std::string designParameterYaml(const DesignAnswer& answer, const DesignRequest& request, double max_gauge_pa) {
+  std::ostringstream head;
+  head << "# A designed actuator, written by `finger_design --target` (docs/DESIGN.md): the base file's material and\n"
+       << "# effective keys, its drawing with these sizes. No actuator's data validate it: every answer is a zero-shot\n"
+       << "# prediction until it is cast and measured.\n# targets:";
+  for (std::size_t i = 0; i < request.targets.size(); ++i) {
+    head << " " << request.targets[i].text << " (achieved " << formatExact(answer.achieved[i]) << ")";
+  }
+  head << "\n# chamber_count " << answer.chamber_count << ";";
+  for (std::size_t k = 0; k < request.free.size(); ++k) {
+    head << " " << request.free[k].key << " = " << formatExact(answer.values[k]);
+  }
+  head << "\n# " << (answer.met ? "met" : "NOT met: the nearest design the bounds allow") << "; largest miss "
+       << formatMessage(answer.miss) << "; reach from the base drawing (largest |ln(size / drawn)|) "
+       << formatMessage(answer.reach) << "\n";
+  for (const std::string& b : answer.at_bound) head << "# stopped by " << b << "\n";
+  PressureRange range;
+  range.max_gauge_pa = max_gauge_pa;
+  range.validated_max_gauge_pa = 0.0;
+  return head.str() + "\n" + parametersToYaml(answer.parameters) + "\n" + rangeToYaml(range);
+}
+
+}  // namespace pneumatic_finger

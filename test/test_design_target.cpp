@@ -1,0 +1,112 @@
+// Design to spec (design_target.hpp): the search recovers a known design from its own quantity, its answer loads back
+// to the same prediction, a target out of reach names the bound that stops it, and bad requests are refused.
+#include <gtest/gtest.h>
+
+#include <yaml-cpp/yaml.h>
+
+#include <cmath>
+#include <string>
+
+#include "pneumatic_finger/calibration/design_target.hpp"
+#include "pneumatic_finger/core/yaml_parameters.hpp"
+
+namespace pf = pneumatic_finger;
+
+namespace {
+
+pf::FingerParameters epfl(const pf::RawParameterMap& extra = {}) {
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/epfl_ecoflex30_c7.yaml", raw);
+  for (const auto& [key, value] : extra) raw[key] = value;
+  return pf::FingerParameters::fromRaw(raw);
+}
+
+pf::DesignRequest wallFor(const std::string& target, int count) {
+  pf::DesignRequest r;
+  r.targets = {pf::parseDesignTarget(target)};
+  r.free = {{"drawing/wall_thickness_m", 0.0, 0.0}};
+  r.chamber_counts = {count};
+  return r;
+}
+
+}  // namespace
+
+// A 5-chamber sibling with 5 mm walls snaps at S (its own model's snapGaugePa); asked for a snap at S from the 7-chamber
+// file, the search returns 5 mm, and the written answer loads back to the same snap.
+TEST(DesignTarget, FindsTheWallOfAKnownSiblingFromItsSnap) {
+  const pf::FingerParameters sibling = epfl({{"drawing/chamber_count", {{5}, false}},
+                                             {"drawing/wall_thickness_m", {{0.005}, false}}});
+  const double snap_pa = pf::designQuantity(sibling, pf::parseDesignTarget("snap_gauge_pa=1"));
+  const pf::DesignRequest request = wallFor("snap_gauge_pa=" + pf::formatExact(snap_pa), 5);
+  const pf::DesignAnswer a = pf::designToTarget(epfl(), request);
+  ASSERT_TRUE(a.met) << a.miss;
+  EXPECT_EQ(a.chamber_count, 5);
+  EXPECT_NEAR(a.values[0], 0.005, 0.005 * 1e-6);
+  EXPECT_NEAR(a.reach, std::log(0.007 / 0.005), 1e-5);
+  EXPECT_TRUE(a.at_bound.empty());
+  // Written and read back: the design's own snap, to the bit of its written numbers.
+  const pf::ParameterTree tree = pf::readParameterTree(YAML::Load(pf::designParameterYaml(a, request, 5e4)), "designed");
+  const pf::FingerParameters loaded = pf::FingerParameters::fromRaw(tree.raw);
+  EXPECT_EQ(pf::designQuantity(loaded, request.targets[0]), a.achieved[0]);
+  EXPECT_EQ(tree.range.validated_max_gauge_pa, 0.0);  // no actuator's data validate a drawing not yet cast
+  EXPECT_EQ(tree.range.max_gauge_pa, 5e4);
+}
+
+// Beyond the bounds: the nearest design, and the bound that stops it. The castable thickness bounds the wall below.
+TEST(DesignTarget, ATargetOutOfReachGivesTheNearestAndItsBound) {
+  pf::DesignRequest request = wallFor("snap_gauge_pa=90000", 5);
+  request.free[0].hi = 0.012;
+  const pf::DesignAnswer a = pf::designToTarget(epfl(), request);
+  EXPECT_FALSE(a.met);
+  EXPECT_NEAR(a.values[0], 0.012, 1e-12);
+  ASSERT_EQ(a.at_bound.size(), 1u);
+  EXPECT_EQ(a.at_bound[0], "drawing/wall_thickness_m at its upper bound 0.012 m");
+  EXPECT_NEAR(a.miss, 1.0 - a.achieved[0] / 90000.0, 1e-15);
+  request = wallFor("snap_gauge_pa=1000", 5);  // a wall far thinner than can be cast
+  request.castable_m = 0.002;
+  const pf::DesignAnswer thin = pf::designToTarget(epfl(), request);
+  EXPECT_FALSE(thin.met);
+  EXPECT_NEAR(thin.values[0], 0.002, 1e-12);
+  EXPECT_EQ(thin.at_bound[0], "drawing/wall_thickness_m at its lower bound 0.002 m");
+}
+
+// The bend at a pressure, a target of its own kind: the design's tip angle there is the target's.
+TEST(DesignTarget, MeetsABendAtAPressure) {
+  pf::DesignRequest request;
+  request.targets = {pf::parseDesignTarget("tip_angle_rad@30000=0.5")};
+  request.free = {{"drawing/cavity_height_m", 0.0, 0.0}};
+  const pf::DesignAnswer a = pf::designToTarget(epfl(), request);
+  ASSERT_TRUE(a.met) << a.miss;
+  EXPECT_NEAR(a.achieved[0], 0.5, 0.5e-8);  // the search goes on to its numerical limit
+  // The model every interface builds (with the wall's inverse, which the search skips: the same stretch within
+  // 4e-15) gives the reported bend to 1e-12.
+  pf::FingerModel model(a.parameters);
+  pf::FingerWorkspace ws(model);
+  EXPECT_NEAR(model.evaluate(30000.0, ws).tip_angle_rad, a.achieved[0], 1e-12);
+}
+
+TEST(DesignTarget, RefusesWhatItCannotSearch) {
+  const auto refusal = [](auto&& call) {
+    try {
+      call();
+    } catch (const pf::ParameterError& e) {
+      return std::string(e.what());
+    }
+    return std::string();
+  };
+  EXPECT_NE(refusal([] { pf::parseDesignTarget("snap_gauge_pa"); }).find("no '='"), std::string::npos);
+  EXPECT_NE(refusal([] { pf::parseDesignTarget("tip_angle_rad=1"); }).find("tip_angle_rad needs '@'"),
+            std::string::npos);
+  EXPECT_NE(refusal([] { pf::parseDesignTarget("snap_gauge_pa@3=1"); }).find("takes no '@'"), std::string::npos);
+  EXPECT_NE(refusal([] { pf::parseDesignTarget("snap_gauge_pa=nan"); }).find("'nan' is not a finite number"),
+            std::string::npos);
+  pf::DesignRequest request = wallFor("snap_gauge_pa=40000", 5);
+  request.free = {{"chamber_gap_m", 0.0, 0.0}};
+  EXPECT_NE(refusal([&] { pf::designToTarget(epfl(), request); }).find("--free chamber_gap_m: not a drawing size"),
+            std::string::npos);
+  request.free = {{"drawing/wall_thickness_m", 0.0, 0.0005}};
+  EXPECT_NE(refusal([&] { pf::designToTarget(epfl(), request); }).find("hold no size"), std::string::npos);
+  EXPECT_NE(refusal([&] { pf::designToTarget(pf::FingerParameters::defaults(), wallFor("snap_gauge_pa=1", 5)); })
+                .find("no drawing"),
+            std::string::npos);
+}
