@@ -90,6 +90,9 @@ const std::vector<ParameterSpec>& drawingParameterSpecs() {
        "the solid passive base from the mount to the first end wall (default 0)"},
       {"body_width_m", "-", "m", kRequired, 0, false, 1.0, ParameterShape::kScalar,
        "the body's width, across (default: the cavity and a wall each side)"},
+      {"layer_thickness_m", "-", "m", 0.0, 0, true, 0.5, ParameterShape::kScalar,
+       "the strain-limiting layer under the body, below the bending axis (default 0: not drawn). The model bends "
+       "about its top and does not use it; the body's mesh (finger_urdf --stl) does"},
   };
   return specs;
 }
@@ -131,6 +134,7 @@ std::optional<ActuatorDrawing> drawingFromRaw(const RawParameterMap& raw) {
   d.gap_m = drawn(raw, "gap_m", 0.0);
   d.base_length_m = drawn(raw, "base_length_m", 0.0);
   d.body_width_m = drawn(raw, "body_width_m", d.cavity_width_m + 2.0 * d.wall_thickness_m);
+  d.layer_thickness_m = drawn(raw, "layer_thickness_m", 0.0);
   checkFits(d);
   return d;
 }

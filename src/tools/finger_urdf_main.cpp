@@ -3,8 +3,12 @@
 #include <cmath>
 #include <fstream>
 #include <iostream>
+#include <optional>
+#include <string>
 
+#include "pneumatic_finger/core/drawing.hpp"
 #include "pneumatic_finger/core/pressure_range.hpp"
+#include "pneumatic_finger/description/body_mesh.hpp"
 #include "pneumatic_finger/description/finger_urdf.hpp"
 #include "pneumatic_finger/sim/finger_mjcf.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
@@ -57,6 +61,61 @@ std::string gripperFingerUrdf(const std::string& gripper, const pf::FingerUrdfOp
   throw pf::ParameterError("gripper file '" + gripper + "' has no finger with prefix '" + options.prefix + "'");
 }
 
+// What else finger_urdf writes instead of one finger's URDF: the cell composed, a MuJoCo model, the body's mesh.
+struct OutputKinds {
+  std::string robot, gripper;
+  bool mjcf = false, stl = false;
+  pf::MjcfOptions mjcf_options;
+  std::string mjcf_gauge;
+
+  void addTo(CLI::App& app) {
+    auto* robot_opt = app.add_option("--robot", robot, "compose: the robot's URDF, to which every finger of --gripper "
+                                                        "is attached");
+    auto* gripper_opt = app.add_option("--gripper", gripper,
+                                       "the gripper file (YAML: per finger prefix, parent, xyz, rpy, config); with "
+                                       "--robot compose them all, without it write the finger with --prefix");
+    robot_opt->needs(gripper_opt);
+    app.add_flag("--mjcf", mjcf,
+                 "write a MuJoCo model (MJCF) instead: the finger's joints carry springs that hold the twin's shape "
+                 "and moments at --gauge-pa (docs/SIMULATION.md)");
+    app.add_option("--gauge-pa", mjcf_gauge, "with --mjcf: the pressure whose springs the joints carry (Pa gauge; 0)");
+    app.add_flag("--stl", stl,
+                 "write the drawn body as a mesh instead: ASCII STL in metres, the elastomer with its cavities "
+                 "(docs/DRAWING.md, \"The body as a mesh\"); needs a drawing");
+  }
+};
+
+// The text finger_urdf writes for @p kinds: the MJCF, the composed cell, one gripper finger, the body's mesh or the
+// finger's URDF.
+std::string describe(pf::ParameterOptions& parameters, pf::FingerUrdfOptions& options, const OutputKinds& kinds,
+                     const std::string& max_text) {
+  // The file's range by the loader's one rule, its top replaced by --max-gauge-pa when given.
+  const pf::PressureRange range = parameters.loadRange(max_text);
+  options.max_gauge_pa = range.max_gauge_pa;
+  if (!kinds.mjcf_gauge.empty() && !kinds.mjcf) throw pf::ParameterError("--gauge-pa needs --mjcf");
+  if (kinds.stl) {
+    if (kinds.mjcf || !kinds.gripper.empty()) throw pf::ParameterError("--stl writes one drawn body: no --mjcf, --gripper");
+    const std::optional<pf::ActuatorDrawing> drawing = pf::drawingFromRaw(parameters.load().drawing);
+    if (!drawing) throw pf::ParameterError("--stl: the parameters have no drawing (docs/DRAWING.md)");
+    return pf::meshToStl(pf::drawnBodyMesh(*drawing), options.prefix + "body");
+  }
+  if (kinds.mjcf) {
+    pf::MjcfOptions mjcf_options = kinds.mjcf_options;
+    if (!kinds.mjcf_gauge.empty()) {
+      mjcf_options.gauge_pa = springGaugePa(kinds.mjcf_gauge, range, parameters.load().atmospheric_pressure_pa);
+    }
+    if (!kinds.gripper.empty() && kinds.robot.empty()) {
+      throw pf::ParameterError("--mjcf with --gripper needs --robot (the whole cell), or neither (one finger)");
+    }
+    return kinds.robot.empty() ? pf::fingerMjcf(parameters.load(), options, mjcf_options)
+                               : pf::composedMjcf(kinds.robot, kinds.gripper, mjcf_options);
+  }
+  // One description for the whole robot: what robot_state_publisher, rviz and a planner read.
+  if (!kinds.robot.empty()) return pf::composeRobotUrdfFiles(kinds.robot, kinds.gripper);
+  if (!kinds.gripper.empty()) return gripperFingerUrdf(kinds.gripper, options, !max_text.empty());
+  return pf::fingerUrdf(parameters.load(), options);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -64,56 +123,25 @@ int main(int argc, char** argv) {
   pf::ParameterOptions parameters;
   parameters.addTo(app);
   pf::FingerUrdfOptions options;
-  std::string xyz, rpy, output;
+  std::string xyz, rpy, output, max_text;
   app.add_option("--prefix", options.prefix, "prefix of every link and joint name")->capture_default_str();
   app.add_option("--parent", options.parent_frame, "the link the finger is mounted on")->capture_default_str();
   app.add_option("--xyz", xyz, "mount position X,Y,Z in the parent (m)");
   app.add_option("--rpy", rpy, "mount orientation R,P,Y in the parent (rad)");
-  std::string max_text;
   app.add_option("--max-gauge-pa", max_text,
                  "pressure that sets the joint limits (Pa gauge); default: the parameter file's max_gauge_pa");
   app.add_option("-o,--output", output, "write here instead of stdout");
-  std::string robot, gripper;
-  auto* robot_opt = app.add_option("--robot", robot, "compose: the robot's URDF, to which every finger of --gripper is attached");
-  auto* gripper_opt = app.add_option("--gripper", gripper,
-                                     "the gripper file (YAML: per finger prefix, parent, xyz, rpy, config); with --robot "
-                                     "compose them all, without it write the finger with --prefix");
-  robot_opt->needs(gripper_opt);
-  bool mjcf = false;
-  pf::MjcfOptions mjcf_options;
-  std::string mjcf_gauge;
-  app.add_flag("--mjcf", mjcf,
-               "write a MuJoCo model (MJCF) instead: the finger's joints carry springs that hold the twin's shape and "
-               "moments at --gauge-pa (docs/SIMULATION.md)");
-  app.add_option("--gauge-pa", mjcf_gauge, "with --mjcf: the pressure whose springs the joints carry (Pa gauge; 0)");
+  OutputKinds kinds;
+  kinds.addTo(app);
   return pf::runTool("finger_urdf", app, argc, argv, [&] {
     if (!xyz.empty()) options.mount_xyz_m = parseTriple("--xyz", xyz);
     if (!rpy.empty()) options.mount_rpy_rad = parseTriple("--rpy", rpy);
-    // The file's range by the loader's one rule, its top replaced by --max-gauge-pa when given.
-    const pf::PressureRange range = parameters.loadRange(max_text);
-    options.max_gauge_pa = range.max_gauge_pa;
-    std::string urdf;
-    if (!mjcf_gauge.empty() && !mjcf) throw pf::ParameterError("--gauge-pa needs --mjcf");
-    if (mjcf) {
-      if (!mjcf_gauge.empty()) mjcf_options.gauge_pa = springGaugePa(mjcf_gauge, range, parameters.load().atmospheric_pressure_pa);
-      if (!gripper.empty() && robot.empty()) {
-        throw pf::ParameterError("--mjcf with --gripper needs --robot (the whole cell), or neither (one finger)");
-      }
-      urdf = robot.empty() ? pf::fingerMjcf(parameters.load(), options, mjcf_options)
-                           : pf::composedMjcf(robot, gripper, mjcf_options);
-    } else if (!robot.empty()) {
-      // One description for the whole robot: what robot_state_publisher, rviz and a planner read.
-      urdf = pf::composeRobotUrdfFiles(robot, gripper);
-    } else if (!gripper.empty()) {
-      urdf = gripperFingerUrdf(gripper, options, !max_text.empty());
-    } else {
-      urdf = pf::fingerUrdf(parameters.load(), options);
-    }
+    const std::string text = describe(parameters, options, kinds, max_text);
     if (output.empty()) {
-      std::cout << urdf;
+      std::cout << text;
     } else {
       std::ofstream out(output);
-      if (!(out << urdf)) throw pf::ParameterError("cannot write '" + output + "'");
+      if (!(out << text)) throw pf::ParameterError("cannot write '" + output + "'");
     }
     return 0;
   });

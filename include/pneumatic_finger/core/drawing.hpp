@@ -28,6 +28,8 @@ struct ActuatorDrawing {
   double gap_m = 0.0;                 ///< air gap splitting each wall between cavities in two (0: one solid wall)
   double base_length_m = 0.0;         ///< solid passive base from the mount to the first end wall (0)
   double body_width_m = 0.0;          ///< across the finger (default: the cavity and two walls)
+  double layer_thickness_m = 0.0;     ///< the strain-limiting layer under the body (0: not drawn); the model bends
+                                      ///< about its top and does not use it; the body's mesh does
 };
 
 /// The drawing's keys: their one definition (names without the prefix; NaN default: required).
