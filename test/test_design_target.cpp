@@ -110,3 +110,27 @@ TEST(DesignTarget, RefusesWhatItCannotSearch) {
                 .find("no drawing"),
             std::string::npos);
 }
+
+// Two targets one free size cannot both meet: the front runs from the design that meets the first to the one that
+// meets the second, no design on it beats another on both, and each design's reported quantities are its own.
+TEST(DesignTarget, AParetoFrontOfTwoTargetsThatPullApart) {
+  pf::DesignRequest request = wallFor("snap_gauge_pa=40000", 5);
+  request.targets.push_back(pf::parseDesignTarget("tip_angle_rad@30000=0.6"));
+  const std::vector<pf::DesignAnswer> front = pf::designParetoFront(epfl(), request, 8);
+  ASSERT_GE(front.size(), 3u);
+  EXPECT_LT(std::fabs(front.front().misses[0]), 1e-6);  // the snap met, the bend not
+  EXPECT_GT(std::fabs(front.front().misses[1]), 0.1);
+  EXPECT_LT(std::fabs(front.back().misses[1]), 1e-6);   // the bend met, the snap not
+  for (std::size_t i = 0; i + 1 < front.size(); ++i) {
+    // Along the front one miss falls as the other rises.
+    EXPECT_LE(std::fabs(front[i].misses[0]), std::fabs(front[i + 1].misses[0]));
+    EXPECT_GE(std::fabs(front[i].misses[1]), std::fabs(front[i + 1].misses[1]));
+  }
+  for (const pf::DesignAnswer& a : front) {
+    for (std::size_t t = 0; t < 2; ++t) {
+      EXPECT_EQ(pf::designQuantity(a.parameters, request.targets[t]), a.achieved[t]);
+    }
+  }
+  request.targets.pop_back();
+  EXPECT_THROW(pf::designParetoFront(epfl(), request, 8), pf::ParameterError);  // one target has no front
+}

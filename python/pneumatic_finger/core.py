@@ -117,7 +117,7 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
 
 
 def design_to_target(targets, free, config=None, overrides=None, chamber_counts=None, castable_m=1e-3,
-                     max_body_m=(0.0, 0.0, 0.0), output=None):
+                     max_body_m=(0.0, 0.0, 0.0), output=None, pareto=0):
     """finger_design --target from Python: the drawing that meets the targets, from a calibrated file's material.
 
     targets: "QUANTITY=VALUE" or "QUANTITY@AT=VALUE" strings (snap_gauge_pa, limit_gauge_pa, contact_gauge_pa in Pa;
@@ -128,11 +128,14 @@ def design_to_target(targets, free, config=None, overrides=None, chamber_counts=
 
     Returns a dict: values (key -> m), drawn (key -> the base drawing's size, m), chamber_count, achieved (target -> value), miss (the largest relative miss),
     met, at_bound (the keys that stop it, where not met), reach (the largest |ln(size / drawn)|: how far the answer
-    leaves the base drawing), seconds, parameter_file (its text; output= writes it, as finger_design --output)."""
+    leaves the base drawing), seconds, parameter_file (its text; output= writes it, as finger_design --output), and
+    pareto: with pareto=N (two targets or more), the Pareto front of targets that pull against each other, a list of
+    dicts (values, chamber_count, achieved, misses: each target's relative miss, reach), the weights of the targets'
+    squared misses stepping by 1/N over the simplex; [] otherwise."""
     bounds = dict(free) if isinstance(free, dict) else {key: (0.0, 0.0) for key in free}
     result = _design_to_target(config if config is not None else default_config(), dict(overrides or {}),
                                list(targets), {k: list(v) for k, v in bounds.items()}, list(chamber_counts or []),
-                               float(castable_m), [float(x) for x in max_body_m])
+                               float(castable_m), [float(x) for x in max_body_m], int(pareto))
     if output is not None:
         with open(output, "w") as f:
             f.write(result["parameter_file"])

@@ -7,6 +7,7 @@
 #include <chrono>
 #include <cmath>
 #include <cstdlib>
+#include <functional>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -113,6 +114,10 @@ class DesignSpace {
   bool design(const double* u, FingerParameters& p) const;
   /// The targets' relative misses squared and summed; a large number where there is no design or no quantity.
   double objective(const double* u) const;
+  /// Each target's weight in objective() (all 1 at first).
+  void setWeights(std::vector<double> weights) { weights_ = std::move(weights); }
+  /// Where @p values (m, one per free key) sit in the cube.
+  std::vector<double> pointOf(const std::vector<double>& values) const;
   std::vector<double> values(const double* u) const;
   const FingerParameters& start() const { return start_; }
   const std::vector<double>& drawn() const { return drawn_; }
@@ -124,10 +129,11 @@ class DesignSpace {
   const DesignRequest* request_;
   std::vector<std::string> keys_;
   std::vector<double> lo_, hi_, drawn_;  // log10 of m; the drawn sizes (m)
+  std::vector<double> weights_;
 };
 
 DesignSpace::DesignSpace(const FingerParameters& base, const DesignRequest& request, int count)
-    : start_(base), request_(&request) {
+    : start_(base), request_(&request), weights_(request.targets.size(), 1.0) {
   if (count > 0) setKey(start_, "drawing/chamber_count", count);
   for (const FreeDrawingKey& f : request.free) {
     const double drawn = drawnSize(start_, f.key.substr(std::string(kDrawingPrefix).size()));
@@ -142,6 +148,14 @@ DesignSpace::DesignSpace(const FingerParameters& base, const DesignRequest& requ
     hi_.push_back(std::log10(hi));
     drawn_.push_back(drawn);
   }
+}
+
+std::vector<double> DesignSpace::pointOf(const std::vector<double>& values) const {
+  std::vector<double> u;
+  for (std::size_t k = 0; k < keys_.size(); ++k) {
+    u.push_back(std::clamp((std::log10(values[k]) - lo_[k]) / (hi_[k] - lo_[k]), 0.0, 1.0));
+  }
+  return u;
 }
 
 std::vector<double> DesignSpace::values(const double* u) const {
@@ -174,10 +188,10 @@ double DesignSpace::objective(const double* u) const {
   FingerParameters p;
   if (!design(u, p)) return kNoDesign;
   double sum = 0.0;
-  for (const DesignTarget& t : request_->targets) {
-    const double e = relativeMiss(designQuantity(p, t), t);
+  for (std::size_t i = 0; i < request_->targets.size(); ++i) {
+    const double e = relativeMiss(designQuantity(p, request_->targets[i]), request_->targets[i]);
     if (!std::isfinite(e)) return kNoDesign;
-    sum += e * e;
+    sum += weights_[i] * e * e;
   }
   return sum;
 }
@@ -245,7 +259,8 @@ DesignAnswer answerAt(const DesignSpace& space, const DesignRequest& request, co
   a.drawn = space.drawn();
   for (const DesignTarget& t : request.targets) {
     a.achieved.push_back(designQuantity(a.parameters, t));
-    a.miss = std::max(a.miss, std::fabs(relativeMiss(a.achieved.back(), t)));
+    a.misses.push_back(relativeMiss(a.achieved.back(), t));
+    a.miss = std::max(a.miss, std::fabs(a.misses.back()));
   }
   a.met = a.miss <= kDesignTolerance;
   for (std::size_t k = 0; k < u.size(); ++k) {
@@ -292,6 +307,75 @@ DesignAnswer designToTarget(const FingerParameters& base, const DesignRequest& r
   if (!found) throw ParameterError("no design in the bounds that the model accepts");
   best.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   return best;
+}
+
+namespace {
+
+// Every weight vector of @p targets entries, each a multiple of 1 / @p points, summing to 1.
+std::vector<std::vector<double>> simplexWeights(std::size_t targets, int points) {
+  std::vector<std::vector<double>> out;
+  std::vector<int> steps(targets, 0);
+  const std::function<void(std::size_t, int)> fill = [&](std::size_t i, int left) {
+    if (i + 1 == targets) {
+      steps[i] = left;
+      std::vector<double> w;
+      for (int s : steps) w.push_back(static_cast<double>(s) / points);
+      out.push_back(w);
+      return;
+    }
+    for (int s = 0; s <= left; ++s) steps[i] = s, fill(i + 1, left - s);
+  };
+  fill(0, points);
+  return out;
+}
+
+// Misses that differ by less than this are the same: the local searches end within it of each other.
+constexpr double kSameMiss = 1e-6;
+
+// Whether @p a misses no target more than @p b, and one clearly less.
+bool dominates(const DesignAnswer& a, const DesignAnswer& b) {
+  bool less = false;
+  for (std::size_t i = 0; i < a.misses.size(); ++i) {
+    if (std::fabs(a.misses[i]) > std::fabs(b.misses[i]) + kSameMiss) return false;
+    less = less || std::fabs(a.misses[i]) < std::fabs(b.misses[i]) - kSameMiss;
+  }
+  return less;
+}
+
+bool sameMisses(const DesignAnswer& a, const DesignAnswer& b) {
+  for (std::size_t i = 0; i < a.misses.size(); ++i) {
+    if (std::fabs(a.misses[i] - b.misses[i]) > kSameMiss) return false;
+  }
+  return true;
+}
+
+}  // namespace
+
+std::vector<DesignAnswer> designParetoFront(const FingerParameters& base, const DesignRequest& request, int points) {
+  if (request.targets.size() < 2 || points < 1) {
+    throw ParameterError("a Pareto front needs two targets or more (--target) and at least one step (--pareto N)");
+  }
+  const DesignAnswer first = designToTarget(base, request);
+  DesignSpace space(base, request, first.chamber_count);
+  const std::vector<double> start = space.pointOf(first.values);
+  std::vector<DesignAnswer> found;
+  for (const std::vector<double>& w : simplexWeights(request.targets.size(), points)) {
+    space.setWeights(w);
+    const auto point = localSearch(space, start);
+    FingerParameters p;
+    if (space.design(point.second.data(), p)) found.push_back(answerAt(space, request, point.second));
+  }
+  std::vector<DesignAnswer> front;
+  for (const DesignAnswer& a : found) {
+    const bool beaten = std::any_of(found.begin(), found.end(), [&a](const DesignAnswer& b) { return dominates(b, a); });
+    const bool repeated =
+        std::any_of(front.begin(), front.end(), [&a](const DesignAnswer& b) { return sameMisses(a, b); });
+    if (!beaten && !repeated) front.push_back(a);
+  }
+  std::sort(front.begin(), front.end(), [](const DesignAnswer& a, const DesignAnswer& b) {
+    return std::fabs(a.misses[0]) < std::fabs(b.misses[0]);
+  });
+  return front;
 }
 
 std::string designParameterYaml(const DesignAnswer& answer, const DesignRequest& request, double max_gauge_pa) {

@@ -30,16 +30,35 @@ pf::DesignRequest designRequest(const std::vector<std::string>& targets, const p
   return r;
 }
 
+// One design of a Pareto front: its sizes, count, what it achieves and misses, and its reach.
+py::dict frontDesign(const pf::DesignAnswer& a, const pf::DesignRequest& request) {
+  py::dict values, achieved, misses;
+  for (std::size_t k = 0; k < request.free.size(); ++k) values[py::str(request.free[k].key)] = a.values[k];
+  for (std::size_t i = 0; i < request.targets.size(); ++i) {
+    achieved[py::str(request.targets[i].text)] = a.achieved[i];
+    misses[py::str(request.targets[i].text)] = a.misses[i];
+  }
+  py::dict d;
+  d["values"] = values;
+  d["chamber_count"] = a.chamber_count;
+  d["achieved"] = achieved;
+  d["misses"] = misses;
+  d["reach"] = a.reach;
+  return d;
+}
+
 py::dict designToTarget(const std::string& config, const py::dict& overrides, const std::vector<std::string>& targets,
                         const py::dict& free, const std::vector<int>& chamber_counts, double castable_m,
-                        const std::vector<double>& max_body_m) {
+                        const std::vector<double>& max_body_m, int pareto) {
   pf::PressureRange range;
   const pf::FingerParameters base = pf::FingerParameters::fromRaw(loadRaw(config, overrides, &range));
   const pf::DesignRequest request = designRequest(targets, free, chamber_counts, castable_m, max_body_m);
   pf::DesignAnswer a;
+  std::vector<pf::DesignAnswer> front;
   {
     py::gil_scoped_release release;
     a = pf::designToTarget(base, request);
+    if (pareto > 0) front = pf::designParetoFront(base, request, pareto);
   }
   py::dict values, drawn, achieved;
   for (std::size_t k = 0; k < request.free.size(); ++k) {
@@ -58,6 +77,9 @@ py::dict designToTarget(const std::string& config, const py::dict& overrides, co
   d["reach"] = a.reach;
   d["seconds"] = a.seconds;
   d["parameter_file"] = pf::designParameterYaml(a, request, range.max_gauge_pa);
+  py::list designs;
+  for (const pf::DesignAnswer& f : front) designs.append(frontDesign(f, request));
+  d["pareto"] = designs;
   return d;
 }
 
@@ -65,7 +87,7 @@ py::dict designToTarget(const std::string& config, const py::dict& overrides, co
 
 void defineDesign(py::module_& m) {
   m.def("design_to_target", &designToTarget, py::arg("config"), py::arg("overrides"), py::arg("targets"),
-        py::arg("free"), py::arg("chamber_counts"), py::arg("castable_m"), py::arg("max_body_m"),
+        py::arg("free"), py::arg("chamber_counts"), py::arg("castable_m"), py::arg("max_body_m"), py::arg("pareto"),
         "finger_design --target (use pneumatic_finger.core.design_to_target)");
 }
 

@@ -46,6 +46,7 @@ struct DesignAnswer {
   std::vector<double> values;     ///< each free key's value (m), in the request's order
   std::vector<double> drawn;      ///< each free key's size in the base drawing (m; its default where not given)
   std::vector<double> achieved;   ///< each target's quantity for the design, in the targets' order
+  std::vector<double> misses;     ///< each target's relative miss, achieved / value - 1 (achieved where value is 0)
   double miss = 0.0;              ///< the largest |achieved / value - 1| over the targets (|achieved| where value is 0)
   bool met = false;               ///< every target within kDesignTolerance (relative)
   std::vector<std::string> at_bound;  ///< "drawing/KEY at its upper bound 0.014 m" for each key that stops the search
@@ -64,6 +65,13 @@ double designQuantity(const FingerParameters& p, const DesignTarget& target);
 /// drawing, an unknown or repeated free key, a key that is not a positive drawing size, bounds that do not hold the
 /// castable thickness, a target that is not finite, or no design in the bounds that the model accepts
 DesignAnswer designToTarget(const FingerParameters& base, const DesignRequest& request);
+
+/// Targets that pull against each other: the Pareto front of the best chamber count (designToTarget's). The designs
+/// minimising weighted sums of the targets' squared relative misses, the weights spread evenly over the simplex
+/// (@p points steps along each edge: every weight a multiple of 1 / @p points), each searched locally from the
+/// unweighted answer; kept are those no other design misses less on every target, in the order of the first target's
+/// miss. @throws ParameterError as designToTarget, and for fewer than two targets or @p points below 1
+std::vector<DesignAnswer> designParetoFront(const FingerParameters& base, const DesignRequest& request, int points);
 
 /// The answer's parameter file: its parameters, the base's range top with validated_max_gauge_pa 0 (no actuator's
 /// data validate a drawing not yet cast: every answer is a zero-shot prediction), and its search as comments.
