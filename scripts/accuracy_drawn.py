@@ -63,6 +63,8 @@ DRAWN = [
      None, EPFL_FIT),
     ("EPFL Ecoflex 00-30, 7 chambers, auto alone", "config/epfl_ecoflex30_c7_coupon.yaml",
      "data/epfl_ecoflex30_c7_bending.csv", "auto", {}),
+    ("EPFL Ecoflex 00-30, 7 chambers, auto on its bends and its blocked force", "config/epfl_ecoflex30_c7_coupon.yaml",
+     ["data/epfl_ecoflex30_c7_bending.csv", BLOCKED], "auto", {}),
 ]
 MATERIAL = ("wall_law", "shear_modulus_pa", "wall_locking_jm")
 # --solid: the finite-element cell of the drawing (scripts/fem_cell.py with this file's coupon modulus), and the ramp's
@@ -172,7 +174,7 @@ def snap_table():
         print(f"| {name} | {how} | {limit / 1e3:.1f} / {snap / 1e3:.2f} ({100 * (limit / snap - 1):+.1f} %) "
               f"| {bend_cell(model, ramp, below, ramp[0, 0])} | {bend_cell(model, ramp, above, ramp[0, 0])} "
               f"| {bend_cell(model, steps, every)} "
-              f"| {force_summary(model, table(BLOCKED, 'blocked_force_n'))} |")
+              f"| {force_summary(model, table(BLOCKED, 'blocked_tip_force_n'))} |")
     print()
     print(zero_shot_sentence(*CASES[0][2:4]))
     print()
@@ -262,10 +264,19 @@ def steps_by_pressure(config, ramp_file, step_file):
 
 
 def bend_errors(residuals):
-    """Model - measured bend (rad) of a calibration's rows: the tip angle, or the chord where that was measured."""
+    """Model - measured bend (rad) of a calibration's rows that measured one (rows of blocked force alone are left
+    out): the tip angle, or the chord where that was measured."""
     tip = residuals["model_tip_angle_rad"] - residuals["measured_tip_angle_rad"]
     chord = residuals["model_chord_angle_rad"] - residuals["measured_chord_angle_rad"]
-    return numpy.where(numpy.isnan(residuals["measured_tip_angle_rad"]), chord, tip)
+    shaped = ~(numpy.isnan(residuals["measured_tip_angle_rad"]) & numpy.isnan(residuals["measured_chord_angle_rad"]))
+    return numpy.where(numpy.isnan(residuals["measured_tip_angle_rad"]), chord, tip)[shaped]
+
+
+def force_cell(residuals):
+    """The blocked force's largest error (N) where the calibration fitted it too, else nothing."""
+    e = residuals["model_blocked_tip_force_n"] - residuals["measured_blocked_tip_force_n"]
+    e = e[~numpy.isnan(residuals["measured_blocked_tip_force_n"])]
+    return f"; force {numpy.max(numpy.abs(e)):.2f} N" if e.size else ""
 
 
 def fitted_value(key, value):
@@ -278,9 +289,10 @@ def fitted_value(key, value):
 
 
 def fitted(config, data, law, how):
+    paths = [str(ROOT / d) for d in data] if isinstance(data, list) else str(ROOT / data)
     with warnings.catch_warnings():
         warnings.simplefilter("ignore")
-        return pf.calibrate(data=str(ROOT / data), config=str(ROOT / config), wall_law=law, **how)
+        return pf.calibrate(data=paths, config=str(ROOT / config), wall_law=law, **how)
 
 
 def transferred(fit, config, data):
@@ -302,9 +314,11 @@ def fits_table():
         fit["material"] = {key: model.parameters[key] for key in MATERIAL}
         results[name] = fit
         keys = ", ".join(fitted_value(k, v) for k, v in fit["fitted"].items())
-        how = f"fitted on its bends ({keys}{'; --wall-law auto' if law == 'auto' else ''})"
-        print(f"| {name} | {how} | {fit['wall_law']}; {fit['compared']} | {summary(bend_errors(fit['residuals']))} "
-              f"| {summary(bend_errors(fit['leave_one_out']))} |")
+        what = "its bends and its blocked force" if isinstance(data, list) else "its bends"
+        how = f"fitted on {what} ({keys}{'; --wall-law auto' if law == 'auto' else ''})"
+        print(f"| {name} | {how} | {fit['wall_law']}; {fit['compared']} | "
+              f"{summary(bend_errors(fit['residuals']))}{force_cell(fit['residuals'])} "
+              f"| {summary(bend_errors(fit['leave_one_out']))}{force_cell(fit['leave_one_out'])} |")
     for source, target in ((0, 1), (1, 0)):
         name, config, data, _, _ = DRAWN[target]
         fit = results[DRAWN[source][0]]
@@ -533,7 +547,7 @@ def plot_snap(path):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
     ramp, steps = table(CASES[0][3]), table(CASES[0][4])
-    blocked = table(BLOCKED, "blocked_force_n")
+    blocked = table(BLOCKED, "blocked_tip_force_n")
     fig, (bend_ax, force_ax) = plt.subplots(1, 2, figsize=(11, 4.6))
     bend_ax.plot(ramp[:, 0] / 1e3, ramp[:, 1] * DEG, "k.", ms=4, label="measured: slow ramp (zeroed at 10 kPa)")
     bend_ax.plot(steps[:, 0] / 1e3, steps[:, 1] * DEG, "ks", mfc="none", ms=6, label="measured: stepwise")

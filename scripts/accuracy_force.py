@@ -62,7 +62,7 @@ def study(seg):
     model = pf.FingerModel(config, overrides=overrides)
     rows = read_rows(f"data/marchese2015_{seg['name']}_blocked_force.csv")
     pressure = np.array([float(r["gauge_pa"]) for r in rows])
-    measured = np.array([float(r["tip_force_n"]) for r in rows])
+    measured = np.array([float(r["blocked_tip_force_n"]) for r in rows])
     predicted = model.blocked_tip_force(pressure)
     within = np.abs(predicted - measured) <= np.maximum(RELATIVE * measured, ABSOLUTE_N)
     return {"seg": seg["name"], "law": law, "overrides": overrides, "bend_error": bend_error, "warnings": warnings,

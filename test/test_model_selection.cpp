@@ -22,6 +22,8 @@ pf::Residual residual(double measured_tip, double model_tip, double measured_cho
   r.measured_avg_rad = r.model_avg_rad = r.measured_joint1_rad = r.model_joint1_rad = nan;
   r.measured_tip_x_m = r.measured_tip_y_m = r.model_tip_x_m = r.model_tip_y_m = nan;
   r.model_gauge_at_tip_angle_pa = nan;
+  r.measured_blocked_force_n = r.model_blocked_force_n = nan;  // no force measured
+  r.force_scale_n = 1.0;
   r.measured_tip_angle_rad = measured_tip;
   r.model_tip_angle_rad = model_tip;
   r.measured_chord_angle_rad = measured_chord;
@@ -124,4 +126,47 @@ TEST(ModelSelection, ACandidateTheDataCannotIdentifyIsSkippedNotFatal) {
   EXPECT_NE(table.find("#   paper; joints; shear_modulus_pa,chamber_gap_m,base_wall_share: held out"), std::string::npos)
       << table;
   EXPECT_NE(table.find("<- chosen"), std::string::npos);
+}
+
+// The blocked force as data: a file of forces alone is read (a finger held straight has no shape to measure), and a
+// fit to forces made by a known actuator, its pressures past the free finger's limit point included, recovers its
+// modulus; each row's model force is the model's own blocked force at the row's pressure.
+TEST(ModelSelection, TheBlockedForceIsDataEvenPastTheLimitPoint) {
+  const pf::FingerParameters truth = load("epfl_ecoflex30_c7_coupon.yaml");
+  const pf::FingerModel model(truth);
+  std::string csv = "gauge_pa,blocked_tip_force_n\n";
+  for (double p = 5000.0; p <= 40000.0; p += 5000.0) {  // the free finger's limit point: 24.2 kPa
+    csv += pf::formatExact(p) + "," + pf::formatExact(model.blockedTipForceN(p)) + "\n";
+  }
+  std::vector<pf::Measurement> data = pf::parseMeasurementsCsv(csv, "force.csv", 4);
+  ASSERT_TRUE(data.front().forceOnly());
+  pf::setForceScale(data);
+  pf::FingerParameters start = truth;
+  start.shear_modulus_pa.assign(start.shear_modulus_pa.size(), 2e4 * 1.5);
+  const pf::CalibrationResult fit = pf::calibrate(start, {"shear_modulus_pa"}, data, pf::CalibrationObjective::kMinimax,
+                                                  pf::CalibrationQuantity::kTipAngle);
+  EXPECT_NEAR(fit.values[0], truth.shear_modulus_pa[0], truth.shear_modulus_pa[0] * 1e-6);
+  for (std::size_t i = 0; i < data.size(); ++i) {
+    const pf::Residual& r = fit.residuals[i];
+    EXPECT_EQ(r.measured_blocked_force_n, data[i].blocked_tip_force_n);
+    EXPECT_TRUE(r.force_only);
+    EXPECT_EQ(r.terms(pf::CalibrationQuantity::kTipAngle).size(), 1u);  // the force's term alone
+    EXPECT_NEAR(r.blocked_force_error_n(), 0.0, 1e-9);
+  }
+}
+
+// Bends and forces of one actuator in two files are one data set: each file's rows, its notes named by file.
+TEST(ModelSelection, TwoFilesOfOneActuatorAreOneDataSet) {
+  const std::string root = std::string(PACKAGE_SOURCE_DIR) + "/data/";
+  const pf::MeasurementSet set = pf::readMeasurementSets(
+      {root + "epfl_ecoflex30_c7_bending.csv", root + "epfl_ecoflex30_c7_blocked_force.csv"}, 4);
+  const pf::MeasurementSet bends = pf::readMeasurementSet(root + "epfl_ecoflex30_c7_bending.csv", 4);
+  const pf::MeasurementSet forces = pf::readMeasurementSet(root + "epfl_ecoflex30_c7_blocked_force.csv", 4);
+  ASSERT_EQ(set.rows.size(), bends.rows.size() + forces.rows.size());
+  EXPECT_TRUE(set.rows[bends.rows.size()].forceOnly());
+  EXPECT_EQ(set.rows[bends.rows.size()].blocked_tip_force_n, forces.rows[0].blocked_tip_force_n);
+  EXPECT_EQ(pf::defaultQuantity(set.rows), pf::CalibrationQuantity::kChordAngle);
+  ASSERT_EQ(set.notes.size(), 2u);
+  EXPECT_EQ(set.notes[1].rfind(root + "epfl_ecoflex30_c7_blocked_force.csv: columns not read: n", 0), 0u)
+      << set.notes[1];
 }

@@ -63,6 +63,8 @@ def _data(data):
         return default_data(), [], []
     if isinstance(data, (str, os.PathLike)):
         return os.fspath(data), [], []
+    if isinstance(data, (list, tuple)) and data and all(isinstance(d, (str, os.PathLike)) for d in data):
+        return [os.fspath(d) for d in data], [], []  # several files of one actuator, as --data repeated
     if hasattr(data, "keys"):
         import numpy
         names = [str(k) for k in data.keys()]
@@ -81,8 +83,9 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
               compare=None, leave_one_out=True, wall_law=None, drive=None, output=None):
     """finger_calibrate from Python: the same defaults, data check, fit and leave-one-out.
 
-    data: a CSV path, or a mapping of column names to arrays: gauge_pa and/or supplied_volume_m3, and any of
-    joint_1_rad..joint_N_rad, tip_angle_rad, chord_angle_rad (base to tip), tip_x_m,tip_y_m (None: the package's data).
+    data: a CSV path (or a list of them: one actuator's files, its bends and its blocked force), or a mapping of
+    column names to arrays: gauge_pa and/or supplied_volume_m3, and any of joint_1_rad..joint_N_rad, tip_angle_rad,
+    chord_angle_rad (base to tip), tip_x_m,tip_y_m, blocked_tip_force_n (None: the package's data).
     keys: the keys to fit (any number), a list or "a,b" (None: the tool's default). compare: "joints", "average",
     "joint_1", "tip_angle", "tip_position", "chord_angle" or
     "gauge_pa" (the model's pressure at each row's volume; needs drive="volume"), "tip_angle+gauge_pa" or
@@ -93,7 +96,8 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
 
     Returns a dict: fitted (key -> value), wall_law, compared, objective_value, residuals (a dict of arrays, a row
     per measurement: gauge_pa (R,), supplied_volume_m3, measured_/model_gauge_pa (R,), measured_/model_joint_rad (R, N), measured_/model_avg_rad, _joint1_rad,
-    _tip_angle_rad, _chord_angle_rad (R,), measured_/model_tip_m (R, 2); NaN where nothing was measured), model_evaluations,
+    _tip_angle_rad, _chord_angle_rad, _blocked_tip_force_n (R,), measured_/model_tip_m (R, 2); NaN where nothing was
+    measured), model_evaluations,
     uncertainty (key -> one standard deviation), correlation (keys x keys array), warnings (columns not read, keys
     that trade off or sit on their search range's end), and leave_one_out: the residuals of each row predicted by a
     fit to the others, as the CLI reports them (so the data need the CLI's rows: two more than the chamber keys);

@@ -64,7 +64,7 @@ namespace {
 // their volume (under pressure the model's pressure is the measured, and the gas takes no part in the shape).
 void checkTheDrive(const FingerParameters& base, const std::vector<std::string>& keys,
                    const std::vector<Measurement>& data, CalibrationQuantity quantity) {
-  const bool by_volume = !data.empty() && data.front().driven_by_volume;
+  const bool by_volume = std::any_of(data.begin(), data.end(), [](const Measurement& m) { return m.driven_by_volume; });
   const bool pressure = quantity == CalibrationQuantity::kGauge || quantity == CalibrationQuantity::kTipAngleAndGauge;
   if (!by_volume && pressure) {
     throw ParameterError(std::string("'") + quantityName(quantity) + "' compares the model's pressure at each row's "
@@ -132,6 +132,10 @@ void checkKeysAndData(const FingerParameters& base, const std::vector<std::strin
                            quantity == CalibrationQuantity::kEveryJoint || quantity == CalibrationQuantity::kFirstJoint;
   checkTheDrive(base, keys, data, quantity);
   for (const auto& m : data) {
+    if (m.forceOnly()) {  // its force is compared at its pressure, whatever the shape's comparison
+      if (!m.hasGauge()) throw ParameterError(m.where() + ": blocked_tip_force_n without gauge_pa, its pressure");
+      continue;
+    }
     if (quantity == CalibrationQuantity::kGauge) continue;  // checkTheDrive saw to it
     const bool angle = quantity == CalibrationQuantity::kTipAngle ||
                        quantity == CalibrationQuantity::kTipAngleAndGauge ||

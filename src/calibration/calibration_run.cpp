@@ -87,6 +87,7 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
   run.by_volume = request.drive.empty() ? !has_gauge : parseDrive(request.drive);
   run.quantity = quantityFor(request, data.rows, run.by_volume);
   driveByVolume(driven.rows, run.by_volume);
+  setForceScale(driven.rows);  // one scale for the forces, whichever rows a fold leaves out
   checkMeasurementsPlausible(base, driven.rows);  // before any law's fit, so that its message names no law
   const std::vector<WallLaw> laws =
       request.wall_law.empty() ? std::vector<WallLaw>{base.wall_law} : parseWallLawChoice(request.wall_law);

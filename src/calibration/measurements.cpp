@@ -27,8 +27,9 @@ namespace {
 std::string where(const std::string& origin, int line) { return origin + ":" + std::to_string(line) + ": "; }
 
 // The columns calibration reads besides the joints (and the average column, named by the caller).
-constexpr const char* kMeasuredColumns[] = {"gauge_pa", "supplied_volume_m3", "tip_angle_rad", "bend_angle_rad",
-                                           "chord_angle_rad", "tip_x_m", "tip_y_m"};
+constexpr const char* kMeasuredColumns[] = {"gauge_pa",        "supplied_volume_m3", "tip_angle_rad",
+                                           "bend_angle_rad",  "chord_angle_rad",    "tip_x_m",
+                                           "tip_y_m",         "blocked_tip_force_n"};
 
 // "joint_<k>" for a whole number k: the stem of a joint's column, whatever its unit.
 bool isJointStem(const std::string& stem) {
@@ -49,7 +50,7 @@ namespace {
 
 // Where each measured quantity stands in a measurement CSV (-1: absent), and the columns calibration does not read.
 struct CsvColumns {
-  int gauge = -1, volume = -1, average = -1, tip_angle = -1, chord = -1, tip_x = -1, tip_y = -1;
+  int gauge = -1, volume = -1, average = -1, tip_angle = -1, chord = -1, tip_x = -1, tip_y = -1, force = -1;
   std::vector<int> joints;
   std::vector<std::string> unused;
 };
@@ -57,7 +58,7 @@ struct CsvColumns {
 // What calibration reads, for messages about a column it does not.
 constexpr const char* kKnownColumns =
     "gauge_pa, supplied_volume_m3, joint_1_rad..joint_N_rad, tip_angle_rad (or bend_angle_rad), chord_angle_rad, "
-    "tip_x_m,tip_y_m";
+    "tip_x_m,tip_y_m, blocked_tip_force_n";
 
 // A column calibration does not read that looks like one of ours under another unit ("tip_x_mm" for tip_x_m,
 // "tip_angle_deg" for tip_angle_rad, "joint_2_deg" for joint_2_rad): what it may have meant, or empty.
@@ -126,6 +127,7 @@ CsvColumns readHeader(const std::vector<std::string>& header, const std::string&
       c.tip_angle = k;
     }
     if (header[i] == "chord_angle_rad") c.chord = k;
+    if (header[i] == "blocked_tip_force_n") c.force = k;
     if (header[i] == "tip_x_m") c.tip_x = k;
     if (header[i] == "tip_y_m") c.tip_y = k;
     if (!average_column.empty() && header[i] == average_column) c.average = k;
@@ -148,12 +150,12 @@ CsvColumns readHeader(const std::vector<std::string>& header, const std::string&
     throw ParameterError(at + "header has " + (c.tip_x < 0 ? "tip_y_m" : "tip_x_m") + " without " +
                          (c.tip_x < 0 ? "tip_x_m" : "tip_y_m") + "; a tip position needs both");
   }
-  if (c.joints.empty() && c.tip_angle < 0 && c.chord < 0 && c.tip_x < 0) {
+  if (c.joints.empty() && c.tip_angle < 0 && c.chord < 0 && c.tip_x < 0 && c.force < 0) {
     std::string notes;
     for (const std::string& note : unusedColumnNotes(c.unused)) notes += "; " + note;
     throw ParameterError(at + "header has nothing measured: give joint_1_rad, joint_2_rad, ... (joint angles), "
-                         "tip_angle_rad, chord_angle_rad (base to tip), or tip_x_m,tip_y_m (the tip in the finger's "
-                         "frame)" + notes);
+                         "tip_angle_rad, chord_angle_rad (base to tip), tip_x_m,tip_y_m (the tip in the finger's "
+                         "frame), or blocked_tip_force_n" + notes);
   }
   if (c.average >= 0 && c.joints.empty()) {
     throw ParameterError(at + "column '" + average_column +
@@ -174,6 +176,7 @@ Measurement measurementFrom(const std::function<double(int)>& number_at, const C
   if (c.average >= 0) m.given_average_rad = number_at(c.average);
   if (c.tip_angle >= 0) m.tip_angle_rad = number_at(c.tip_angle);
   if (c.chord >= 0) m.chord_angle_rad = number_at(c.chord);
+  if (c.force >= 0) m.blocked_tip_force_n = number_at(c.force);
   if (c.tip_x >= 0) {
     m.tip_x_m = number_at(c.tip_x);
     m.tip_y_m = number_at(c.tip_y);
@@ -219,6 +222,11 @@ MeasurementSet withNotes(const CsvColumns& columns) {
 
 void driveByVolume(std::vector<Measurement>& data, bool by_volume) {
   for (Measurement& m : data) {
+    if (m.forceOnly()) {  // a finger held straight is set by its pressure, whatever drives the free one
+      if (!m.hasGauge()) throw ParameterError(m.where() + ": blocked_tip_force_n without gauge_pa, its pressure");
+      m.driven_by_volume = false;
+      continue;
+    }
     if (by_volume ? !m.hasSuppliedVolume() : !m.hasGauge()) {
       throw ParameterError(m.where() + ": no " +
                            (by_volume ? "supplied_volume_m3 to drive the finger by volume"
@@ -268,6 +276,22 @@ MeasurementSet readMeasurementSet(const std::string& path, std::size_t min_rows,
   std::stringstream text;
   text << in.rdbuf();
   return parseMeasurementSet(text.str(), path, min_rows, average_column);
+}
+
+MeasurementSet readMeasurementSets(const std::vector<std::string>& paths, std::size_t min_rows,
+                                   const std::string& average_column) {
+  if (paths.size() == 1) return readMeasurementSet(paths.front(), min_rows, average_column);
+  MeasurementSet all;
+  for (const std::string& path : paths) {
+    MeasurementSet one = readMeasurementSet(path, 1, average_column);
+    all.rows.insert(all.rows.end(), one.rows.begin(), one.rows.end());
+    for (const std::string& note : one.notes) all.notes.push_back(path + ": " + note);
+  }
+  if (all.rows.size() < min_rows) {
+    throw ParameterError("only " + std::to_string(all.rows.size()) + " data rows in all; at least " +
+                         std::to_string(min_rows) + " are needed");
+  }
+  return all;
 }
 
 MeasurementSet measurementSetFromColumns(const std::vector<std::string>& names,

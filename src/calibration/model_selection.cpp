@@ -37,10 +37,13 @@ double rowSquaredError(const Residual& r, bool by_volume, int& unshaped) {
     sum += std::isnan(e) ? kUnshapedBendRad * kUnshapedBendRad : e * e;
   }
   unshaped += without_shape ? 1 : 0;
-  const bool pressure = by_volume && r.measured_gauge_pa > 0.0;
-  if (bends.empty() && !pressure) return std::numeric_limits<double>::quiet_NaN();
+  const bool pressure = by_volume && r.measured_gauge_pa > 0.0 && !r.force_only;
+  const bool force = !std::isnan(r.measured_blocked_force_n);
+  if (bends.empty() && !pressure && !force) return std::numeric_limits<double>::quiet_NaN();
   const double p = pressure ? r.gauge_relative_error() : 0.0;
-  return (bends.empty() ? 0.0 : sum / static_cast<double>(bends.size())) + (std::isnan(p) ? 1.0 : p * p);
+  // The blocked force as a share of the data's largest: the whole force range weighs as 1 rad of bend.
+  const double f = force ? r.blocked_force_error_n() / r.force_scale_n : 0.0;
+  return (bends.empty() ? 0.0 : sum / static_cast<double>(bends.size())) + (std::isnan(p) ? 1.0 : p * p) + f * f;
 }
 
 }  // namespace
@@ -48,22 +51,27 @@ double rowSquaredError(const Residual& r, bool by_volume, int& unshaped) {
 HeldOutError heldOutError(const std::vector<Residual>& held_out, bool by_volume) {
   HeldOutError out;
   std::vector<double> rows;
-  double bend_sq = 0.0, pressure_sq = 0.0;
+  double pressure_sq = 0.0, force_sq = 0.0, sum = 0.0;
+  int shaped_rows = 0;
   for (const Residual& r : held_out) {
     const double row = rowSquaredError(r, by_volume, out.unshaped);
     out.row_squared.push_back(row);
     if (std::isnan(row)) continue;
     rows.push_back(row);
-    const double p = by_volume && r.measured_gauge_pa > 0.0 ? r.gauge_relative_error() : 0.0;
-    const double p_sq = std::isnan(p) ? 1.0 : p * p;
-    pressure_sq += p_sq;
-    bend_sq += row - p_sq;
+    sum += row;
+    const double p = by_volume && r.measured_gauge_pa > 0.0 && !r.force_only ? r.gauge_relative_error() : 0.0;
+    const double f = std::isnan(r.measured_blocked_force_n) ? 0.0 : r.blocked_force_error_n() / r.force_scale_n;
+    pressure_sq += std::isnan(p) ? 1.0 : p * p;
+    force_sq += f * f;
+    out.force = std::max(out.force, std::fabs(f));
+    shaped_rows += r.force_only ? 0 : 1;
   }
   if (rows.empty()) return out;
   const auto n = static_cast<double>(rows.size());
-  out.bend_rad = std::sqrt(bend_sq / n);
+  // The bends' rms over the rows that measured a shape; the score over every row, each its whole squared error.
+  out.bend_rad = shaped_rows > 0 ? std::sqrt(std::max(0.0, sum - pressure_sq - force_sq) / shaped_rows) : 0.0;
   out.pressure = std::sqrt(pressure_sq / n);
-  const double mean = (bend_sq + pressure_sq) / n;
+  const double mean = sum / n;
   out.score = std::sqrt(mean);
   double var = 0.0;
   for (double x : rows) var += (x - mean) * (x - mean);
@@ -253,6 +261,7 @@ std::string candidatesTable(const std::vector<CandidateFit>& tried, std::size_t 
          " (score " + fixed("%.2f", c.held_out.score * 180.0 / M_PI) + " +- " +
          fixed("%.2f", c.held_out.standard_error * 180.0 / M_PI) + ")" +
          (c.held_out.pressure > 0.0 ? ", pressure " + fixed("%.1f", 100.0 * c.held_out.pressure) + " %" : "") +
+         (c.held_out.force > 0.0 ? ", force largest " + fixed("%.0f", 100.0 * c.held_out.force) + " % of the largest" : "") +
          (c.held_out.unshaped > 0 ? ", " + std::to_string(c.held_out.unshaped) + " rows without a shape" : "") + "; " +
          fixed("%.2f", c.seconds) + " s" + (i == chosen ? "  <- chosen" : c.selected ? "  (selected)" : "") + "\n";
   }

@@ -64,9 +64,12 @@ bool bendLeaps(const std::vector<Measurement>& data) {
 
 CalibrationQuantity defaultQuantity(const std::vector<Measurement>& data) {
   if (data.empty()) throw ParameterError("no measurements");
-  if (data.front().hasJoints()) return CalibrationQuantity::kEveryJoint;
-  if (data.front().hasTipPosition()) return CalibrationQuantity::kTipPosition;
-  if (!data.front().hasTipAngle() && data.front().hasChordAngle()) return CalibrationQuantity::kChordAngle;
+  // The first row that measured a shape says what the rows have (rows of blocked force alone join any comparison).
+  const auto shaped = std::find_if(data.begin(), data.end(), [](const Measurement& m) { return !m.forceOnly(); });
+  const Measurement& first = shaped != data.end() ? *shaped : data.front();
+  if (first.hasJoints()) return CalibrationQuantity::kEveryJoint;
+  if (first.hasTipPosition()) return CalibrationQuantity::kTipPosition;
+  if (!first.hasTipAngle() && first.hasChordAngle()) return CalibrationQuantity::kChordAngle;
   return bendLeaps(data) ? CalibrationQuantity::kGaugeAtTipAngle : CalibrationQuantity::kTipAngle;
 }
 
@@ -80,6 +83,13 @@ std::vector<std::string> defaultFitKeys(CalibrationQuantity quantity, WallLaw la
 }
 
 std::vector<double> Residual::terms(CalibrationQuantity quantity) const {
+  // The blocked force, where measured, joins the row's shape terms: its error as a share of the data's largest force.
+  std::vector<double> out = force_only ? std::vector<double>{} : shapeTerms(quantity);
+  if (!std::isnan(measured_blocked_force_n)) out.push_back(blocked_force_error_n() / force_scale_n);
+  return out;
+}
+
+std::vector<double> Residual::shapeTerms(CalibrationQuantity quantity) const {
   switch (quantity) {
     case CalibrationQuantity::kOuterAverage: return {error_rad()};
     case CalibrationQuantity::kEveryJoint: {
@@ -135,7 +145,29 @@ void measuredInto(const FingerParameters& parameters, const Measurement& m, Resi
     r.measured_chord_angle_rad = chordAngleRad(r.measured_tip_x_m, r.measured_tip_y_m, r.measured_tip_angle_rad);
   }
   if (m.hasChordAngle()) r.measured_chord_angle_rad = m.chord_angle_rad;
+  r.measured_blocked_force_n = m.blocked_tip_force_n;
+  r.force_only = m.forceOnly();
 }
+
+// The scale of the force terms: the rows' own (setForceScale), else the largest measured blocked force of @p data.
+double forceScaleN(const std::vector<Measurement>& data) {
+  double largest = 0.0;
+  for (const Measurement& m : data) {
+    if (!std::isnan(m.force_scale_n)) return m.force_scale_n;
+    if (m.hasBlockedForce()) largest = std::max(largest, std::fabs(m.blocked_tip_force_n));
+  }
+  return largest > 0.0 ? largest : 1.0;
+}
+
+}  // namespace
+
+void setForceScale(std::vector<Measurement>& data) {
+  for (Measurement& m : data) m.force_scale_n = NAN;
+  const double scale = forceScaleN(data);
+  for (Measurement& m : data) m.force_scale_n = scale;
+}
+
+namespace {
 
 // The pressure of the model's equilibrium at @p tip_angle_rad: the state that holds this bend (the volume that gives
 // it, volumeForTipAngle), and that state's pressure. One number per bend on either side of the limit point, the
@@ -222,6 +254,7 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
   if (quantity == CalibrationQuantity::kGaugeAtTipAngle) inverse.emplace(model);
   const auto n = static_cast<std::size_t>(parameters.chamber_count);
   const double nan = std::numeric_limits<double>::quiet_NaN();
+  const double force_scale_n = forceScaleN(data);
   Eigen::VectorXd joints(static_cast<Eigen::Index>(n));  // a row's, as a state holds them (the same sum's order)
   std::vector<Residual> out;
   out.reserve(data.size());
@@ -241,10 +274,13 @@ std::vector<Residual> residuals(const FingerParameters& parameters, const std::v
     r.model_tip_x_m = tip[0];
     r.model_tip_y_m = tip[1];
     r.model_chord_angle_rad = chordAngleRad(tip[0], tip[1], r.model_tip_angle_rad);
+    r.force_scale_n = force_scale_n;
     measuredInto(parameters, m, r);
-    r.model_gauge_at_tip_angle_pa = quantity == CalibrationQuantity::kGaugeAtTipAngle
+    r.model_gauge_at_tip_angle_pa = quantity == CalibrationQuantity::kGaugeAtTipAngle && !r.force_only
                                         ? gaugeOnThePath(model, r.measured_tip_angle_rad, *inverse)
                                         : nan;
+    // Defined past the limit point too, where the free finger has no shape.
+    r.model_blocked_force_n = m.hasBlockedForce() ? model.blockedTipForceN(m.gauge_pa) : nan;
     out.push_back(std::move(r));
   }
   return out;

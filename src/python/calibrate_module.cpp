@@ -63,6 +63,8 @@ py::dict residualArrays(const std::vector<pf::Residual>& rows, std::size_t n) {
   d["measured_tip_angle_rad"] = column(r, [&](std::size_t i) { return rows[i].measured_tip_angle_rad; });
   d["model_tip_angle_rad"] = column(r, [&](std::size_t i) { return rows[i].model_tip_angle_rad; });
   d["measured_chord_angle_rad"] = column(r, [&](std::size_t i) { return rows[i].measured_chord_angle_rad; });
+  d["measured_blocked_tip_force_n"] = column(r, [&](std::size_t i) { return rows[i].measured_blocked_force_n; });
+  d["model_blocked_tip_force_n"] = column(r, [&](std::size_t i) { return rows[i].model_blocked_force_n; });
   d["model_chord_angle_rad"] = column(r, [&](std::size_t i) { return rows[i].model_chord_angle_rad; });
   d["measured_tip_m"] = table(r, 2, [&](std::size_t i, std::size_t k) {
     return k == 0 ? rows[i].measured_tip_x_m : rows[i].measured_tip_y_m;
@@ -76,6 +78,9 @@ py::dict residualArrays(const std::vector<pf::Residual>& rows, std::size_t n) {
 // The data: a CSV path, or names and columns (pneumatic_finger.core turns a dict of arrays into them).
 pf::MeasurementSet measurements(const py::object& path, const std::vector<std::string>& names,
                                 const std::vector<std::vector<double>>& columns, const std::string& average_column) {
+  if (py::isinstance<py::list>(path)) {  // several files of one actuator
+    return pf::readMeasurementSets(path.cast<std::vector<std::string>>(), 1, average_column);
+  }
   if (!path.is_none()) return pf::readMeasurementSet(path.cast<std::string>(), 1, average_column);
   return pf::measurementSetFromColumns(names, columns, "data", 1, average_column);
 }

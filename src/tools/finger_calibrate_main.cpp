@@ -52,18 +52,21 @@ std::string cell(double v, const char* format, int width) {
 // pressure's relative error where it was measured above zero, where @p at_bend the pressure at the measured bend, and
 // the chord angle where a row measured one).
 std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_volume, bool at_bend,
-                       std::array<double, 8>& worst) {
+                       std::array<double, 9>& worst) {
   // The chord's column only where a row measured one: the reports of other data keep their columns.
   const bool chord = std::any_of(rows.begin(), rows.end(), [](const pf::Residual& r) {
     return !std::isnan(r.measured_chord_angle_rad) && std::isnan(r.measured_tip_x_m);
+  });
+  const bool force = std::any_of(rows.begin(), rows.end(), [](const pf::Residual& r) {
+    return !std::isnan(r.measured_blocked_force_n);
   });
   std::ostringstream t;
   t << "# " << (by_volume ? pad("volume_m3", 11) : "") << pad("gauge_pa", 10);
   for (int k = 1; k <= n; ++k) t << pad("joint_" + std::to_string(k), 9);
   t << pad("avg_2.." + std::to_string(n), 10) << pad("tip_angle", 10) << (chord ? pad("chord", 10) : "")
     << pad("tip_m", 9) << (by_volume ? pad("gauge_err_pa", 13) : "") << (at_bend ? pad("at_bend_err_pa", 15) : "")
-    << "\n";
-  worst = {0, 0, 0, 0, 0, 0, 0, 0};
+    << (force ? pad("force_n", 9) : "") << "\n";
+  worst = {0, 0, 0, 0, 0, 0, 0, 0, 0};
   auto keep = [](double& w, double e) {
     if (!std::isnan(e)) w = std::max(w, std::fabs(e));
   };
@@ -82,9 +85,11 @@ std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_vol
     keep(worst[5], r.measured_gauge_pa != 0.0 ? r.gauge_relative_error() : NAN);
     if (at_bend) keep(worst[6], r.gauge_at_tip_angle_error_pa());
     if (chord) keep(worst[7], r.chord_angle_error_rad());
+    if (force) keep(worst[8], r.blocked_force_error_n());
     t << cell(r.error_rad(), "%*.4f", 10) << cell(r.tip_angle_error_rad(), "%*.4f", 10)
       << (chord ? cell(r.chord_angle_error_rad(), "%*.4f", 10) : "") << cell(r.tip_position_error_m(), "%*.5f", 9) << (by_volume ? cell(r.gauge_error_pa(), "%*.0f", 13) : "")
-      << (at_bend ? cell(r.gauge_at_tip_angle_error_pa(), "%*.0f", 15) : "") << "\n";
+      << (at_bend ? cell(r.gauge_at_tip_angle_error_pa(), "%*.0f", 15) : "")
+      << (force ? cell(r.blocked_force_error_n(), "%*.4f", 9) : "") << "\n";
   }
   return t.str();
 }
@@ -93,7 +98,7 @@ std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_vol
 std::string angle(double rad) { return pf::formatMessage(rad) + " rad (" + fmt("%.3f", rad * kDeg) + " deg)"; }
 std::string length(double m) { return pf::formatMessage(m) + " m (" + fmt("%.3f", m * 1e3) + " mm)"; }
 
-std::string largest(const std::array<double, 8>& w, int n, bool paper) {
+std::string largest(const std::array<double, 9>& w, int n, bool paper) {
   std::vector<std::string> parts;
   if (w[0] > 0) parts.push_back("joints " + angle(w[0]));
   if (w[1] > 0) {
@@ -102,6 +107,7 @@ std::string largest(const std::array<double, 8>& w, int n, bool paper) {
   }
   if (w[2] > 0) parts.push_back("tip angle " + angle(w[2]));
   if (w[7] > 0) parts.push_back("chord angle " + angle(w[7]));
+  if (w[8] > 0) parts.push_back("blocked force " + fmt("%.4f", w[8]) + " N");
   if (w[3] > 0) parts.push_back("tip position " + length(w[3]));
   if (w[4] > 0) {
     parts.push_back("pressure " + fmt("%.0f", w[4]) + " Pa (largest relative " + fmt("%.1f", 100.0 * w[5]) + " %)");
@@ -164,7 +170,7 @@ std::string report(const std::string& data_name, bool paper_data, std::size_t ro
         << "; objective: " << pf::objectiveName(run.objective) << "; error = model - measured\n# fitted:";
   for (std::size_t i = 0; i < fit.keys.size(); ++i) table << " " << fit.keys[i] << " = " << pf::formatExact(fit.values[i]);
   table << uncertaintyLines(run);
-  std::array<double, 8> worst{}, worst_loo{};
+  std::array<double, 9> worst{}, worst_loo{};
   const bool by_volume = run.by_volume;
   const bool at_bend = run.quantity == pf::CalibrationQuantity::kGaugeAtTipAngle;
   const std::string fit_table = errorTable(fit.residuals, n, by_volume, at_bend, worst);
@@ -235,15 +241,17 @@ std::string lawComparison(const pf::CalibrationRun& run) {
 
 // The options of a fit to an actuator's measurements (--data and the rest).
 struct DataOptions {
-  std::string data_path, objective_name = "minimax", average_column, fit_keys, compare, wall_law, drive;
+  std::vector<std::string> data_paths;
+  std::string objective_name = "minimax", average_column, fit_keys, compare, wall_law, drive;
 };
 
 void addDataOptions(CLI::App& app, DataOptions& o) {
-  app.add_option("--data", o.data_path,
-                 "measured CSV: gauge_pa and/or supplied_volume_m3, and any of joint_1_rad..joint_N_rad, "
-                 "tip_angle_rad, chord_angle_rad (base to tip, as one marker on a video gives it), tip_x_m,tip_y_m "
-                 "(the tip in the finger's frame); default: the package's "
-                 "data/sierra2022_table1.csv");
+  pf::addRepeatedOption(app, "--data", o.data_paths,
+                        "measured CSV: gauge_pa and/or supplied_volume_m3, and any of joint_1_rad..joint_N_rad, "
+                        "tip_angle_rad, chord_angle_rad (base to tip, as one marker on a video gives it), "
+                        "tip_x_m,tip_y_m (the tip in the finger's frame), blocked_tip_force_n (the finger held "
+                        "straight; a row may hold it alone); repeat it for several files of one actuator (its bends "
+                        "and its blocked force); default: the package's data/sierra2022_table1.csv", "CSV");
   app.add_option("--drive", o.drive,
                  "what set each row: pressure (gauge_pa) or volume (supplied_volume_m3: a syringe pump or a "
                  "displacement-controlled cylinder; the model's pressure is then compared with gauge_pa by "
@@ -284,8 +292,10 @@ std::ofstream openOutput(const std::string& output) {
 
 // The fit to an actuator's measurements: the report, and the calibrated file when @p output is given.
 int calibrateOnData(const pf::ParameterOptions& parameters, DataOptions o, const std::string& output) {
-  const bool default_data = o.data_path.empty();
-  if (default_data) o.data_path = pf::packageShareDirectory() + "/data/sierra2022_table1.csv";
+  const bool default_data = o.data_paths.empty();
+  if (default_data) o.data_paths = {pf::packageShareDirectory() + "/data/sierra2022_table1.csv"};
+  std::string data_name;
+  for (const std::string& p : o.data_paths) data_name += (data_name.empty() ? "" : " + ") + p;
   pf::CalibrationRequest request;
   request.wall_law = o.wall_law;
   request.keys = pf::splitFields(o.fit_keys);
@@ -295,18 +305,18 @@ int calibrateOnData(const pf::ParameterOptions& parameters, DataOptions o, const
   request.drive = o.drive;
   request.progress = pf::CalibrationProgressPrinter(std::cerr, "finger_calibrate");  // quiet for the first 2 s
   const pf::FingerParameters base = pf::calibrationBase(parameters.loadRaw(), o.wall_law);
-  const pf::MeasurementSet data = pf::readMeasurementSet(o.data_path, 1, o.average_column);
+  const pf::MeasurementSet data = pf::readMeasurementSets(o.data_paths, 1, o.average_column);
   pf::CalibrationRun run;
   try {
     run = pf::runCalibration(base, data, request);
   } catch (const pf::ParameterError& e) {
-    throw pf::ParameterError(o.data_path + ": " + e.what());
+    throw pf::ParameterError(data_name + ": " + e.what());
   }
   const std::string choice = !run.candidates.empty()
                                  ? pf::candidatesTable(run.candidates, run.chosen_candidate)
                                  : run.fits.size() > 1 ? lawComparison(run) : std::string();
   const std::string table = choice +
-                            report(default_data ? "the package's data/sierra2022_table1.csv" : o.data_path,
+                            report(default_data ? "the package's data/sierra2022_table1.csv" : data_name,
                                    default_data, data.rows.size(), o.average_column, run, base.chamber_count);
   std::cout << table;
   if (output.empty()) return 0;
@@ -355,7 +365,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   return pf::runTool("finger_calibrate", app, argc, argv, [&] {
     if (coupon.empty()) return calibrateOnData(parameters, data, output);
-    if (!data.data_path.empty()) {
+    if (!data.data_paths.empty()) {
       throw pf::ParameterError("give --coupon or --data, not both: the coupon fits the elastomer alone; calibrate "
                                "the actuator on the file --coupon --output writes");
     }

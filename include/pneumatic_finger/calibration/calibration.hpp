@@ -29,6 +29,12 @@ struct Measurement {
   /// measured chord angle (rad), column chord_angle_rad: from the finger's rest direction to the line from its base
   /// O_0 to its tip (chordAngleRad), what one marker tracked on a video gives; about half the tip angle
   double chord_angle_rad = NAN;
+  /// measured blocked tip force (N), column blocked_tip_force_n: the finger held straight by a plate at its tip, at
+  /// the row's gauge pressure (MODEL.md, "Force"). A row may hold it alone: the force is defined past the limit point
+  double blocked_tip_force_n = NAN;
+  /// The scale of the force's error (N): the largest measured force of the whole data set, fixed before any fold
+  /// leaves rows out (setForceScale); NaN: taken from the rows at hand
+  double force_scale_n = NAN;
   double tip_x_m = NAN, tip_y_m = NAN;  ///< measured tip O_{N+1} in the finger's frame (m), columns tip_x_m, tip_y_m
   double supplied_volume_m3 = NAN;  ///< volume the supply pushed in (m^3), column supplied_volume_m3; NaN: not measured
   /// What set the finger's state: its supplied volume (a syringe pump, a displacement-controlled cylinder: the model is
@@ -43,6 +49,9 @@ struct Measurement {
   bool hasSuppliedVolume() const { return !std::isnan(supplied_volume_m3); }
   bool hasTipAngle() const { return !std::isnan(tip_angle_rad); }
   bool hasChordAngle() const { return !std::isnan(chord_angle_rad); }
+  bool hasBlockedForce() const { return !std::isnan(blocked_tip_force_n); }
+  /// A row that measured the blocked force and no shape (no joints, tip, chord or tip position).
+  bool forceOnly() const { return hasBlockedForce() && !hasJoints() && !hasTipAngle() && !hasChordAngle() && !hasTipPosition(); }
   bool hasTipPosition() const { return !std::isnan(tip_x_m); }
 
   /// Average of joints 2..N, the quantity the paper compares with the model: the mean of the measured joints, or the
@@ -76,6 +85,11 @@ MeasurementSet readMeasurementSet(const std::string& path, std::size_t min_rows,
 MeasurementSet parseMeasurementSet(const std::string& text, const std::string& origin, std::size_t min_rows,
                                    const std::string& average_column = "");
 
+/// Several measurement files as one data set (a bending test and a blocked-force test of the same actuator): their
+/// rows one after another, each file read by its own header; the notes name their file where there are several.
+MeasurementSet readMeasurementSets(const std::vector<std::string>& paths, std::size_t min_rows,
+                                   const std::string& average_column = "");
+
 /// The same from columns (Python's dict of arrays): @p names as a file's header, @p columns[k] the values under
 /// names[k], every column as long. Rows are numbered from 1 in messages. @throws ParameterError as the CSV reader,
 /// naming the row instead of the line, and for columns of unequal length
@@ -90,6 +104,10 @@ void driveByVolume(std::vector<Measurement>& data, bool by_volume = true);
 
 /// "pressure" (false) or "volume" (true). @throws ParameterError for anything else.
 bool parseDrive(const std::string& name);
+
+/// Fixes every row's force_scale_n to the largest measured blocked force of @p data (1 N where none is above 0), so
+/// that a fold without some rows compares forces on the same scale as the whole fit.
+void setForceScale(std::vector<Measurement>& data);
 
 /// What a finger can do, checked once before anything is fitted to a measurement (runCalibration calls it, the entry
 /// of finger_calibrate and pf.calibrate; calibrate() and leave-one-out, which refit many times, do not): no joint beyond
@@ -167,6 +185,9 @@ struct Residual {
   std::vector<double> measured_joint_rad, model_joint_rad;  ///< q_1..q_N (measured empty without joints)
   double measured_tip_angle_rad, model_tip_angle_rad;       ///< Theta_N
   double measured_chord_angle_rad, model_chord_angle_rad;   ///< base to tip (chordAngleRad)
+  /// The blocked tip force (N; measured NaN where the row has none), and the scale its error is compared in: the
+  /// largest measured force of the data, so that the whole force range weighs as 1 rad of bend
+  double measured_blocked_force_n, model_blocked_force_n, force_scale_n;
   double measured_tip_x_m, measured_tip_y_m, model_tip_x_m, model_tip_y_m;  ///< O_{N+1}
   /// The pressure of the model's equilibrium at the measured tip angle (Pa); NaN unless gauge_at_tip_angle is compared
   double model_gauge_at_tip_angle_pa;
@@ -174,6 +195,9 @@ struct Residual {
   double joint1_error_rad() const { return model_joint1_rad - measured_joint1_rad; }
   double tip_angle_error_rad() const { return model_tip_angle_rad - measured_tip_angle_rad; }
   double chord_angle_error_rad() const { return model_chord_angle_rad - measured_chord_angle_rad; }
+  double blocked_force_error_n() const { return model_blocked_force_n - measured_blocked_force_n; }
+  /// The row measured no shape, only the blocked force: its terms are the force's alone.
+  bool force_only = false;
   double gauge_error_pa() const { return model_gauge_pa - measured_gauge_pa; }
   double gauge_at_tip_angle_error_pa() const { return model_gauge_at_tip_angle_pa - measured_gauge_pa; }
   /// model/measured - 1 (NaN where the model has no pressure; not defined at a measured zero)
@@ -184,6 +208,8 @@ struct Residual {
   /// The numbers a fit over @p quantity compares for this row (rad, m for the tip position, Pa for the pressure; the
   /// tip angle and the pressure's relative error for kTipAngleAndGauge).
   std::vector<double> terms(CalibrationQuantity quantity) const;
+  /// The shape's terms alone (terms() adds the blocked force's where the row measured it).
+  std::vector<double> shapeTerms(CalibrationQuantity quantity) const;
 };
 
 struct CalibrationResult {

@@ -12,11 +12,13 @@ namespace pneumatic_finger {
 /// The yardstick over held-out rows: the bend error (rad; every joint where the row measured its joints, else the
 /// tip angle, else the chord, base to tip, which a tip position gives too) and, for rows set by their volume with their pressure
 /// measured, the pressure's relative error (model/measured - 1; 1 rad of bend weighs as the whole pressure, as
-/// tip_angle+gauge_pa weighs them). A row the model gives no shape counts as kUnshapedBendRad of bend error: a
+/// tip_angle+gauge_pa weighs them), and the blocked force where a row measured it, as a share of the data's largest
+/// measured force (the whole range weighing as 1 rad). A row the model gives no shape counts as kUnshapedBendRad of bend error: a
 /// comparison that avoids the snap cannot win by losing the snap's rows.
 struct HeldOutError {
   double bend_rad = 0.0;  ///< root mean square of the bends' errors (rad)
   double pressure = 0.0;  ///< root mean square of the pressures' relative errors (0 where none is compared)
+  double force = 0.0;     ///< the largest blocked force's error held out, as a share of the largest measured force
   double score = 0.0;     ///< sqrt(bend_rad^2 + pressure^2): what the candidates are ranked by
   double standard_error = 0.0;  ///< of score, from the rows' spread (for the report)
   std::vector<double> row_squared;  ///< each held-out row's squared error, in the rows' order (NaN: none measured)
