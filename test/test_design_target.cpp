@@ -134,3 +134,23 @@ TEST(DesignTarget, AParetoFrontOfTwoTargetsThatPullApart) {
   request.targets.pop_back();
   EXPECT_THROW(pf::designParetoFront(epfl(), request, 8), pf::ParameterError);  // one target has no front
 }
+
+// A free size that moves no target would be set anywhere: refused, naming it. A designed finger that meets itself at
+// a target's pressure is said so.
+TEST(DesignTarget, SaysWhatADesignerMustKnow) {
+  pf::DesignRequest request = wallFor("snap_gauge_pa=40000", 5);
+  request.free = {{"drawing/roof_thickness_m", 0.0, 0.0}};  // this law's snap is the wall's, whatever the roof
+  try {
+    pf::designToTarget(epfl(), request);
+    ADD_FAILURE() << "a roof that moves no snap was searched";
+  } catch (const pf::ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("--free drawing/roof_thickness_m: no target moves with it"), std::string::npos)
+        << e.what();
+  }
+  request.targets = {pf::parseDesignTarget("tip_angle_rad@30000=10")};  // more than a finger can bend
+  request.free = {{"drawing/wall_thickness_m", 0.0, 0.0}};
+  const pf::DesignAnswer a = pf::designToTarget(epfl(), request);
+  ASSERT_EQ(a.notes.size(), 1u);
+  EXPECT_NE(a.notes[0].find("at 30000 Pa the designed finger meets itself"), std::string::npos) << a.notes[0];
+  EXPECT_THROW(pf::parseDesignTarget("snap_gauge_pa=-5"), pf::ParameterError);
+}

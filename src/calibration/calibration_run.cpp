@@ -120,6 +120,8 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
     FitCheck check = checkFollows(run.best().leave_one_out, driven.rows, run.quantity, run.by_volume,
                                   !run.candidates.empty());
     run.calibration_error = check.error;
+    run.follow_bar_rad = check.bar_rad;
+    run.scatter_rad = check.scatter_rad;
     if (!check.warning.empty()) run.warnings.push_back(check.warning);
   }
   if (!run.tip_uncertainty.empty()) {

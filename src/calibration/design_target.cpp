@@ -16,6 +16,7 @@
 
 #include "fit_space.hpp"
 #include "pneumatic_finger/core/drawing.hpp"
+#include "pneumatic_finger/core/self_contact.hpp"
 #include "pneumatic_finger/core/yaml_parameters.hpp"
 
 namespace pneumatic_finger {
@@ -63,6 +64,10 @@ DesignTarget parseDesignTarget(const std::string& text) {
   }
   if (at != std::string::npos) t.at = targetNumber(text, left.substr(at + 1), angle ? "rad" : "Pa gauge");
   t.value = targetNumber(text, text.substr(eq + 1), "the quantity's unit");
+  const bool pressure_value = among(t.quantity, std::begin(kOwn), std::end(kOwn)) || angle;
+  if (pressure_value && !(t.value > 0.0)) {
+    throw ParameterError("--target " + text + ": a pressure (Pa gauge) above 0 is expected");
+  }
   return t;
 }
 
@@ -250,6 +255,36 @@ std::pair<double, std::vector<double>> searchCount(const DesignSpace& space) {
   return again.first < best.first ? again : best;
 }
 
+// A free key that moves no target (the same quantities at both ends of its bounds, the others at the middle) would
+// be set anywhere: refused, naming it. @throws ParameterError
+void refuseWhatMovesNoTarget(const DesignSpace& space, const DesignRequest& request) {
+  for (std::size_t k = 0; k < space.size(); ++k) {
+    std::vector<double> lo(space.size(), 0.5), hi(space.size(), 0.5);
+    lo[k] = 0.0, hi[k] = 1.0;
+    FingerParameters a, b;
+    if (!space.design(lo.data(), a) || !space.design(hi.data(), b)) continue;
+    bool moves = false;
+    for (const DesignTarget& t : request.targets) moves = moves || designQuantity(a, t) != designQuantity(b, t);
+    if (moves) continue;
+    throw ParameterError("--free " + request.free[k].key + ": no target moves with it (each is the same at both ends "
+                         "of its bounds): free a size that moves it, such as drawing/wall_thickness_m");
+  }
+}
+
+// A note for each target at a pressure where the designed finger's backbone meets itself.
+void noteSelfContact(DesignAnswer& a, const DesignRequest& request) {
+  const FingerModel model(a.parameters);
+  FingerWorkspace ws(model);
+  for (const DesignTarget& t : request.targets) {
+    if (t.quantity != "tip_angle_rad" && t.quantity != "chord_angle_rad") continue;
+    const FingerState& s = model.evaluate(t.at, ws);
+    if (backboneMeetsItself(s.backbone_m, s.joint_angle_rad.data())) {
+      a.notes.push_back("at " + formatMessage(t.at) + " Pa the designed finger meets itself (its backbone crosses "
+                        "itself, tip angle " + formatMessage(s.tip_angle_rad) + " rad): no finger bends so far");
+    }
+  }
+}
+
 // The answer at @p u: the design, what it achieves, how far it reaches, and the keys at a bound.
 DesignAnswer answerAt(const DesignSpace& space, const DesignRequest& request, const std::vector<double>& u) {
   DesignAnswer a;
@@ -269,6 +304,7 @@ DesignAnswer answerAt(const DesignSpace& space, const DesignRequest& request, co
     a.at_bound.push_back(request.free[k].key + " at its " + (u[k] <= 1e-9 ? "lower" : "upper") + " bound " +
                          formatMessage(a.values[k]) + " m");
   }
+  noteSelfContact(a, request);
   return a;
 }
 
@@ -276,15 +312,22 @@ DesignAnswer answerAt(const DesignSpace& space, const DesignRequest& request, co
 
 DesignAnswer designToTarget(const FingerParameters& base, const DesignRequest& request) {
   const auto began = std::chrono::steady_clock::now();
-  if (!drawingFromRaw(base.drawing)) throw ParameterError("the base parameters have no drawing to design from");
-  if (request.targets.empty() || request.free.empty()) {
-    throw ParameterError("a design needs a target (--target) and a drawing size to change (--free drawing/KEY)");
+  if (!drawingFromRaw(base.drawing)) {
+    throw ParameterError("the base parameters have no drawing to design from: give a drawn, calibrated file (--config "
+                         "config/epfl_ecoflex30_c7.yaml is one; docs/DRAWING.md)");
   }
+  if (request.targets.empty()) throw ParameterError("a design needs a target (--target QUANTITY=VALUE)");
+  if (request.free.empty()) throw ParameterError("a design needs a drawing size to change (--free drawing/KEY)");
   for (const FreeDrawingKey& f : request.free) {
     const std::string name = f.key.substr(std::min(f.key.size(), std::string(kDrawingPrefix).size()));
     const bool known = f.key.rfind(kDrawingPrefix, 0) == 0 && std::count(std::begin(kFittableDrawn),
                                                                           std::end(kFittableDrawn), name) > 0;
-    if (!known) throw ParameterError("--free " + f.key + ": not a drawing size the search may change");
+    if (!known) {
+      std::string sizes;
+      for (const char* k : kFittableDrawn) sizes += (sizes.empty() ? "" : ", ") + std::string(kDrawingPrefix) + k;
+      throw ParameterError("--free " + f.key + ": not a drawing size the search may change (" + sizes +
+                           "; the chamber count: --chamber-count)");
+    }
     const auto same = [&f](const FreeDrawingKey& g) { return g.key == f.key; };
     if (std::count_if(request.free.begin(), request.free.end(), same) > 1) {
       throw ParameterError("--free " + f.key + " given twice");
@@ -298,6 +341,7 @@ DesignAnswer designToTarget(const FingerParameters& base, const DesignRequest& r
     const DesignSpace space(base, request, count);
     const auto point = searchCount(space);
     if (!(point.first < 1e6)) continue;  // no design of this count in the bounds
+    refuseWhatMovesNoTarget(space, request);
     DesignAnswer a = answerAt(space, request, point.second);
     // Of the counts that meet the targets, the one nearest the base drawing; else the one that misses least.
     const bool better = !found || (a.met && !best.met) ||
@@ -391,9 +435,10 @@ std::string designParameterYaml(const DesignAnswer& answer, const DesignRequest&
     head << " " << request.free[k].key << " = " << formatExact(answer.values[k]);
   }
   head << "\n# " << (answer.met ? "met" : "NOT met: the nearest design the bounds allow") << "; largest miss "
-       << formatMessage(answer.miss) << "; reach from the base drawing (largest |ln(size / drawn)|) "
+       << formatMessage(100.0 * answer.miss) << " %; reach from the base drawing (largest |ln(size / drawn)|) "
        << formatMessage(answer.reach) << "\n";
   for (const std::string& b : answer.at_bound) head << "# stopped by " << b << "\n";
+  for (const std::string& n : answer.notes) head << "# note: " << n << "\n";
   PressureRange range;
   range.max_gauge_pa = max_gauge_pa;
   range.validated_max_gauge_pa = 0.0;

@@ -89,6 +89,7 @@ double bendScatterRad(const std::vector<Measurement>& data) {
     if (!m.driven_by_volume && m.hasGauge() && !std::isnan(bend)) rows.emplace_back(m.gauge_pa, bend);
   }
   std::sort(rows.begin(), rows.end());
+  if (rows.size() < kScatterRows) return 0.0;
   std::vector<double> departures;
   for (std::size_t i = 1; i + 1 < rows.size(); ++i) {
     const double span = rows[i + 1].first - rows[i - 1].first;
@@ -108,6 +109,8 @@ FitCheck checkFollows(const std::vector<Residual>& held_out, const std::vector<M
   const double scatter_rad = bendScatterRad(data);
   const double bar_rad = std::max(kFollowFloorRad, kFollowScatters * scatter_rad);
   FitCheck check;
+  check.bar_rad = bar_rad;
+  check.scatter_rad = scatter_rad;
   CalibrationError& e = check.error;
   double sum_sq = 0.0, largest = -1.0;
   int bends = 0, unshaped = 0;

@@ -42,8 +42,9 @@ std::vector<MeshTriangle> drawnBodyMesh(const ActuatorDrawing& d) {
   if (!(d.floor_height_m > -d.layer_thickness_m)) {
     throw ParameterError("the cavities' floor (" + mm(d.floor_height_m) + " above the bending axis) is the body's "
                          "bottom face (the strain-limiting layer is " + mm(d.layer_thickness_m) + " thick): give "
-                         "drawing/layer_thickness_m (the layer under the body) or drawing/floor_height_m, so that the "
-                         "mesh closes the cavities");
+                         "drawing/layer_thickness_m, the layer under the body (--set drawing/layer_thickness_m=0.002, "
+                         "or under drawing: in the file), or drawing/floor_height_m, so that the mesh closes the "
+                         "cavities");
   }
   const int n = d.chamber_count;
   const double length = d.base_length_m + 2.0 * d.end_wall_thickness_m + n * d.cavity_length_m +

@@ -74,6 +74,7 @@ py::dict designToTarget(const std::string& config, const py::dict& overrides, co
   d["miss"] = a.miss;
   d["met"] = a.met;
   d["at_bound"] = py::cast(a.at_bound);
+  d["notes"] = py::cast(a.notes);
   d["reach"] = a.reach;
   d["seconds"] = a.seconds;
   d["parameter_file"] = pf::designParameterYaml(a, request, range.max_gauge_pa);

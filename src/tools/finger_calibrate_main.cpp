@@ -154,6 +154,15 @@ std::string errorBarLine(const pf::TipUncertainty& bar) {
   return line + "\n";
 }
 
+// Whether the fit follows its data held out, and the bar it was held to (checkFollows); "" without leave-one-out.
+std::string followLine(const pf::CalibrationRun& run) {
+  const pf::CalibrationError& e = run.calibration_error;
+  if (e.empty()) return "";
+  return "# held out, " + (e.follows_data ? std::string("every row") : std::to_string(e.missed_rows) + " row(s) NOT") +
+         " within the follow bar, " + fmt("%.2f", run.follow_bar_rad * kDeg) + " deg (the larger of 5 deg and 3 "
+         "times the data's own scatter, " + fmt("%.2f", run.scatter_rad * kDeg) + " deg)\n";
+}
+
 // The report: what was fitted to what, the error of the fit and of leave-one-out per row, and the error bar.
 // @p paper_data: the package's Table 1, beside which the paper's own model's error is worth printing.
 std::string report(const std::string& data_name, bool paper_data, std::size_t rows, const std::string& average_column,
@@ -178,7 +187,7 @@ std::string report(const std::string& data_name, bool paper_data, std::size_t ro
   table << "\n#\n# error of the fit (angles in rad, tip_m in m)\n" << fit_table
         << "# leave-one-out error: each row predicted by a fit to the others\n" << loo_table
         << "#\n# largest |error|:" << largest(worst, n, paper_data) << "\n# largest leave-one-out |error|:"
-        << largest(worst_loo, n, false) << "\n" << errorBarLine(run.tip_uncertainty);
+        << largest(worst_loo, n, false) << "\n" << followLine(run) << errorBarLine(run.tip_uncertainty);
   return table.str();
 }
 

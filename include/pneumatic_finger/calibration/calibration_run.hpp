@@ -61,8 +61,10 @@ struct CalibrationRun {
   /// Every warning, the data's first (columns not read), then the fit's (keys that trade off, keys on a bound), and
   /// last, where the fit does not follow its data, which rows it misses and what to try (checkFollows).
   std::vector<std::string> warnings;
-  /// How well the chosen fit followed its data, held out (checkFollows); empty without leave-one-out.
+  /// How well the chosen fit followed its data, held out (checkFollows); empty without leave-one-out. follow_bar_rad
+  /// and scatter_rad: the bar each held-out bend was held to, and the data's own scatter it came from.
   CalibrationError calibration_error;
+  double follow_bar_rad = 0.0, scatter_rad = 0.0;
 
   const WallLawFit& best() const { return fits.at(chosen); }
 };

@@ -50,6 +50,7 @@ struct DesignAnswer {
   double miss = 0.0;              ///< the largest |achieved / value - 1| over the targets (|achieved| where value is 0)
   bool met = false;               ///< every target within kDesignTolerance (relative)
   std::vector<std::string> at_bound;  ///< "drawing/KEY at its upper bound 0.014 m" for each key that stops the search
+  std::vector<std::string> notes;     ///< what else a designer must know (a shape that meets itself at a target)
   double reach = 0.0;             ///< the largest |ln(value / drawn)| over the free keys: how far from the base drawing
   double seconds = 0.0;           ///< the search's wall time
 };
@@ -63,7 +64,8 @@ double designQuantity(const FingerParameters& p, const DesignTarget& target);
 
 /// Searches the drawing of @p base (which must have one) for @p request. @throws ParameterError for a base without a
 /// drawing, an unknown or repeated free key, a key that is not a positive drawing size, bounds that do not hold the
-/// castable thickness, a target that is not finite, or no design in the bounds that the model accepts
+/// castable thickness, a free key that moves no target (the same quantities at both ends of its bounds), or no
+/// design in the bounds that the model accepts
 DesignAnswer designToTarget(const FingerParameters& base, const DesignRequest& request);
 
 /// Targets that pull against each other: the Pareto front of the best chamber count (designToTarget's). The designs

@@ -20,12 +20,16 @@ inline constexpr double kFollowPressure = 0.10;
 /// bend's departure from the line through its two neighbours over that departure's spread for independent noise of
 /// one standard deviation (sqrt(1 + w^2 + (1 - w)^2), w the row's place between them), 1.4826 times the median (a
 /// robust standard deviation, which a snap's few rows do not move). The bend: every joint's sum, the tip angle, the
-/// chord. 0 with fewer than three such rows.
+/// chord. 0 with fewer than kScatterRows such rows: on a few rows far apart the line through two neighbours misses
+/// the curve's own bend, which is not noise.
+inline constexpr std::size_t kScatterRows = 8;
 double bendScatterRad(const std::vector<Measurement>& data);
 
 /// What the check found: the file's record, and for the report the missed rows and what to try.
 struct FitCheck {
   CalibrationError error;
+  double bar_rad = 0.0;  ///< the follow bar the held-out bends were held to
+  double scatter_rad = 0.0;  ///< the data's own scatter (bendScatterRad)
   std::string warning;  ///< "" where the fit follows its data; else the rows, by how much, and what to try
 };
 
