@@ -126,7 +126,10 @@ std::string uncertaintyLines(const pf::CalibrationRun& run) {
   const std::size_t k = fit.keys.size();
   for (std::size_t i = 0; i < k; ++i) {
     t << " " << fit.keys[i] << " +- " << fmt("%.3g", fit.uncertainty[i]) << " ("
-      << fmt("%.3g", 100.0 * fit.uncertainty[i] / std::fabs(fit.values[i])) << " %)" << (i + 1 < k ? "," : "");
+      // A share of a value of 0 means nothing: the bar alone, in the key's unit.
+      << (fit.values[i] != 0.0 ? fmt("%.3g", 100.0 * fit.uncertainty[i] / std::fabs(fit.values[i])) + " %)"
+                               : std::string("at a value of 0)"))
+      << (i + 1 < k ? "," : "");
   }
   if (k > 1) {
     t << "\n# correlation:";
