@@ -99,11 +99,7 @@ struct BodySize {
   double length_m, width_m, height_m;
 };
 
-BodySize bodyOf(const ActuatorDrawing& d) {
-  return {d.base_length_m + 2.0 * d.end_wall_thickness_m + d.chamber_count * d.cavity_length_m +
-              (d.chamber_count - 1) * d.wall_thickness_m,
-          d.body_width_m, d.floor_height_m + d.cavity_height_m + d.roof_thickness_m};
-}
+BodySize bodyOf(const ActuatorDrawing& d) { return {bodyLengthM(d), d.body_width_m, bodyTopM(d)}; }
 
 bool castableKey(const std::string& key) {
   return key == "drawing/wall_thickness_m" || key == "drawing/end_wall_thickness_m" ||

@@ -38,20 +38,14 @@ double measuredBend(const Measurement& m) {
 // A held-out row's bend error (rad): its largest joint's, else its tip angle's, else its chord's; NaN: no shape;
 // @p measured false where the row measured no bend.
 double bendError(const Residual& r, bool& measured) {
-  measured = true;
-  if (!r.measured_joint_rad.empty()) {
-    double worst = 0.0;
-    for (std::size_t k = 0; k < r.measured_joint_rad.size(); ++k) {
-      const double e = r.model_joint_rad[k] - r.measured_joint_rad[k];
-      if (std::isnan(e)) return e;
-      if (std::fabs(e) > std::fabs(worst)) worst = e;
-    }
-    return worst;
+  const std::vector<double> bends = heldOutBendErrors(r);  // the yardstick's bends
+  measured = !bends.empty();
+  double worst = 0.0;
+  for (double e : bends) {
+    if (std::isnan(e)) return e;
+    if (std::fabs(e) > std::fabs(worst)) worst = e;
   }
-  if (!std::isnan(r.measured_tip_angle_rad)) return r.tip_angle_error_rad();
-  if (!std::isnan(r.measured_chord_angle_rad)) return r.chord_angle_error_rad();
-  measured = false;
-  return 0.0;
+  return worst;
 }
 
 // What to try, for the rows missed: the words depend on what the data and the run were.

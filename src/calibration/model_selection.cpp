@@ -20,16 +20,7 @@ namespace {
 // One held-out row's squared error: the mean of its bends' squared errors (a row without a shape: kUnshapedBendRad
 // each) plus, where compared, its pressure's squared relative error (none: the whole pressure). NaN: nothing measured.
 double rowSquaredError(const Residual& r, bool by_volume, int& unshaped) {
-  std::vector<double> bends;
-  if (!r.measured_joint_rad.empty()) {  // every joint is a bend the row measured
-    for (std::size_t k = 0; k < r.measured_joint_rad.size(); ++k) {
-      bends.push_back(r.model_joint_rad[k] - r.measured_joint_rad[k]);
-    }
-  } else if (!std::isnan(r.measured_tip_angle_rad)) {
-    bends.push_back(r.tip_angle_error_rad());
-  } else if (!std::isnan(r.measured_chord_angle_rad)) {
-    bends.push_back(r.chord_angle_error_rad());
-  }
+  const std::vector<double> bends = heldOutBendErrors(r);
   double sum = 0.0;
   bool without_shape = false;
   for (double e : bends) {
@@ -47,6 +38,20 @@ double rowSquaredError(const Residual& r, bool by_volume, int& unshaped) {
 }
 
 }  // namespace
+
+std::vector<double> heldOutBendErrors(const Residual& r) {
+  std::vector<double> bends;
+  if (!r.measured_joint_rad.empty()) {  // every joint is a bend the row measured
+    for (std::size_t k = 0; k < r.measured_joint_rad.size(); ++k) {
+      bends.push_back(r.model_joint_rad[k] - r.measured_joint_rad[k]);
+    }
+  } else if (!std::isnan(r.measured_tip_angle_rad)) {
+    bends.push_back(r.tip_angle_error_rad());
+  } else if (!std::isnan(r.measured_chord_angle_rad)) {
+    bends.push_back(r.chord_angle_error_rad());
+  }
+  return bends;
+}
 
 HeldOutError heldOutError(const std::vector<Residual>& held_out, bool by_volume) {
   HeldOutError out;

@@ -139,15 +139,20 @@ std::optional<ActuatorDrawing> drawingFromRaw(const RawParameterMap& raw) {
   return d;
 }
 
+double bodyLengthM(const ActuatorDrawing& d) {
+  return d.base_length_m + 2.0 * d.end_wall_thickness_m + d.chamber_count * d.cavity_length_m +
+         (d.chamber_count - 1) * d.wall_thickness_m;
+}
+
+double bodyTopM(const ActuatorDrawing& d) { return d.floor_height_m + d.cavity_height_m + d.roof_thickness_m; }
+
 RawParameterMap modelKeysFromDrawing(const ActuatorDrawing& d, WallLaw law) {
   const int n = d.chamber_count;
   const bool own_face = n == 1;  // one cavity has no neighbour to press: its own face lengthens the side
   // A solid wall is shared: both cavities push on all of it. A split wall gives each cavity its half.
   const double between = d.gap_m > 0.0 ? 0.5 * (d.wall_thickness_m - d.gap_m) : d.wall_thickness_m;
   const double pitch = d.cavity_length_m + d.wall_thickness_m;
-  const double length = d.base_length_m + 2.0 * d.end_wall_thickness_m + n * d.cavity_length_m +
-                        (n - 1) * d.wall_thickness_m;
-  const double top = d.floor_height_m + d.cavity_height_m + d.roof_thickness_m;
+  const double length = bodyLengthM(d), top = bodyTopM(d);
   RawParameterMap keys;
   auto put = [&keys](const char* key, double v) { keys[key] = RawParameterValue{{v}, false}; };
   put("chamber_count", n);

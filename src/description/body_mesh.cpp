@@ -47,9 +47,7 @@ std::vector<MeshTriangle> drawnBodyMesh(const ActuatorDrawing& d) {
                          "cavities");
   }
   const int n = d.chamber_count;
-  const double length = d.base_length_m + 2.0 * d.end_wall_thickness_m + n * d.cavity_length_m +
-                        (n - 1) * d.wall_thickness_m;
-  const double half_width = 0.5 * d.body_width_m, top = d.floor_height_m + d.cavity_height_m + d.roof_thickness_m;
+  const double length = bodyLengthM(d), half_width = 0.5 * d.body_width_m, top = bodyTopM(d);
   std::vector<MeshTriangle> mesh;
   addBox(mesh, {0.0, -half_width, -d.layer_thickness_m}, {length, half_width, top}, true);
   for (int k = 0; k < n; ++k) {

@@ -26,6 +26,10 @@ struct HeldOutError {
 };
 inline constexpr double kUnshapedBendRad = 1.5707963267948966;  // a quarter turn
 
+/// A held-out row's bend errors (rad): every joint's where the row measured its joints, else the tip angle's, else
+/// the chord's (which a tip position gives too); NaN where the model gave no shape; empty where no bend was measured.
+std::vector<double> heldOutBendErrors(const Residual& r);
+
 /// The yardstick of @p held_out (rows predicted without themselves); @p by_volume: the rows were set by their volume.
 HeldOutError heldOutError(const std::vector<Residual>& held_out, bool by_volume);
 

@@ -32,6 +32,11 @@ struct ActuatorDrawing {
                                       ///< about its top and does not use it; the body's mesh does
 };
 
+/// The body's length along the finger (m): the base, the two end walls, the cavities and the walls between them.
+double bodyLengthM(const ActuatorDrawing& drawing);
+/// The body's top above the bending axis (m): the cavities' floor, their height and the roof.
+double bodyTopM(const ActuatorDrawing& drawing);
+
 /// The drawing's keys: their one definition (names without the prefix; NaN default: required).
 const std::vector<ParameterSpec>& drawingParameterSpecs();
 
