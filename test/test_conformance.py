@@ -404,6 +404,29 @@ def test_every_interface_refuses_the_data_file_in_the_same_words(tmp_path, case)
     assert case["words"] in str(refused.value), str(refused.value)
 
 
+@pytest.mark.parametrize("case", TABLE["parts"], ids=lambda c: c["words"][:30])
+def test_every_interface_reads_a_part_to_grip_alike(case):
+    config = ROOT / "config/epfl_ecoflex30_c7.yaml"
+    design = tool("finger_design", "--config", config, "--target", "grip_gauge_pa=min", "--part", case["part"],
+                  "--free", "drawing/wall_thickness_m")
+    model = tool("finger_model", "--config", config, "--pressures", "--grip-part", case["part"])
+    assert case["words"] in design.stderr and design.returncode == 2, design.stderr
+    if case.get("held", True):  # not a part: refused
+        assert model.returncode == 2 and case["words"] in model.stderr, model.stderr
+        for call in (lambda: pf.grip_gauge_pa(case["part"], config=str(config)),
+                     lambda: pf.design_to_target(["grip_gauge_pa=min"], ["drawing/wall_thickness_m"],
+                                                 config=str(config), part=case["part"])):
+            with pytest.raises(ValueError, match=re.escape(case["words"])):
+                call()
+        return
+    assert model.returncode == 0 and case["words"] in model.stderr, model.stderr  # a part, too heavy: nan
+    assert next(csv.DictReader(io.StringIO(model.stdout)))["grip_gauge_pa"] == "nan"
+    with pytest.warns(RuntimeWarning, match=re.escape(case["words"])):
+        assert math.isnan(pf.grip_gauge_pa(case["part"], config=str(config)))
+    with pytest.raises(ValueError, match=re.escape(case["words"])):
+        pf.design_to_target(["grip_gauge_pa=min"], ["drawing/wall_thickness_m"], config=str(config), part=case["part"])
+
+
 @pytest.mark.parametrize("file", sorted({c["file"] for c in TABLE["volumes"]}))
 def test_every_interface_driven_by_volume_gives_the_same_finger(ros, files, file):
     path = files[file]
@@ -557,23 +580,27 @@ def test_every_interface_says_whether_a_calibration_follows_its_data(ros, tmp_pa
 def test_every_designed_file_reproduces_its_prediction_in_every_interface(ros, tmp_path, case):
     written = tmp_path / "cli.yaml"
     counts = ["--chamber-count", str(case["chamber_count"])] if "chamber_count" in case else []
+    part = ["--part", case["part"]] if "part" in case else []
     done = tool("finger_design", "--config", ROOT / case["config"], "--target", case["target"], "--free", case["free"],
-                *counts, "--output", written)
+                *counts, *part, "--output", written)
     assert done.returncode == 0 and "# met" in done.stdout, done.stdout + done.stderr
     design = pf.design_to_target([case["target"]], [case["free"]], config=str(ROOT / case["config"]),
-                                 chamber_counts=[case["chamber_count"]] if "chamber_count" in case else None)
+                                 chamber_counts=[case["chamber_count"]] if "chamber_count" in case else None,
+                                 part=case.get("part"))
     assert written.read_text() == design["parameter_file"]  # the CLI's file is Python's, byte for byte
     achieved = design["achieved"][case["target"]]
     quantity, _, rest = case["target"].partition("@")
     quantity = quantity.partition("=")[0]
     model = pf.FingerModel(config=str(written))
     assert model.validated_max_gauge_pa == 0.0  # a drawing not yet cast: every answer a zero-shot prediction
-    if quantity == "snap_gauge_pa":
-        assert abs(model.snap_gauge_pa / achieved - 1.0) <= 1e-12
-        done = tool("finger_model", "--config", written, "--pressures")
+    if quantity in ("snap_gauge_pa", "grip_gauge_pa"):
+        grip = ["--grip-part", case["part"]] if quantity == "grip_gauge_pa" else []
+        done = tool("finger_model", "--config", written, "--pressures", *grip)
         row = next(csv.DictReader(io.StringIO(done.stdout)))
-        assert abs(float(row["snap_gauge_pa"]) / achieved - 1.0) <= 1e-12, row
-        pressure = achieved / 2
+        python = model.snap_gauge_pa if not grip else pf.grip_gauge_pa(case["part"], config=str(written))
+        for answer in (python, float(row[quantity])):
+            assert abs(answer / achieved - 1.0) <= 1e-12, (answer, achieved)
+        pressure = achieved / 2 if not grip else achieved
     else:
         pressure = float(rest.partition("=")[0])
         tip = float(model.evaluate(pressure)["tip_angle_rad"])

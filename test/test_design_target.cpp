@@ -154,3 +154,64 @@ TEST(DesignTarget, SaysWhatADesignerMustKnow) {
   EXPECT_NE(a.notes[0].find("at 30000 Pa the designed finger meets itself"), std::string::npos) << a.notes[0];
   EXPECT_THROW(pf::parseDesignTarget("snap_gauge_pa=-5"), pf::ParameterError);
 }
+
+namespace {
+
+// A grip target: a 20 g part of 30 mm lifted at 2 m/s^2 by the shipped gripper, held at most at the EPFL file's top.
+pf::DesignRequest gripFor(const std::string& target) {
+  pf::DesignRequest r = wallFor(target, 7);
+  pf::attachGripPart(r.targets, "mass_kg=0.02,diameter_m=0.03,lift_mps2=2", 5e4);
+  return r;
+}
+
+double gripOf(const pf::FingerParameters& p, const pf::DesignRequest& r) {
+  return pf::holdingGaugePa(pf::FingerModel(p), r.targets[0].grip);
+}
+
+}  // namespace
+
+// The lowest pressure that holds the part: lower than the base drawing's, the answer's own when its file is loaded
+// back, and at an edge the search names (a thinner wall balloons before it holds) or at a bound.
+TEST(DesignTarget, LowersThePressureThatHoldsAPart) {
+  const pf::DesignRequest request = gripFor("grip_gauge_pa=min");
+  const pf::DesignAnswer a = pf::designToTarget(epfl(), request);
+  ASSERT_TRUE(a.met);
+  const double base_pa = gripOf(epfl(), request);
+  EXPECT_LT(a.achieved[0], 0.8 * base_pa) << "the 7 mm wall holds it at " << base_pa << " Pa";
+  const pf::ParameterTree tree = pf::readParameterTree(YAML::Load(pf::designParameterYaml(a, request, 5e4)), "grip");
+  EXPECT_NEAR(gripOf(pf::FingerParameters::fromRaw(tree.raw), request), a.achieved[0], 1e-12 * a.achieved[0]);
+  // Each neighbour 1 % thinner or thicker (within the bounds) holds it higher, or not at all.
+  for (const double step : {0.99, 1.01}) {
+    const double wall = a.values[0] * step;
+    if (wall < 0.007 / 4.0 || wall > 0.028) continue;
+    const double p = gripOf(epfl({{"drawing/wall_thickness_m", {{wall}, false}}}), request);
+    EXPECT_TRUE(std::isnan(p) || p > a.achieved[0]) << wall << " m holds at " << p << " Pa";
+  }
+  const bool edge = !a.notes.empty() && a.notes[0].find("1 % smaller gives no design") != std::string::npos;
+  EXPECT_TRUE(edge || !a.at_bound.empty()) << "the answer says what stops it going lower";
+}
+
+// A grip pressure as a value is met like any other target, and joins a Pareto front; a lowest cannot.
+TEST(DesignTarget, MeetsAGripPressureAndRefusesAGripWithoutItsPart) {
+  const pf::DesignRequest request = gripFor("grip_gauge_pa=30000");
+  const pf::DesignAnswer a = pf::designToTarget(epfl(), request);
+  ASSERT_TRUE(a.met) << a.miss;
+  EXPECT_NEAR(gripOf(a.parameters, request), 30000.0, 30000.0 * pf::kDesignTolerance);
+  std::vector<pf::DesignTarget> targets = {pf::parseDesignTarget("grip_gauge_pa=min")};
+  EXPECT_THROW(pf::attachGripPart(targets, "", 5e4), pf::ParameterError);  // no part
+  targets = {pf::parseDesignTarget("snap_gauge_pa=40000")};
+  EXPECT_THROW(pf::attachGripPart(targets, "mass_kg=0.02,diameter_m=0.03", 5e4), pf::ParameterError);  // no grip
+  EXPECT_THROW(pf::parseDesignTarget("snap_gauge_pa=min"), pf::ParameterError);  // only a grip has a lowest
+  pf::DesignRequest two = gripFor("grip_gauge_pa=min");
+  two.targets.push_back(pf::parseDesignTarget("snap_gauge_pa=40000"));
+  EXPECT_THROW(pf::designParetoFront(epfl(), two, 4), pf::ParameterError);
+  pf::DesignRequest heavy = wallFor("grip_gauge_pa=min", 7);
+  pf::attachGripPart(heavy.targets, "mass_kg=2,diameter_m=0.03", 5e4);
+  try {
+    pf::designToTarget(epfl(), heavy);
+    ADD_FAILURE() << "a 2 kg part was held";
+  } catch (const pf::ParameterError& e) {
+    EXPECT_NE(std::string(e.what()).find("the base drawing's grip: each finger must press with 9.80665 N"),
+              std::string::npos) << e.what();
+  }
+}

@@ -21,6 +21,7 @@ from pneumatic_finger._core import FingerModel as _FingerModel
 from pneumatic_finger._core import calibrate as _calibrate
 from pneumatic_finger._core import design_to_target as _design_to_target
 from pneumatic_finger._core import fit_coupon as _fit_coupon
+from pneumatic_finger._core import grip_gauge_pa as _grip_gauge_pa
 from pneumatic_finger._core import range_check
 
 __all__ = ["FingerModel", "calibrate", "fit_coupon", "default_config", "default_data", "range_check", "STATUS", "STATUS_FLAGS",
@@ -121,12 +122,15 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
 
 
 def design_to_target(targets, free, config=None, overrides=None, chamber_counts=None, castable_m=1e-3,
-                     max_body_m=(0.0, 0.0, 0.0), output=None, pareto=0):
+                     max_body_m=(0.0, 0.0, 0.0), output=None, pareto=0, part=None):
     """finger_design --target from Python: the drawing that meets the targets, from a calibrated file's material.
 
     targets: "QUANTITY=VALUE" or "QUANTITY@AT=VALUE" strings (snap_gauge_pa, limit_gauge_pa, contact_gauge_pa in Pa;
     tip_angle_rad, chord_angle_rad at a pressure, blocked_tip_force_n at a pressure; gauge_for_tip_angle at an angle
-    in rad). free: the drawing sizes it may change, a list of "drawing/KEY" (bounds: a quarter to four times the drawn
+    in rad; grip_gauge_pa, the lowest pressure that holds part, "=min" for as low as the bounds allow). part: for
+    grip_gauge_pa, "mass_kg=M,diameter_m=D[,lift_mps2=A,fingers=3,mount_radius_m=0.035,friction=1,margin=1.5,limit_share=0.9]" (the
+    gripper's defaults are the shipped gripper's and the cell's; the part is held at most at the file's max_gauge_pa).
+    free: the drawing sizes it may change, a list of "drawing/KEY" (bounds: a quarter to four times the drawn
     size) or a dict {"drawing/KEY": (lo, hi)} in m. chamber_counts: the whole numbers to try (None: the drawing's).
     castable_m: the thinnest wall, end wall or roof. max_body_m: the body's largest (length, width, height), 0: none.
 
@@ -139,11 +143,26 @@ def design_to_target(targets, free, config=None, overrides=None, chamber_counts=
     bounds = dict(free) if isinstance(free, dict) else {key: (0.0, 0.0) for key in free}
     result = _design_to_target(config if config is not None else default_config(), dict(overrides or {}),
                                list(targets), {k: list(v) for k, v in bounds.items()}, list(chamber_counts or []),
-                               float(castable_m), [float(x) for x in max_body_m], int(pareto))
+                               float(castable_m), [float(x) for x in max_body_m], int(pareto), part or "")
     if output is not None:
         with open(output, "w") as f:
             f.write(result["parameter_file"])
     return result
+
+
+def grip_gauge_pa(part, config=None, overrides=None, max_gauge_pa=None):
+    """finger_model --pressures --grip-part from Python: the lowest gauge pressure (Pa) at which a ring of these
+    fingers holds a part by its side, by the cell's grasp rule (docs/DESIGN.md, "A grip").
+
+    part: "mass_kg=M,diameter_m=D[,lift_mps2=A,fingers=3,mount_radius_m=0.035,friction=1,margin=1.5,limit_share=0.9]".
+    The search goes up to max_gauge_pa (None: the file's) and limit_share of the walls' limit point. Returns nan,
+    with a RuntimeWarning saying why, where no pressure there holds it."""
+    import warnings
+    gauge_pa, why = _grip_gauge_pa(config if config is not None else default_config(), dict(overrides or {}), part,
+                                   max_gauge_pa)
+    if why:
+        warnings.warn(f"the part is not held: {why}", RuntimeWarning, stacklevel=2)
+    return gauge_pa
 
 
 def fit_coupon(data, law="gent", config=None, overrides=None, output=None):

@@ -23,77 +23,6 @@ namespace pneumatic_finger {
 
 namespace {
 
-constexpr const char* kAtPressure[] = {"tip_angle_rad", "chord_angle_rad", "blocked_tip_force_n"};
-constexpr const char* kOwn[] = {"snap_gauge_pa", "limit_gauge_pa", "contact_gauge_pa"};
-
-bool among(const std::string& q, const char* const* first, const char* const* last) {
-  return std::find_if(first, last, [&q](const char* k) { return q == k; }) != last;
-}
-
-// A number of a target's text. @throws ParameterError naming the target
-double targetNumber(const std::string& text, const std::string& field, const char* what) {
-  char* end = nullptr;
-  const double v = std::strtod(field.c_str(), &end);
-  if (field.empty() || *end != '\0' || !std::isfinite(v)) {
-    throw ParameterError("--target " + text + ": '" + field + "' is not a finite number (" + what + ")");
-  }
-  return v;
-}
-
-}  // namespace
-
-DesignTarget parseDesignTarget(const std::string& text) {
-  const auto eq = text.find('=');
-  const std::string usage = "; expected QUANTITY=VALUE (snap_gauge_pa, limit_gauge_pa, contact_gauge_pa) or "
-                            "QUANTITY@P=VALUE (tip_angle_rad, chord_angle_rad, blocked_tip_force_n at P Pa gauge; "
-                            "gauge_for_tip_angle at a tip angle in rad)";
-  if (eq == std::string::npos) throw ParameterError("--target " + text + ": no '='" + usage);
-  DesignTarget t;
-  t.text = text;
-  std::string left = text.substr(0, eq);
-  const auto at = left.find('@');
-  t.quantity = left.substr(0, at);
-  const bool pressure = among(t.quantity, std::begin(kAtPressure), std::end(kAtPressure));
-  const bool angle = t.quantity == "gauge_for_tip_angle";
-  if (!pressure && !angle && !among(t.quantity, std::begin(kOwn), std::end(kOwn))) {
-    throw ParameterError("--target " + text + ": unknown quantity '" + t.quantity + "'" + usage);
-  }
-  if ((pressure || angle) != (at != std::string::npos)) {
-    throw ParameterError("--target " + text + ": " + t.quantity + (pressure || angle ? " needs" : " takes no") +
-                         " '@'" + usage);
-  }
-  if (at != std::string::npos) t.at = targetNumber(text, left.substr(at + 1), angle ? "rad" : "Pa gauge");
-  t.value = targetNumber(text, text.substr(eq + 1), "the quantity's unit");
-  const bool pressure_value = among(t.quantity, std::begin(kOwn), std::end(kOwn)) || angle;
-  if (pressure_value && !(t.value > 0.0)) {
-    throw ParameterError("--target " + text + ": a pressure (Pa gauge) above 0 is expected");
-  }
-  return t;
-}
-
-double designQuantity(const FingerParameters& p, const DesignTarget& t) {
-  ModelOptions options;
-  options.wall_inverse = false;  // one model per design, asked once or twice
-  options.snap_point = t.quantity == "snap_gauge_pa";
-  const FingerModel model(p, options);
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  if (t.quantity == "snap_gauge_pa") return model.snapGaugePa();
-  if (t.quantity == "limit_gauge_pa") return model.limitGaugePa();
-  if (t.quantity == "contact_gauge_pa") return model.contactGaugePa();
-  if (t.quantity == "blocked_tip_force_n") return model.blockedTipForceN(t.at);
-  if (t.quantity == "gauge_for_tip_angle") {
-    double gauge_pa = nan;
-    std::string why;
-    return model.gaugeForTipAngle(t.at, std::numeric_limits<double>::infinity(), gauge_pa, why) ? gauge_pa : nan;
-  }
-  FingerWorkspace ws(model);
-  const FingerState& s = model.evaluate(t.at, ws);
-  if (s.status != EvaluationStatus::kOk && s.status != EvaluationStatus::kSnappedThrough) return nan;
-  return t.quantity == "tip_angle_rad" ? s.tip_angle_rad : s.chordAngle();
-}
-
-namespace {
-
 // The body's outline as drawn (m): along (base, end walls, cavities and the walls between), across, up.
 struct BodySize {
   double length_m, width_m, height_m;
@@ -122,8 +51,8 @@ class DesignSpace {
   std::vector<double> values(const double* u) const;
   const FingerParameters& start() const { return start_; }
   const std::vector<double>& drawn() const { return drawn_; }
-  const std::vector<double>& lo() const { return lo_; }
-  const std::vector<double>& hi() const { return hi_; }
+  const std::vector<double>& logLo() const { return lo_; }
+  const std::vector<double>& logHi() const { return hi_; }
 
  private:
   FingerParameters start_;
@@ -179,20 +108,35 @@ bool DesignSpace::design(const double* u, FingerParameters& p) const {
          !over(body.height_m, request_->max_body_height_m);
 }
 
-// How far @p achieved misses @p target, as a share of the value (the value itself where it is 0).
+// How far @p achieved misses @p target, as a share of the value (the value itself where it is 0); a target to
+// minimise misses nothing.
 double relativeMiss(double achieved, const DesignTarget& target) {
+  if (target.minimize) return 0.0;
   return target.value != 0.0 ? achieved / target.value - 1.0 : achieved;
 }
 
+// The objective where there is no design, or a target has no quantity: beyond every real one, so that the search
+// leaves it.
+constexpr double kNoDesign = 1e15;
+// The targets with a value weigh this much more than the logarithm of a quantity to minimise: a thousandth's miss
+// costs as much as the quantity's e-fold, so the search meets them first and lowers the other while they stay met.
+constexpr double kMeetFirst = 1e6;
+
 double DesignSpace::objective(const double* u) const {
-  constexpr double kNoDesign = 1e6;  // beyond every real miss, so that the search leaves it
   FingerParameters p;
   if (!design(u, p)) return kNoDesign;
   double sum = 0.0;
   for (std::size_t i = 0; i < request_->targets.size(); ++i) {
-    const double e = relativeMiss(designQuantity(p, request_->targets[i]), request_->targets[i]);
+    const DesignTarget& t = request_->targets[i];
+    const double q = designQuantity(p, t);
+    if (t.minimize) {
+      if (!(q > 0.0)) return kNoDesign;
+      sum += std::log(q);  // a pressure above 0: the search lowers it by its share
+      continue;
+    }
+    const double e = relativeMiss(q, t);
     if (!std::isfinite(e)) return kNoDesign;
-    sum += weights_[i] * e * e;
+    sum += kMeetFirst * weights_[i] * e * e;
   }
   return sum;
 }
@@ -281,6 +225,24 @@ void noteSelfContact(DesignAnswer& a, const DesignRequest& request) {
   }
 }
 
+// A minimised quantity often ends where the next design has none (a grip lowered until a thinner wall balloons
+// before it holds): a note for each free key, not at a bound, whose 1 % step leaves what the model answers.
+void noteEdge(DesignAnswer& a, const DesignSpace& space, const DesignRequest& request, const std::vector<double>& u) {
+  const bool minimising = std::any_of(request.targets.begin(), request.targets.end(),
+                                      [](const DesignTarget& t) { return t.minimize; });
+  for (std::size_t k = 0; minimising && k < u.size(); ++k) {
+    const double step = std::log10(1.01) / (space.logHi()[k] - space.logLo()[k]);
+    for (const double sign : {-1.0, 1.0}) {
+      std::vector<double> next = u;
+      next[k] += sign * step;
+      if (next[k] < 0.0 || next[k] > 1.0 || space.objective(next.data()) < kNoDesign) continue;
+      a.notes.push_back(request.free[k].key + " 1 % " + (sign < 0 ? "smaller" : "larger") + " gives no design that "
+                        "meets the targets (for a grip: one that holds the part below limit_share of its limit "
+                        "point): the answer sits at that edge, and a cast part's scatter may cross it");
+    }
+  }
+}
+
 // The answer at @p u: the design, what it achieves, how far it reaches, and the keys at a bound.
 DesignAnswer answerAt(const DesignSpace& space, const DesignRequest& request, const std::vector<double>& u) {
   DesignAnswer a;
@@ -293,7 +255,8 @@ DesignAnswer answerAt(const DesignSpace& space, const DesignRequest& request, co
     a.misses.push_back(relativeMiss(a.achieved.back(), t));
     a.miss = std::max(a.miss, std::fabs(a.misses.back()));
   }
-  a.met = a.miss <= kDesignTolerance;
+  a.met = a.miss <= kDesignTolerance &&
+          std::all_of(a.achieved.begin(), a.achieved.end(), [](double q) { return std::isfinite(q); });
   for (std::size_t k = 0; k < u.size(); ++k) {
     a.reach = std::max(a.reach, std::fabs(std::log(a.values[k] / space.drawn()[k])));
     if (u[k] > 1e-9 && u[k] < 1.0 - 1e-9) continue;
@@ -301,7 +264,48 @@ DesignAnswer answerAt(const DesignSpace& space, const DesignRequest& request, co
                          formatMessage(a.values[k]) + " m");
   }
   noteSelfContact(a, request);
+  noteEdge(a, space, request, u);
   return a;
+}
+
+// The sum of the logarithms of the quantities to minimise (0 where there are none): what choosing among chamber
+// counts lowers.
+double minimised(const DesignAnswer& a, const DesignRequest& request) {
+  double sum = 0.0;
+  for (std::size_t i = 0; i < request.targets.size(); ++i) {
+    if (request.targets[i].minimize) sum += std::log(a.achieved[i]);
+  }
+  return sum;
+}
+
+// A grip target's part, checked before the search (a missing part would otherwise surface as no design).
+// @throws ParameterError naming the target
+void checkGripTargets(const DesignRequest& request) {
+  for (const DesignTarget& t : request.targets) {
+    if (t.quantity != "grip_gauge_pa") continue;
+    if (!(t.grip.mass_kg > 0.0)) {
+      throw ParameterError("--target " + t.text + " needs the part: --part mass_kg=M,diameter_m=D[,lift_mps2=A]");
+    }
+    checkSideGripTask(t.grip);
+    if (!(t.grip.max_gauge_pa > 0.0) || !std::isfinite(t.grip.max_gauge_pa)) {
+      throw ParameterError("--target " + t.text + ": the base file's max_gauge_pa (the highest pressure the grip may "
+                           "use) is not a finite pressure > 0");
+    }
+  }
+}
+
+// Why the base drawing itself has no quantity for a target, for the message of a search that found no design.
+std::string whyNoDesign(const FingerParameters& base, const DesignRequest& request) {
+  std::string out;
+  for (const DesignTarget& t : request.targets) {
+    std::string why;
+    if (t.quantity == "grip_gauge_pa") {
+      if (std::isnan(holdingGaugePa(FingerModel(base), t.grip, &why))) out += "; the base drawing's grip: " + why;
+    } else if (std::isnan(designQuantity(base, t))) {
+      out += "; the base drawing has no " + t.quantity + (std::isnan(t.at) ? "" : " at " + formatMessage(t.at));
+    }
+  }
+  return out;
 }
 
 }  // namespace
@@ -314,6 +318,7 @@ DesignAnswer designToTarget(const FingerParameters& base, const DesignRequest& r
   }
   if (request.targets.empty()) throw ParameterError("a design needs a target (--target QUANTITY=VALUE)");
   if (request.free.empty()) throw ParameterError("a design needs a drawing size to change (--free drawing/KEY)");
+  checkGripTargets(request);
   for (const FreeDrawingKey& f : request.free) {
     const std::string name = f.key.substr(std::min(f.key.size(), std::string(kDrawingPrefix).size()));
     const bool known = f.key.rfind(kDrawingPrefix, 0) == 0 && std::count(std::begin(kFittableDrawn),
@@ -336,15 +341,27 @@ DesignAnswer designToTarget(const FingerParameters& base, const DesignRequest& r
   for (int count : counts) {
     const DesignSpace space(base, request, count);
     const auto point = searchCount(space);
-    if (!(point.first < 1e6)) continue;  // no design of this count in the bounds
+    if (!(point.first < kNoDesign)) continue;  // no design of this count in the bounds
     refuseWhatMovesNoTarget(space, request);
     DesignAnswer a = answerAt(space, request, point.second);
-    // Of the counts that meet the targets, the one nearest the base drawing; else the one that misses least.
-    const bool better = !found || (a.met && !best.met) ||
-                        (a.met == best.met && (a.met ? a.reach < best.reach : a.miss < best.miss));
+    // Of the counts that meet the targets, the one that lowers a quantity to minimise most, else the one nearest the
+    // base drawing; of those that do not, the one that misses least.
+    const double lower = minimised(a, request), lowest = found ? minimised(best, request) : 0.0;
+    const bool nearer = lower < lowest || (lower == lowest && a.reach < best.reach);
+    const bool better = !found || (a.met && !best.met) || (a.met == best.met && (a.met ? nearer : a.miss < best.miss));
     if (better) best = std::move(a), found = true;
   }
-  if (!found) throw ParameterError("no design in the bounds that the model accepts");
+  if (!found) throw ParameterError("no design in the bounds that the model accepts" + whyNoDesign(base, request));
+  // A quantity lowered by the count as far as the counts tried go: the count is a bound like a size's.
+  const auto [fewest, most] = std::minmax_element(counts.begin(), counts.end());
+  const bool minimising = std::any_of(request.targets.begin(), request.targets.end(),
+                                      [](const DesignTarget& t) { return t.minimize; });
+  if (minimising && *fewest != *most &&
+      (best.chamber_count == *fewest || best.chamber_count == *most)) {
+    best.at_bound.push_back(std::string("drawing/chamber_count at the ") +
+                            (best.chamber_count == *most ? "largest" : "smallest") + " tried, " +
+                            std::to_string(best.chamber_count) + " (--chamber-count)");
+  }
   best.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   return best;
 }
@@ -394,6 +411,12 @@ bool sameMisses(const DesignAnswer& a, const DesignAnswer& b) {
 std::vector<DesignAnswer> designParetoFront(const FingerParameters& base, const DesignRequest& request, int points) {
   if (request.targets.size() < 2 || points < 1) {
     throw ParameterError("a Pareto front needs two targets or more (--target) and at least one step (--pareto N)");
+  }
+  for (const DesignTarget& t : request.targets) {
+    if (t.minimize) {
+      throw ParameterError("--pareto trades targets with values; --target " + t.text + " asks for the lowest: give "
+                           "it a value (grip_gauge_pa=PRESSURE) for a front");
+    }
   }
   const DesignAnswer first = designToTarget(base, request);
   DesignSpace space(base, request, first.chamber_count);

@@ -14,6 +14,7 @@
 
 #include "pneumatic_finger/cell/cell_schedule.hpp"
 #include "pneumatic_finger/cell/side_grasp.hpp"
+#include "pneumatic_finger/core/hold_rule.hpp"
 #include "pneumatic_finger/ros/parameter_reader.hpp"
 
 namespace pneumatic_finger::sequencer {
@@ -58,9 +59,9 @@ inline const std::vector<pf::NodeParameterSpec>& parameterSpecs() {
       pf::numberParameter("object_radius_m", 0.016, 0, true, 1, "m", "the cylinder's radius"),
       pf::numberParameter("object_height_m", 0.035, 0, true, 1, "m", "the cylinder's height"),
       pf::numberParameter("object_mass_kg", 0.01, 0, true, 100, "kg", "the cylinder's mass: what the grip must hold"),
-      pf::numberParameter("friction_coefficient", 1.0, 0, true, 10, "-",
+      pf::numberParameter("friction_coefficient", pf::kDefaultFrictionCoefficient, 0, true, 10, "-",
                           "friction between the fingers' silicone and the object (silicone on plastic: about 1)"),
-      pf::numberParameter("hold_margin", 1.5, 1, false, 100, "-",
+      pf::numberParameter("hold_margin", pf::kDefaultHoldMargin, 1, false, 100, "-",
                           "the grip's friction must hold this many times the object's weight"),
       pf::numberParameter("publish_rate_hz", 50.0, 0, true, 1000, "Hz", "the arm's joint_states and the object's rate"),
       pf::textParameter("physics", "none", "none or mujoco",

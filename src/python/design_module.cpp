@@ -15,9 +15,10 @@ namespace {
 // The request from Python's arguments: targets as text, free keys as {key: (lo, hi)} (0: the default bound).
 pf::DesignRequest designRequest(const std::vector<std::string>& targets, const py::dict& free,
                                 const std::vector<int>& chamber_counts, double castable_m,
-                                const std::vector<double>& max_body_m) {
+                                const std::vector<double>& max_body_m, const std::string& part, double max_gauge_pa) {
   pf::DesignRequest r;
   for (const std::string& t : targets) r.targets.push_back(pf::parseDesignTarget(t));
+  pf::attachGripPart(r.targets, part, max_gauge_pa);
   for (const auto& item : free) {
     const auto bounds = item.second.cast<std::vector<double>>();
     if (bounds.size() != 2) throw pf::ParameterError("free: " + item.first.cast<std::string>() + " needs (lo, hi)");
@@ -49,10 +50,11 @@ py::dict frontDesign(const pf::DesignAnswer& a, const pf::DesignRequest& request
 
 py::dict designToTarget(const std::string& config, const py::dict& overrides, const std::vector<std::string>& targets,
                         const py::dict& free, const std::vector<int>& chamber_counts, double castable_m,
-                        const std::vector<double>& max_body_m, int pareto) {
+                        const std::vector<double>& max_body_m, int pareto, const std::string& part) {
   pf::PressureRange range;
   const pf::FingerParameters base = pf::FingerParameters::fromRaw(loadRaw(config, overrides, &range));
-  const pf::DesignRequest request = designRequest(targets, free, chamber_counts, castable_m, max_body_m);
+  const pf::DesignRequest request = designRequest(targets, free, chamber_counts, castable_m, max_body_m, part,
+                                                          range.max_gauge_pa);
   pf::DesignAnswer a;
   std::vector<pf::DesignAnswer> front;
   {
@@ -84,11 +86,30 @@ py::dict designToTarget(const std::string& config, const py::dict& overrides, co
   return d;
 }
 
+// The lowest pressure at which the gripper holds a part (finger_model --pressures --grip-part): (Pa or NaN, why not).
+py::tuple gripGaugePa(const std::string& config, const py::dict& overrides, const std::string& part,
+                      const py::object& max_gauge_pa) {
+  pf::PressureRange range;
+  const pf::FingerModel model(pf::FingerParameters::fromRaw(loadRaw(config, overrides, &range)));
+  pf::SideGripTask task = pf::parseSideGripTask(part);
+  task.max_gauge_pa = max_gauge_pa.is_none() ? range.max_gauge_pa : max_gauge_pa.cast<double>();
+  std::string why;
+  double gauge_pa = 0.0;
+  {
+    py::gil_scoped_release release;
+    gauge_pa = pf::holdingGaugePa(model, task, &why);
+  }
+  return py::make_tuple(gauge_pa, why);
+}
+
 }  // namespace
 
 void defineDesign(py::module_& m) {
+  m.def("grip_gauge_pa", &gripGaugePa, py::arg("config"), py::arg("overrides"), py::arg("part"),
+        py::arg("max_gauge_pa"), "finger_model --pressures --grip-part (use pneumatic_finger.core.grip_gauge_pa)");
   m.def("design_to_target", &designToTarget, py::arg("config"), py::arg("overrides"), py::arg("targets"),
         py::arg("free"), py::arg("chamber_counts"), py::arg("castable_m"), py::arg("max_body_m"), py::arg("pareto"),
+        py::arg("part"),
         "finger_design --target (use pneumatic_finger.core.design_to_target)");
 }
 

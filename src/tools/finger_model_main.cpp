@@ -20,9 +20,11 @@
 #include "pneumatic_finger/core/self_contact.hpp"
 #include "pneumatic_finger/core/units.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
+#include "model_listings.hpp"
 #include "row_warnings.hpp"
 
 namespace pf = pneumatic_finger;
+using pneumatic_finger_tools::Listings;
 using pneumatic_finger_tools::RowWarnings;
 
 namespace {
@@ -53,35 +55,6 @@ std::vector<double> parseSweep(const std::string& option, const std::string& tex
   const long k = static_cast<long>(n);
   for (long i = 0; i < k; ++i) out.push_back(k == 1 ? a : a + (b - a) * static_cast<double>(i) / (k - 1));
   return out;
-}
-
-void printParameterTable() {
-  std::cout << "| key | symbol | unit | default | allowed | per chamber | meaning |\n"
-            << "|---|---|---|---|---|---|---|\n";
-  for (const auto& s : pf::parameterSpecs()) {
-    std::cout << "| `" << s.key << "` | " << s.symbol << " | " << s.unit << " | "
-              << (s.shape == pf::ParameterShape::kChoice ? pf::formatParameterValue(s, s.default_value)
-                                                          : pf::formatExact(s.default_value))
-              << " | " << pf::describeRange(s) << " | "
-              << (s.shape == pf::ParameterShape::kPerChamber ? "scalar or list of N" : "scalar") << " | "
-              << s.description << " |\n";
-  }
-}
-
-// A drawing key's default: a number, "required", or "from another key" where its meaning says which (NaN default).
-std::string defaultText(const pf::ParameterSpec& s) {
-  if (!std::isnan(s.default_value)) return pf::formatExact(s.default_value);
-  return std::string(s.description).find("(default:") == std::string::npos ? "required" : "from another key";
-}
-
-// The drawing's keys (docs/DRAWING.md), from their one definition.
-void printDrawingTable() {
-  std::cout << "| key (under `drawing:`) | unit | default | allowed | meaning |\n|---|---|---|---|---|\n";
-  for (const auto& s : pf::drawingParameterSpecs()) {
-    std::cout << "| `" << s.key << "` | " << s.unit << " | "
-              << defaultText(s) << " | "
-              << pf::describeRange(s) << " | " << s.description << " |\n";
-  }
 }
 
 // What the rows hold besides the shape: a time first (the time mode), the finger closing on an obstacle, the blocked
@@ -346,35 +319,6 @@ std::vector<double> parseVolumes(const std::vector<std::string>& volumes, const 
   return supplied;
 }
 
-// --pressures: where the model's finger changes, one CSV row under the names Python's FingerModel gives them (and
-// finger_node's diagnostics report the snap): the walls' first touch, the snap (the limit point where a wall folds,
-// else where it is softest), the limit point (inf where no wall folds) and the far branch's turning point.
-void printModelPressures(const pf::FingerModel& model) {
-  std::cout << "contact_gauge_pa,snap_gauge_pa,limit_gauge_pa,far_turning_gauge_pa\n"
-            << pf::formatExact(model.contactGaugePa()) << ',' << pf::formatExact(model.snapGaugePa()) << ','
-            << pf::formatExact(model.limitGaugePa()) << ',' << pf::formatExact(model.farTurningGaugePa()) << '\n';
-}
-
-// What finger_model prints instead of rows, and exits: the parameter tables, or the model's pressures.
-struct Listings {
-  bool parameters = false, drawing = false, pressures = false;
-
-  void addTo(CLI::App& app) {
-    app.add_flag("--parameters", parameters, "print the parameter table (Markdown) and exit");
-    app.add_flag("--drawing-parameters", drawing, "print the drawing's keys (Markdown, docs/DRAWING.md) and exit");
-    app.add_flag("--pressures", pressures,
-                 "print where the finger changes (Pa gauge, as Python's FingerModel names them): contact_gauge_pa, "
-                 "snap_gauge_pa, limit_gauge_pa (inf: no wall folds), far_turning_gauge_pa; and exit");
-  }
-  // True when one was asked for, and printed.
-  bool print(const pf::ParameterOptions& file) const {
-    if (parameters) printParameterTable();
-    else if (drawing) printDrawingTable();
-    else if (pressures) printModelPressures(pf::FingerModel(file.load()));
-    return parameters || drawing || pressures;
-  }
-};
-
 // The time mode's rows: a constant flow fills one finger; each row's time and its pressure, by the regulator's fill law.
 void timeModeRows(const pf::FingerParameters& finger, const std::string& flow_lpm, const std::string& duration_s,
                   const std::string& step_s, std::vector<double>& times, std::vector<double>& pressures) {
@@ -472,7 +416,7 @@ int main(int argc, char** argv) {
                  "X,Y,R: a disk in the finger's plane (m; x along the unbent finger from the mount, y toward the "
                  "strain-limited side); the finger closes on it instead of passing through");
   return pf::runTool("finger_model", app, argc, argv, [&] {
-    if (listings.print(parameters)) return 0;
+    if (listings.print(parameters, max_gauge)) return 0;
     std::vector<double> pressures = parsePressures(gauges, sweep);
     const std::vector<double> supplied = parseVolumes(volume.volumes, volume.sweep);
     const bool time_mode = !flow_lpm.empty() || !duration_s.empty() || !step_s.empty();
