@@ -248,14 +248,14 @@ CalibrationResult calibrate(const FingerParameters& base, const std::vector<std:
 CalibrationResult calibrateKeepingScan(const FingerParameters& base, const std::vector<std::string>& keys,
                                        const std::vector<Measurement>& data, CalibrationObjective objective,
                                        CalibrationQuantity quantity, const CalibrationProgress& progress,
-                                       ScanRecord* record) {
+                                       ScanRecord* record, bool uncertainty) {
   checkKeysAndData(base, keys, data, quantity);
   refuseWhatTheDataCannotTell(keys, data.size(), quantity);
   const bool share = std::count(keys.begin(), keys.end(), "base_wall_share") > 0;
   CalibrationResult result = share && keys.size() > 1 && quantity == CalibrationQuantity::kEveryJoint
                                  ? calibrateEveryJointInTwoSteps(base, keys, data, objective, progress)
                                  : searchKeys(base, keys, data, objective, quantity, progress, record);
-  calibrationUncertainty(base, data, quantity, result);
+  if (uncertainty) calibrationUncertainty(base, data, quantity, objective, result);
   return result;
 }
 

@@ -11,6 +11,7 @@
 
 #include "fit_problem.hpp"
 #include "fit_space.hpp"
+#include "minimax_spread.hpp"
 #include "terms_cost.hpp"
 #include "pneumatic_finger/calibration/calibration.hpp"
 
@@ -35,7 +36,7 @@ bool unscaledCovariance(const FitProblem& problem, Eigen::VectorXd u, const Eige
     return false;
   }
   ceres::Problem at;
-  at.AddResidualBlock(new TermsCost(problem, false), nullptr, u.data());
+  at.AddResidualBlock(new TermsCost(problem, true), nullptr, u.data());
   ceres::Covariance::Options options;
   options.algorithm_type = ceres::DENSE_SVD;
   options.min_reciprocal_condition_number = kMinReciprocalCondition;
@@ -58,42 +59,26 @@ std::string boundWarning(const SearchAxis& axis, double value) {
   return w.str();
 }
 
-}  // namespace
+// The errors a minimax fit bounds, in the squares' form's terms: a tip position's two components as one distance,
+// every other term alone.
+std::vector<ErrorGroup> errorGroups(const FitProblem& problem, std::size_t rows) {
+  std::vector<ErrorGroup> groups;
+  for (std::size_t row = 0; row < rows; ++row) {
+    auto first = static_cast<Eigen::Index>(problem.firstSquareTermOf(row));
+    const auto last = first + static_cast<Eigen::Index>(problem.squareTermCountOf(row));
+    if (problem.pairsFirstTwo(row)) groups.push_back({first, 2}), first += 2;
+    for (; first < last; ++first) groups.push_back({first, 1});
+  }
+  return groups;
+}
 
-void calibrationUncertainty(const FingerParameters& base, const std::vector<Measurement>& data,
-                            CalibrationQuantity quantity, CalibrationResult& result) {
-  const std::size_t k = result.keys.size();
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  result.uncertainty.assign(k, nan);
-  result.correlation.assign(k * k, nan);
-  result.warnings.clear();
-  std::vector<SearchAxis> axes;
-  for (const std::string& key : result.keys) axes.push_back(axisFor(key, base));
-  for (std::size_t i = 0; i < k; ++i) {
-    const std::string w = boundWarning(axes[i], result.values[i]);
-    if (!w.empty()) result.warnings.push_back(w);
-  }
-  const FitProblem problem(base, result.keys, data, quantity);
-  const Eigen::VectorXd u = problem.pointOf(result.values);
-  Eigen::VectorXd r;
-  Eigen::MatrixXd j, unscaled;
-  const auto m = static_cast<Eigen::Index>(problem.termCount()), n = static_cast<Eigen::Index>(k);
-  if (!problem.termsAndJacobian(u, r, j) || m <= n) {
-    result.warnings.push_back("no uncertainty: " + std::string(m <= n ? "no more compared terms than keys"
-                                                                        : "a row has no shape near the fit"));
-    return;
-  }
-  if (!unscaledCovariance(problem, u, j, unscaled)) {
-    result.warnings.push_back("the data do not determine every key: a change of one can be undone by another "
-                              "without changing any compared term");
-    return;
-  }
-  // The terms' own scatter s^2 = sum of squares / (terms - keys) scales it, as for a least-squares fit; each key's
-  // cube coordinate to its search coordinate by its bracket's width.
-  Eigen::VectorXd width(n);
+// Each key's sd and the keys' correlations from @p cube, their covariance in the unit cube's coordinates (each to its
+// search coordinate by its bracket's width), and a warning for each pair that trades off.
+void fillFromCovariance(const std::vector<SearchAxis>& axes, const Eigen::MatrixXd& cube, CalibrationResult& result) {
+  const std::size_t k = axes.size();
+  Eigen::VectorXd width(static_cast<Eigen::Index>(k));
   for (std::size_t a = 0; a < k; ++a) width[static_cast<Eigen::Index>(a)] = axes[a].hi - axes[a].lo;
-  const Eigen::MatrixXd cov =
-      r.squaredNorm() / static_cast<double>(m - n) * width.asDiagonal() * unscaled * width.asDiagonal();
+  const Eigen::MatrixXd cov = width.asDiagonal() * cube * width.asDiagonal();
   for (std::size_t a = 0; a < k; ++a) {
     const auto ia = static_cast<Eigen::Index>(a);
     const double sd = std::sqrt(cov(ia, ia));  // in the search coordinate
@@ -114,6 +99,53 @@ void calibrationUncertainty(const FingerParameters& base, const std::vector<Meas
       result.warnings.push_back(w.str());
     }
   }
+}
+
+}  // namespace
+
+void calibrationUncertainty(const FingerParameters& base, const std::vector<Measurement>& data,
+                            CalibrationQuantity quantity, CalibrationObjective objective, CalibrationResult& result) {
+  const std::size_t k = result.keys.size();
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  result.uncertainty.assign(k, nan);
+  result.correlation.assign(k * k, nan);
+  result.warnings.clear();
+  std::vector<SearchAxis> axes;
+  for (const std::string& key : result.keys) axes.push_back(axisFor(key, base));
+  for (std::size_t i = 0; i < k; ++i) {
+    const std::string w = boundWarning(axes[i], result.values[i]);
+    if (!w.empty()) result.warnings.push_back(w);
+  }
+  const FitProblem problem(base, result.keys, data, quantity);
+  const Eigen::VectorXd u = problem.pointOf(result.values);
+  Eigen::VectorXd r;
+  Eigen::MatrixXd j, unscaled;
+  const auto m = static_cast<Eigen::Index>(problem.termCount(true)), n = static_cast<Eigen::Index>(k);
+  if (!problem.termsAndJacobian(u, r, j, true) || m <= n + 2) {
+    result.warnings.push_back("no uncertainty: " + std::string(m <= n + 2 ? "the data's scatter needs three compared "
+                                                                            "terms more than keys"
+                                                                          : "a row has no shape near the fit"));
+    return;
+  }
+  if (!unscaledCovariance(problem, u, j, unscaled)) {
+    result.warnings.push_back("the data do not determine every key: a change of one can be undone by another "
+                              "without changing any compared term");
+    return;
+  }
+  // The terms' own scatter: s^2 = the sum of squares left once the keys' own directions are taken out (the residual
+  // of a least-squares step from the fit; the fit's own residual where it is a least-squares fit), over terms - keys.
+  // That scatter is itself estimated, from nu = terms - keys: an error over it scatters as Student's t, whose
+  // standard deviation is sqrt(nu / (nu - 2)) times the normal's (1.15 for ten tip angles and two keys), so the bar
+  // is widened by that much and one sd means one sd.
+  const Eigen::VectorXd left = r - j * (unscaled * (j.transpose() * r));
+  const auto nu = static_cast<double>(m - n);
+  const double s2 = left.squaredNorm() / nu * (nu / (nu - 2.0));
+  // Least squares (and Huber's, within 5 % of it on normal noise): s^2 (J^T J)^-1. Minimax: its own spread, the
+  // linearised fit refitted to draws of that noise.
+  const Eigen::MatrixXd cube = objective == CalibrationObjective::kMinimax
+                                   ? minimaxCovariance(j, errorGroups(problem, data.size()), std::sqrt(s2))
+                                   : Eigen::MatrixXd(s2 * unscaled);
+  fillFromCovariance(axes, cube, result);
 }
 
 }  // namespace pneumatic_finger

@@ -19,9 +19,18 @@ FitProblem::FitProblem(const FingerParameters& base, const std::vector<std::stri
   row_first_.push_back(0);
   for (const Residual& r : residuals(base, data, quantity)) {
     term_count_ += r.terms(quantity).size();
+    square_count_ += rowTerms(r, true).size();
     row_first_.push_back(term_count_);
+    row_first_square_.push_back(square_count_ - rowTerms(r, true).size());
   }
-  square_count_ = quantity == CalibrationQuantity::kTipPosition ? 2 * term_count_ : term_count_;
+}
+
+std::vector<double> FitProblem::rowTerms(const Residual& r, bool squares) const {
+  std::vector<double> row = r.terms(quantity_);
+  if (!squares || quantity_ != CalibrationQuantity::kTipPosition || r.force_only) return row;
+  row[0] = r.model_tip_x_m - r.measured_tip_x_m;  // the distance, first, as its two components
+  row.insert(row.begin() + 1, r.model_tip_y_m - r.measured_tip_y_m);
+  return row;
 }
 
 FingerParameters FitProblem::parametersAt(const Eigen::VectorXd& u) const {
@@ -64,14 +73,10 @@ bool FitProblem::terms(const Eigen::VectorXd& u, Eigen::VectorXd& out, bool squa
     if (p.wall_critical_height_m[i] > p.chamber_height_m[i]) return false;
   }
   evaluations_ += static_cast<long>(data_->size());
-  const bool split = squares && quantity_ == CalibrationQuantity::kTipPosition;
   out.resize(static_cast<Eigen::Index>(termCount(squares)));
   Eigen::Index i = 0;
   for (const Residual& r : residuals(p, *data_, quantity_)) {
-    const std::vector<double> row = split ? std::vector<double>{r.model_tip_x_m - r.measured_tip_x_m,
-                                                                r.model_tip_y_m - r.measured_tip_y_m}
-                                          : r.terms(quantity_);
-    for (double e : row) {
+    for (double e : rowTerms(r, squares)) {
       if (!std::isfinite(e)) return false;  // no shape (NaN), or a pressure without bound
       out[i++] = e;
     }

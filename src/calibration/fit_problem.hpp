@@ -38,6 +38,17 @@ class FitProblem {
   /// Where row @p row's terms begin among a point's (compared form), and how many it has.
   std::size_t firstTermOf(std::size_t row) const { return row_first_[row]; }
   std::size_t termCountOf(std::size_t row) const { return row_first_[row + 1] - row_first_[row]; }
+  /// Where row @p row's terms begin in the squares' form (a row's terms there: a tip position's two components, then
+  /// its force's).
+  std::size_t firstSquareTermOf(std::size_t row) const { return row_first_square_[row]; }
+  /// Which of a row's terms in the squares' form are one error together: a tip position's two components (its first
+  /// two, where the row has a shape); every other term alone.
+  bool pairsFirstTwo(std::size_t row) const {
+    return quantity_ == CalibrationQuantity::kTipPosition && termCountOf(row) < squareTermCountOf(row);
+  }
+  std::size_t squareTermCountOf(std::size_t row) const {
+    return (row + 1 < row_first_square_.size() ? row_first_square_[row + 1] : square_count_) - row_first_square_[row];
+  }
 
   /// The terms at @p u; false where the model gives a row no shape (beyond its limit point with no far branch) or the
   /// point is a wall the law does not allow: no number to compare, which the solvers treat as outside the feasible set.
@@ -63,13 +74,16 @@ class FitProblem {
   static constexpr double kStep = 1e-6;  ///< the difference step, in the cube's unit (a millionth of each bracket)
 
  private:
+  /// A row's terms, in the compared form or the squares' form.
+  std::vector<double> rowTerms(const Residual& r, bool squares) const;
+
   FingerParameters base_;
   std::vector<SearchAxis> axes_;
   const std::vector<Measurement>* data_;
   CalibrationQuantity quantity_;
   CalibrationProgress progress_;
   std::size_t term_count_ = 0, square_count_ = 0;
-  std::vector<std::size_t> row_first_;
+  std::vector<std::size_t> row_first_, row_first_square_;
   mutable std::atomic<long> evaluations_{0};
   mutable std::atomic<long> reports_{0};
   mutable std::mutex report_mutex_;  // the listener hears one thread at a time

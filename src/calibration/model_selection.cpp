@@ -142,7 +142,7 @@ Tried tryCandidate(const FingerParameters& start, CandidateFit c, const std::vec
     const CalibrationProgress heard =
         progress ? CalibrationProgress([&](const std::string& s) { progress(name + ": the fit: " + s); })
                  : CalibrationProgress();
-    t.fit = calibrateKeepingScan(start, c.keys, data, objective, c.quantity, heard, &t.scan);
+    t.fit = calibrateKeepingScan(start, c.keys, data, objective, c.quantity, heard, &t.scan, false);
     t.held_out = heldOutFromScan(start, c.keys, data, objective, c.quantity, progress, name + ": cross-validation",
                                  t.scan, interleavedFolds(data.size()));
     c.held_out = heldOutError(t.held_out, by_volume);
@@ -228,6 +228,7 @@ ModelSelection selectModel(const FingerParameters& base, const std::vector<WallL
   s.chosen.quantity = c.quantity;
   s.chosen.note = chosen_note;
   s.chosen.fit = std::move(chosen.fit);
+  calibrationUncertainty(chosen_start, data, c.quantity, objective, s.chosen.fit);  // the candidates' were skipped
   s.chosen.leave_one_out = data.size() <= kCrossValidationFolds
                                ? std::move(chosen.held_out)
                                : leaveOneOutFromScan(chosen_start, c.keys, data, objective, c.quantity, progress,

@@ -12,11 +12,12 @@
 namespace pneumatic_finger {
 
 /// calibrate(), keeping its scan in @p record where the fit is one search (not the two steps of every joint with
-/// the base face's share, whose record stays empty); nullptr keeps nothing.
+/// the base face's share, whose record stays empty); nullptr keeps nothing. Without @p uncertainty the result has
+/// none (auto's candidates: only the chosen one's is computed, calibrationUncertainty).
 CalibrationResult calibrateKeepingScan(const FingerParameters& base, const std::vector<std::string>& keys,
                                        const std::vector<Measurement>& data, CalibrationObjective objective,
                                        CalibrationQuantity quantity, const CalibrationProgress& progress,
-                                       ScanRecord* record);
+                                       ScanRecord* record, bool uncertainty = true);
 
 /// leaveOneOut() from @p record, calibrateKeepingScan's scan of the same base, keys, rows, objective and quantity:
 /// the same folds as a scan of its own would start (the scan is deterministic); an empty record is scanned anew.

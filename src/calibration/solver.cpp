@@ -1,6 +1,7 @@
 #include "solver.hpp"
 
 #include "every_core.hpp"
+#include "minimax_spread.hpp"
 #include "terms_cost.hpp"
 
 #include <ceres/ceres.h>
@@ -311,6 +312,73 @@ FitSolution minimaxFrom(const FitProblem& problem, const Eigen::VectorXd& start,
   return g.best;
 }
 
+// The least squares within the minimax's level: the point whose terms' squares sum least among those whose largest
+// |term| is at most the minimax's, a millionth above it. Where the largest error cannot move (a term no key changes,
+// as a bend set by a volume barely depends on mu), the minimax's optimum is a plateau, a solver stops anywhere on it,
+// and neither the fit nor its error bar would be one number; elsewhere the level holds the optimum alone, and the
+// point stands.
+struct Level {
+  const FitProblem* problem;
+  double t;
+  Eigen::VectorXd last_u, e;
+  Eigen::MatrixXd j;
+  bool ok = false;
+  // The terms and their Jacobian at @p x, asked once per point (the objective and the constraints share them).
+  void at(const double* x, unsigned n) {
+    const Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(x, n);
+    if (last_u.size() == u.size() && last_u == u) return;
+    ok = problem->termsAndJacobian(u, e, j);
+    last_u = u;
+  }
+};
+
+double levelObjective(unsigned n, const double* x, double* gradient, void* data) {
+  auto& l = *static_cast<Level*>(data);
+  l.at(x, n);
+  for (unsigned c = 0; gradient && c < n; ++c) gradient[c] = l.ok ? 2.0 * l.j.col(c).dot(l.e) : 0.0;
+  return l.ok ? l.e.squaredNorm() : HUGE_VAL;
+}
+
+void levelConstraints(unsigned m, double* result, unsigned n, const double* x, double* gradient, void* data) {
+  auto& l = *static_cast<Level*>(data);
+  l.at(x, n);
+  const unsigned terms = m / 2;
+  for (unsigned i = 0; i < terms; ++i) {
+    result[i] = l.ok ? l.e[i] - l.t : 1e6;
+    result[terms + i] = l.ok ? -l.e[i] - l.t : 1e6;
+    for (unsigned c = 0; gradient && c < n; ++c) {
+      gradient[i * n + c] = l.ok ? l.j(i, c) : 0.0;
+      gradient[(terms + i) * n + c] = l.ok ? -l.j(i, c) : 0.0;
+    }
+  }
+}
+
+FitSolution leastSquaresWithinLevel(const FitProblem& problem, const FitSolution& minimax) {
+  if (!(minimax.objective > 0.0)) return minimax;  // an exact fit: one point
+  const auto k = static_cast<unsigned>(minimax.u.size());
+  const double level = minimax.objective * (1.0 + 1e-6);
+  Level l{&problem, level, {}, {}, {}};
+  nlopt::opt opt(nlopt::LD_SLSQP, k);
+  opt.set_lower_bounds(std::vector<double>(k, 0.0));
+  opt.set_upper_bounds(std::vector<double>(k, 1.0));
+  opt.set_min_objective(levelObjective, &l);
+  opt.add_inequality_mconstraint(levelConstraints, &l, std::vector<double>(2 * problem.termCount(), 0.0));
+  opt.set_xtol_rel(kTolerance);
+  opt.set_maxeval(100);
+  std::vector<double> x(minimax.u.data(), minimax.u.data() + k);
+  double squares = 0.0;
+  try {
+    opt.optimize(x, squares);
+  } catch (const std::exception&) {
+    // A roundoff limit: the point reached is checked below like any other.
+  }
+  const Eigen::VectorXd u = Eigen::Map<const Eigen::VectorXd>(x.data(), k);
+  // A move within kPlateauStep is the level's own width about a single optimum: the minimax point stands.
+  if ((u - minimax.u).cwiseAbs().maxCoeff() < kPlateauStep) return minimax;
+  const double largest = problem.objective(u, CalibrationObjective::kMinimax);
+  return largest <= level ? FitSolution{u, largest} : minimax;  // SLSQP may end a step outside the level
+}
+
 }  // namespace
 
 int scanPoints(std::size_t keys) { return 41 + 32 * static_cast<int>(keys - 1); }
@@ -330,9 +398,10 @@ FitSolution localSolve(const FitProblem& problem, CalibrationObjective objective
 
 namespace {
 
-// The best distinct points of @p scanned (objective, point), each solved locally; the best of all.
+// The best distinct points of @p scanned (objective, point), each solved locally; the best of all. With
+// @p settle_plateau, a minimax fit then takes the least squares within its level (leastSquaresWithinLevel).
 FitSolution fromTheBestOf(const FitProblem& problem, CalibrationObjective objective,
-                          std::vector<std::pair<double, Eigen::VectorXd>> scanned) {
+                          std::vector<std::pair<double, Eigen::VectorXd>> scanned, bool settle_plateau) {
   if (scanned.empty()) {
     throw ParameterError("no point of the keys' search range gives every row a shape (each is beyond the limit point "
                          "with no far branch): the start parameters or the data are far from this finger");
@@ -366,6 +435,7 @@ FitSolution fromTheBestOf(const FitProblem& problem, CalibrationObjective object
     const FitSolution squares = leastSquaresFrom(problem, best.u, kCandidateIterations);
     const double largest = problem.objective(squares.u, objective);
     if (largest < best.objective) best = {squares.u, largest};
+    if (settle_plateau) best = leastSquaresWithinLevel(problem, best);
   }
   return best;
 }
@@ -376,9 +446,9 @@ FitSolution fromTheBestOf(const FitProblem& problem, CalibrationObjective object
 FitSolution solveFit(const FitProblem& problem, CalibrationObjective objective, ScanRecord* record) {
   if (objective == CalibrationObjective::kHuber) {
     const CalibrationObjective squares = CalibrationObjective::kLeastSquares;
-    return huberFrom(problem, fromTheBestOf(problem, squares, scan(problem, squares, record)).u);
+    return huberFrom(problem, fromTheBestOf(problem, squares, scan(problem, squares, record), false).u);
   }
-  return fromTheBestOf(problem, objective, scan(problem, objective, record));
+  return fromTheBestOf(problem, objective, scan(problem, objective, record), true);
 }
 
 void scanInto(const FitProblem& problem, CalibrationObjective objective, ScanRecord& record) {
@@ -405,8 +475,11 @@ FitSolution solveFold(const FitProblem& fold, CalibrationObjective objective, co
     }
     scanned.emplace_back(reduce(others, huber ? CalibrationObjective::kLeastSquares : objective), u);
   }
-  if (huber) return huberFrom(fold, fromTheBestOf(fold, CalibrationObjective::kLeastSquares, std::move(scanned)).u);
-  return fromTheBestOf(fold, objective, std::move(scanned));
+  // A fold's fit predicts its rows; its place on a minimax plateau is no error bar's, and is not settled.
+  if (huber) {
+    return huberFrom(fold, fromTheBestOf(fold, CalibrationObjective::kLeastSquares, std::move(scanned), false).u);
+  }
+  return fromTheBestOf(fold, objective, std::move(scanned), false);
 }
 
 }  // namespace pneumatic_finger

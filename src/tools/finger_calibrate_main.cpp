@@ -122,16 +122,23 @@ std::string largest(const std::array<double, 9>& w, int n, bool paper) {
 std::string uncertaintyLines(const pf::CalibrationRun& run) {
   const pf::CalibrationResult& fit = run.best().fit;
   std::ostringstream t;
-  t << "\n# uncertainty (one standard deviation, from the fit's curvature):";
   const std::size_t k = fit.keys.size();
-  for (std::size_t i = 0; i < k; ++i) {
-    t << " " << fit.keys[i] << " +- " << fmt("%.3g", fit.uncertainty[i]) << " ("
-      // A share of a value of 0 means nothing: the bar alone, in the key's unit.
-      << (fit.values[i] != 0.0 ? fmt("%.3g", 100.0 * fit.uncertainty[i] / std::fabs(fit.values[i])) + " %)"
-                               : std::string("at a value of 0)"))
-      << (i + 1 < k ? "," : "");
+  if (std::none_of(fit.uncertainty.begin(), fit.uncertainty.end(), [](double sd) { return std::isfinite(sd); })) {
+    t << "\n# uncertainty: none (the warning below says why)";
+  } else {
+    t << (run.objective == pf::CalibrationObjective::kMinimax
+              ? "\n# uncertainty (one standard deviation of the minimax fit, its linearisation refitted to 200 draws "
+                "of the data's scatter):"
+              : "\n# uncertainty (one standard deviation, from the fit's curvature and the data's scatter):");
+    for (std::size_t i = 0; i < k; ++i) {
+      t << " " << fit.keys[i] << " +- " << fmt("%.3g", fit.uncertainty[i]) << " ("
+        // A share of a value of 0 means nothing: the bar alone, in the key's unit.
+        << (fit.values[i] != 0.0 ? fmt("%.3g", 100.0 * fit.uncertainty[i] / std::fabs(fit.values[i])) + " %)"
+                                 : std::string("at a value of 0)"))
+        << (i + 1 < k ? "," : "");
+    }
   }
-  if (k > 1) {
+  if (k > 1 && std::isfinite(fit.correlation[1])) {
     t << "\n# correlation:";
     for (std::size_t a = 0; a < k; ++a) {
       for (std::size_t b = a + 1; b < k; ++b) {

@@ -228,14 +228,19 @@ struct CalibrationResult {
   std::vector<std::string> warnings;
 };
 
-/// The uncertainty of a fit, from its curvature: J, the derivatives of every compared term with respect to each key
-/// (central differences of a millionth of the key's bracket, in the search coordinate: log10 for shear_modulus_pa and
-/// wall_locking_jm), and the terms' own scatter s^2 = sum of squares / (terms - keys), give the covariance
-/// s^2 (J^T J)^-1 (Ceres' covariance, by a dense SVD that finds keys the data leave undetermined), as for a
-/// least-squares fit (for a minimax fit it is the same linearisation about its optimum: an estimate of the same size).
+/// The uncertainty of a fit: J, the derivatives of every compared term with respect to each key (central differences
+/// of a millionth of the key's bracket, in the search coordinate: log10 for shear_modulus_pa and wall_locking_jm; a
+/// tip position's two components, not its distance), and the terms' own scatter s^2 (the sum of squares left once
+/// the keys' directions are taken out, over nu = terms - keys, times nu / (nu - 2): Student's t, since s is itself
+/// estimated; no bar below three terms more than keys) give the keys' covariance:
+/// - least squares and Huber's loss: s^2 (J^T J)^-1 (Ceres' covariance, by a dense SVD that finds keys the data
+///   leave undetermined);
+/// - minimax: the covariance of the linearised minimax fit refitted to 200 draws of normal noise of sd s (a
+///   parametric bootstrap, minimax_spread.hpp): a minimax fit follows its few largest errors, and scatters more than
+///   a least-squares one, the more so the more terms there are.
 /// Fills @p result's uncertainty, correlation and warnings.
 void calibrationUncertainty(const FingerParameters& base, const std::vector<Measurement>& data,
-                            CalibrationQuantity quantity, CalibrationResult& result);
+                            CalibrationQuantity quantity, CalibrationObjective objective, CalibrationResult& result);
 
 /// Residuals of @p parameters against @p data; the pressure at each measured bend (model_gauge_at_tip_angle_pa, two
 /// inverse solves a row) only where @p quantity compares it.
