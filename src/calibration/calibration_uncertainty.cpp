@@ -121,10 +121,9 @@ void calibrationUncertainty(const FingerParameters& base, const std::vector<Meas
   Eigen::VectorXd r;
   Eigen::MatrixXd j, unscaled;
   const auto m = static_cast<Eigen::Index>(problem.termCount(true)), n = static_cast<Eigen::Index>(k);
-  if (!problem.termsAndJacobian(u, r, j, true) || m <= n + 2) {
-    result.warnings.push_back("no uncertainty: " + std::string(m <= n + 2 ? "the data's scatter needs three compared "
-                                                                            "terms more than keys"
-                                                                          : "a row has no shape near the fit"));
+  if (!problem.termsAndJacobian(u, r, j, true) || m <= n) {
+    result.warnings.push_back("no uncertainty: " + std::string(m <= n ? "no more compared terms than keys"
+                                                                        : "a row has no shape near the fit"));
     return;
   }
   if (!unscaledCovariance(problem, u, j, unscaled)) {
@@ -133,19 +132,25 @@ void calibrationUncertainty(const FingerParameters& base, const std::vector<Meas
     return;
   }
   // The terms' own scatter: s^2 = the sum of squares left once the keys' own directions are taken out (the residual
-  // of a least-squares step from the fit; the fit's own residual where it is a least-squares fit), over terms - keys.
-  // That scatter is itself estimated, from nu = terms - keys: an error over it scatters as Student's t, whose
-  // standard deviation is sqrt(nu / (nu - 2)) times the normal's (1.15 for ten tip angles and two keys), so the bar
-  // is widened by that much and one sd means one sd.
+  // of a least-squares step from the fit; the fit's own residual where it is a least-squares fit), over nu = terms -
+  // keys. That scatter is itself estimated: an error over it scatters as Student's t, whose standard deviation is
+  // sqrt(nu / (nu - 2)) times the normal's (1.15 for ten tip angles and two keys), so the bar is widened by that much
+  // and one sd means one sd. With nu <= 2 it has no standard deviation: the correlations alone (they need no scale).
   const Eigen::VectorXd left = r - j * (unscaled * (j.transpose() * r));
   const auto nu = static_cast<double>(m - n);
-  const double s2 = left.squaredNorm() / nu * (nu / (nu - 2.0));
+  const bool scaled = nu > 2.0;
+  const double s2 = scaled ? left.squaredNorm() / nu * (nu / (nu - 2.0)) : 1.0;
   // Least squares (and Huber's, within 5 % of it on normal noise): s^2 (J^T J)^-1. Minimax: its own spread, the
   // linearised fit refitted to draws of that noise.
   const Eigen::MatrixXd cube = objective == CalibrationObjective::kMinimax
                                    ? minimaxCovariance(j, errorGroups(problem, data.size()), std::sqrt(s2))
                                    : Eigen::MatrixXd(s2 * unscaled);
   fillFromCovariance(axes, cube, result);
+  if (!scaled) {
+    result.uncertainty.assign(k, nan);
+    result.warnings.push_back("no standard deviation: the data's scatter needs three compared terms more than keys "
+                              "(these data have " + std::to_string(m) + " for " + std::to_string(k) + ")");
+  }
 }
 
 }  // namespace pneumatic_finger
