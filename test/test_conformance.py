@@ -412,7 +412,7 @@ def test_every_interface_reads_a_part_to_grip_alike(case):
     model = tool("finger_model", "--config", config, "--pressures", "--grip-part", case["part"])
     assert case["words"] in design.stderr and design.returncode == 2, design.stderr
     if case.get("held", True):  # not a part: refused
-        assert model.returncode == 2 and case["words"] in model.stderr, model.stderr
+        assert model.returncode == 2 and case["words"] in model.stderr and model.stdout == "", model.stderr
         for call in (lambda: pf.grip_gauge_pa(case["part"], config=str(config)),
                      lambda: pf.design_to_target(["grip_gauge_pa=min"], ["drawing/wall_thickness_m"],
                                                  config=str(config), part=case["part"])):

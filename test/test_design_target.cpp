@@ -56,8 +56,12 @@ TEST(DesignTarget, FindsTheWallOfAKnownSiblingFromItsSnap) {
 TEST(DesignTarget, ATargetOutOfReachGivesTheNearestAndItsBound) {
   pf::DesignRequest request = wallFor("snap_gauge_pa=90000", 5);
   request.free[0].hi = 0.012;
+  request.validated_max_gauge_pa = 45000.0;  // the EPFL file's
   const pf::DesignAnswer a = pf::designToTarget(epfl(), request);
   EXPECT_FALSE(a.met);
+  // Its snap lies beyond what the base actuator's data cover: said so.
+  ASSERT_FALSE(a.notes.empty());
+  EXPECT_NE(a.notes[0].find("above the base actuator's validated range (to 45000 Pa)"), std::string::npos) << a.notes[0];
   EXPECT_NEAR(a.values[0], 0.012, 1e-12);
   ASSERT_EQ(a.at_bound.size(), 1u);
   EXPECT_EQ(a.at_bound[0], "drawing/wall_thickness_m at its upper bound 0.012 m");
@@ -106,6 +110,9 @@ TEST(DesignTarget, RefusesWhatItCannotSearch) {
             std::string::npos);
   request.free = {{"drawing/wall_thickness_m", 0.0, 0.0005}};
   EXPECT_NE(refusal([&] { pf::designToTarget(epfl(), request); }).find("hold no size"), std::string::npos);
+  request.free = {{"drawing/wall_thickness_m", 0.012, 0.002}};
+  EXPECT_NE(refusal([&] { pf::designToTarget(epfl(), request); }).find("=0.012:0.002: LO must be below HI"),
+            std::string::npos);
   EXPECT_NE(refusal([&] { pf::designToTarget(pf::FingerParameters::defaults(), wallFor("snap_gauge_pa=1", 5)); })
                 .find("no drawing"),
             std::string::npos);

@@ -60,7 +60,7 @@ DesignTarget parseDesignTarget(const std::string& text) {
                          "part); give a value" + usage);
   }
   if (t.minimize) return t;
-  t.value = targetNumber(text, value, "the quantity's unit");
+  t.value = targetNumber(text, value, "a number in the quantity's unit, Pa, rad or N, with no suffix");
   const bool pressure_value = among(t.quantity, std::begin(kOwn), std::end(kOwn)) || angle;
   if (pressure_value && !(t.value > 0.0)) {
     throw ParameterError("--target " + text + ": a pressure (Pa gauge) above 0 is expected");

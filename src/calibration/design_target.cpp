@@ -69,6 +69,9 @@ DesignSpace::DesignSpace(const FingerParameters& base, const DesignRequest& requ
     const double drawn = drawnSize(start_, f.key.substr(std::string(kDrawingPrefix).size()));
     const double floor = castableKey(f.key) ? request.castable_m : 0.0;
     const double lo = std::max(f.lo > 0.0 ? f.lo : drawn / 4.0, floor), hi = f.hi > 0.0 ? f.hi : 4.0 * drawn;
+    if (f.lo > 0.0 && f.hi > 0.0 && !(f.hi > f.lo)) {
+      throw ParameterError(f.key + "=" + formatMessage(f.lo) + ":" + formatMessage(f.hi) + ": LO must be below HI (m)");
+    }
     if (!(hi > lo)) {
       throw ParameterError(f.key + ": its bounds [" + formatMessage(lo) + ", " + formatMessage(hi) +
                            "] m hold no size (the castable thickness is " + formatMessage(request.castable_m) + " m)");
@@ -225,6 +228,20 @@ void noteSelfContact(DesignAnswer& a, const DesignRequest& request) {
   }
 }
 
+// A note for each target met, or asked at, above the base file's validated range: an extrapolation of its data.
+void noteExtrapolation(DesignAnswer& a, const DesignRequest& request) {
+  const double top_pa = request.validated_max_gauge_pa;
+  for (std::size_t i = 0; top_pa > 0.0 && i < request.targets.size(); ++i) {
+    const DesignTarget& t = request.targets[i];
+    const bool pressure_at = t.quantity == "tip_angle_rad" || t.quantity == "chord_angle_rad" ||
+                             t.quantity == "blocked_tip_force_n";
+    const double pressure = pressure_at ? t.at : t.quantity.find("gauge") != std::string::npos ? a.achieved[i] : 0.0;
+    if (!(pressure > top_pa)) continue;
+    a.notes.push_back(t.text + ": at " + formatMessage(pressure) + " Pa, above the base actuator's validated range (to " +
+                      formatMessage(top_pa) + " Pa): its data say nothing there, and the answer extrapolates them");
+  }
+}
+
 // A minimised quantity often ends where the next design has none (a grip lowered until a thinner wall balloons
 // before it holds): a note for each free key, not at a bound, whose 1 % step leaves what the model answers.
 void noteEdge(DesignAnswer& a, const DesignSpace& space, const DesignRequest& request, const std::vector<double>& u) {
@@ -236,9 +253,10 @@ void noteEdge(DesignAnswer& a, const DesignSpace& space, const DesignRequest& re
       std::vector<double> next = u;
       next[k] += sign * step;
       if (next[k] < 0.0 || next[k] > 1.0 || space.objective(next.data()) < kNoDesign) continue;
-      a.notes.push_back(request.free[k].key + " 1 % " + (sign < 0 ? "smaller" : "larger") + " gives no design that "
-                        "meets the targets (for a grip: one that holds the part below limit_share of its limit "
-                        "point): the answer sits at that edge, and a cast part's scatter may cross it");
+      a.notes.push_back(request.free[k].key + " 1 % " + (sign < 0 ? "smaller" : "larger") + " gives no design: a "
+                        "quantity has no value there (for a grip: the walls reach their limit point, where they "
+                        "balloon, before limit_share of it holds the part). The answer sits at that edge, whatever "
+                        "the part, and a cast part's scatter may cross it");
     }
   }
 }
@@ -264,6 +282,7 @@ DesignAnswer answerAt(const DesignSpace& space, const DesignRequest& request, co
                          formatMessage(a.values[k]) + " m");
   }
   noteSelfContact(a, request);
+  noteExtrapolation(a, request);
   noteEdge(a, space, request, u);
   return a;
 }
@@ -313,8 +332,8 @@ std::string whyNoDesign(const FingerParameters& base, const DesignRequest& reque
 DesignAnswer designToTarget(const FingerParameters& base, const DesignRequest& request) {
   const auto began = std::chrono::steady_clock::now();
   if (!drawingFromRaw(base.drawing)) {
-    throw ParameterError("the base parameters have no drawing to design from: give a drawn, calibrated file (--config "
-                         "config/epfl_ecoflex30_c7.yaml is one; docs/DRAWING.md)");
+    throw ParameterError("the base parameters have no drawing to design from: give a drawn, calibrated file (the "
+                         "package's config/epfl_ecoflex30_c7.yaml is one; docs/DRAWING.md)");
   }
   if (request.targets.empty()) throw ParameterError("a design needs a target (--target QUANTITY=VALUE)");
   if (request.free.empty()) throw ParameterError("a design needs a drawing size to change (--free drawing/KEY)");
@@ -351,7 +370,11 @@ DesignAnswer designToTarget(const FingerParameters& base, const DesignRequest& r
     const bool better = !found || (a.met && !best.met) || (a.met == best.met && (a.met ? nearer : a.miss < best.miss));
     if (better) best = std::move(a), found = true;
   }
-  if (!found) throw ParameterError("no design in the bounds that the model accepts" + whyNoDesign(base, request));
+  if (!found) {
+    throw ParameterError("no design in the bounds gives every target a value (the model refuses the drawing, or a "
+                         "quantity has none: no snap, no pressure that holds the part)" + whyNoDesign(base, request) +
+                         "; widen the bounds, free another size, or ask for less");
+  }
   // A quantity lowered by the count as far as the counts tried go: the count is a bound like a size's.
   const auto [fewest, most] = std::minmax_element(counts.begin(), counts.end());
   const bool minimising = std::any_of(request.targets.begin(), request.targets.end(),

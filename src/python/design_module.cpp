@@ -15,10 +15,12 @@ namespace {
 // The request from Python's arguments: targets as text, free keys as {key: (lo, hi)} (0: the default bound).
 pf::DesignRequest designRequest(const std::vector<std::string>& targets, const py::dict& free,
                                 const std::vector<int>& chamber_counts, double castable_m,
-                                const std::vector<double>& max_body_m, const std::string& part, double max_gauge_pa) {
+                                const std::vector<double>& max_body_m, const std::string& part, double max_gauge_pa,
+                                double validated_max_gauge_pa) {
   pf::DesignRequest r;
   for (const std::string& t : targets) r.targets.push_back(pf::parseDesignTarget(t));
   pf::attachGripPart(r.targets, part, max_gauge_pa);
+  r.validated_max_gauge_pa = validated_max_gauge_pa;
   for (const auto& item : free) {
     const auto bounds = item.second.cast<std::vector<double>>();
     if (bounds.size() != 2) throw pf::ParameterError("free: " + item.first.cast<std::string>() + " needs (lo, hi)");
@@ -54,7 +56,7 @@ py::dict designToTarget(const std::string& config, const py::dict& overrides, co
   pf::PressureRange range;
   const pf::FingerParameters base = pf::FingerParameters::fromRaw(loadRaw(config, overrides, &range));
   const pf::DesignRequest request = designRequest(targets, free, chamber_counts, castable_m, max_body_m, part,
-                                                          range.max_gauge_pa);
+                                                          range.max_gauge_pa, range.validated_max_gauge_pa);
   pf::DesignAnswer a;
   std::vector<pf::DesignAnswer> front;
   {

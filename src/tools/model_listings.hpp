@@ -51,19 +51,19 @@ inline void printDrawingTable() {
 // else where it is softest), the limit point (inf where no wall folds) and the far branch's turning point; with a
 // part (--grip-part), the lowest pressure up to the range's top at which the gripper holds it (nan: none).
 inline void printModelPressures(const pf::FingerModel& model, const std::string& grip_part, double max_gauge_pa) {
-  std::cout << "contact_gauge_pa,snap_gauge_pa,limit_gauge_pa,far_turning_gauge_pa"
-            << (grip_part.empty() ? "" : ",grip_gauge_pa") << '\n'
-            << pf::formatExact(model.contactGaugePa()) << ',' << pf::formatExact(model.snapGaugePa()) << ','
-            << pf::formatExact(model.limitGaugePa()) << ',' << pf::formatExact(model.farTurningGaugePa());
+  std::string grip;  // asked first: a part that is not one is refused before anything is printed
   if (!grip_part.empty()) {
     pf::SideGripTask part = pf::parseSideGripTask(grip_part);
     part.max_gauge_pa = max_gauge_pa;
     std::string why;
-    const double grip_pa = pf::holdingGaugePa(model, part, &why);
-    std::cout << ',' << pf::formatExact(grip_pa);
+    grip = "," + pf::formatExact(pf::holdingGaugePa(model, part, &why));
     if (!why.empty()) std::cerr << "finger_model: warning: the part is not held: " << why << '\n';
   }
-  std::cout << '\n';
+  std::cout << "contact_gauge_pa,snap_gauge_pa,limit_gauge_pa,far_turning_gauge_pa"
+            << (grip_part.empty() ? "" : ",grip_gauge_pa") << '\n'
+            << pf::formatExact(model.contactGaugePa()) << ',' << pf::formatExact(model.snapGaugePa()) << ','
+            << pf::formatExact(model.limitGaugePa()) << ',' << pf::formatExact(model.farTurningGaugePa()) << grip
+            << '\n';
 }
 
 // What finger_model prints instead of rows, and exits: the parameter tables, or the model's pressures.

@@ -47,6 +47,9 @@ struct DesignRequest {
   /// The body's largest length, width and height (m; the drawing's outline: base, end walls, cavities and walls
   /// along; body width across; floor, cavity and roof up); 0: no limit.
   double max_body_length_m = 0.0, max_body_width_m = 0.0, max_body_height_m = 0.0;
+  /// The base file's validated range top (Pa gauge; 0: none given): a target the answer meets above it, or at a
+  /// pressure above it, is noted, since the base actuator's data say nothing there.
+  double validated_max_gauge_pa = 0.0;
 };
 
 /// The designed actuator, or the nearest the bounds allow, and how far it reaches from the base drawing.
