@@ -170,3 +170,24 @@ TEST(ModelSelection, TwoFilesOfOneActuatorAreOneDataSet) {
   EXPECT_EQ(set.notes[1].rfind(root + "epfl_ecoflex30_c7_blocked_force.csv: columns not read: n", 0), 0u)
       << set.notes[1];
 }
+
+// The choice's optimism by Tibshirani & Tibshirani's rule, by hand: 16 rows in 8 interleaved folds (rows i and i + 8).
+// The chosen misses every row by 1 (squared); another candidate misses fold 0's two rows by 0.5 and the rest by 2.
+// Fold 0: the chosen misses 0.5 more than the best there; every other fold: the chosen is the best. The mean over
+// the 8 folds: 0.5 / 8. A skipped candidate takes no part, and a chosen one that is best everywhere has none.
+TEST(ModelSelection, TheChoicesOptimismIsTibshiranisRule) {
+  pf::CandidateFit chosen, other, skipped;
+  chosen.held_out.row_squared.assign(16, 1.0);
+  other.held_out.row_squared.assign(16, 2.0);
+  other.held_out.row_squared[0] = other.held_out.row_squared[8] = 0.5;
+  skipped.held_out.row_squared.assign(16, 0.0);
+  skipped.skipped = "the data cannot identify its keys";
+  EXPECT_DOUBLE_EQ(pf::selectionOptimism({chosen, other, skipped}, 0), 0.5 / 8.0);
+  other.held_out.row_squared[0] = other.held_out.row_squared[8] = 1.5;
+  EXPECT_EQ(pf::selectionOptimism({chosen, other, skipped}, 0), 0.0);
+  EXPECT_EQ(pf::selectionOptimism({chosen}, 0), 0.0);
+  // A row the chosen could not be scored on (NaN) is left out of its fold's mean: fold 0 is row 8 alone.
+  chosen.held_out.row_squared[0] = std::nan("");
+  other.held_out.row_squared[8] = 0.25;
+  EXPECT_DOUBLE_EQ(pf::selectionOptimism({chosen, other}, 0), (1.0 - 0.25) / 8.0);
+}

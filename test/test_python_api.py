@@ -689,6 +689,10 @@ def test_auto_alone_follows_the_epfl_chords(tmp_path):
     assert sorted(chosen[0]["keys"]) == sorted(fit["fitted"])
     assert {c["wall_law"] for c in fit["candidates"]} == {"paper", "membrane", "thick"}
     assert all(c["seconds"] > 0 for c in fit["candidates"])
+    # The chosen score corrected for the choice (Tibshirani's rule): at least its own; on this ramp, no more than the
+    # second best score of all tried.
+    scores = sorted(c["score"] for c in fit["candidates"] if not c["skipped"])
+    assert chosen[0]["score"] <= chosen[0]["corrected_score"] <= scores[1]
     model = pf.FingerModel(config=str(out))
     rows = [line for line in (root / "data" / "epfl_ecoflex30_c7_bending.csv").read_text().splitlines()
             if not line.startswith("#")]

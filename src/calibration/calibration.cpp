@@ -287,7 +287,7 @@ double positionError(const Residual& r) { return r.tip_position_error_m(); }
 }  // namespace
 
 TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out,
-                              std::size_t fitted_keys) {
+                              std::size_t fitted_keys, double held_out_scale) {
   if (fit.size() != leave_one_out.size()) throw ParameterError("tipUncertainty: fit and leave-one-out rows differ");
   std::vector<std::size_t> order(fit.size());
   for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
@@ -298,9 +298,10 @@ TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vecto
   std::vector<double> gauge, angle, position;
   for (std::size_t i : order) {
     if (!(fit[i].gauge_pa > 0.0)) continue;  // the rest shape needs no error bar
-    const double a = std::max({std::fabs(fit[i].tip_angle_error_rad()), std::fabs(leave_one_out[i].tip_angle_error_rad()),
-                               angle_floor});
-    const double x = std::max({fit[i].tip_position_error_m(), leave_one_out[i].tip_position_error_m(), position_floor});
+    const double a = std::max({std::fabs(fit[i].tip_angle_error_rad()),
+                               held_out_scale * std::fabs(leave_one_out[i].tip_angle_error_rad()), angle_floor});
+    const double x = std::max({fit[i].tip_position_error_m(), held_out_scale * leave_one_out[i].tip_position_error_m(),
+                               position_floor});
     const double angle_bar = std::isnan(fit[i].tip_angle_error_rad()) ? std::nan("") : a;  // NaN: not measured
     const double position_bar = std::isnan(fit[i].tip_position_error_m()) ? std::nan("") : x;
     // Neither bar: the row measured no tip, or the fitted model has no shape at its pressure (beyond its limit

@@ -248,6 +248,38 @@ std::string fixed(const char* format, double value) {
 
 }  // namespace
 
+double selectionOptimism(const std::vector<CandidateFit>& tried, std::size_t chosen) {
+  const std::vector<double>& own = tried.at(chosen).held_out.row_squared;
+  const std::vector<std::size_t> fold_of = interleavedFolds(own.size());
+  const std::size_t folds = own.empty() ? 0 : *std::max_element(fold_of.begin(), fold_of.end()) + 1;
+  // A candidate's mean squared error on fold f's rows that the chosen one is scored on (NaN where it has none of
+  // them, or was skipped): the candidates compared on the same rows.
+  const auto foldError = [&fold_of, &own](const CandidateFit& c, std::size_t f) {
+    double sum = 0.0;
+    int rows = 0;
+    for (std::size_t i = 0; i < c.held_out.row_squared.size() && i < fold_of.size(); ++i) {
+      if (fold_of[i] != f || std::isnan(own[i]) || std::isnan(c.held_out.row_squared[i])) continue;
+      sum += c.held_out.row_squared[i];
+      ++rows;
+    }
+    return rows > 0 && c.skipped.empty() ? sum / rows : std::numeric_limits<double>::quiet_NaN();
+  };
+  double total = 0.0;
+  int counted = 0;
+  for (std::size_t f = 0; f < folds; ++f) {
+    const double mine = foldError(tried[chosen], f);
+    if (std::isnan(mine)) continue;
+    double least = mine;
+    for (const CandidateFit& c : tried) {
+      const double e = foldError(c, f);
+      if (!std::isnan(e)) least = std::min(least, e);
+    }
+    total += mine - least;
+    ++counted;
+  }
+  return counted > 0 ? total / counted : 0.0;
+}
+
 std::string candidatesTable(const std::vector<CandidateFit>& tried, std::size_t chosen) {
   std::string t = "# auto: every candidate tried, judged by its bends held out at their measured pressures (rms over " +
                   std::to_string(kCrossValidationFolds) + " interleaved folds; each row alone with " +
@@ -271,6 +303,11 @@ std::string candidatesTable(const std::vector<CandidateFit>& tried, std::size_t 
          (c.held_out.unshaped > 0 ? ", " + std::to_string(c.held_out.unshaped) + " rows without a shape" : "") + "; " +
          fixed("%.2f", c.seconds) + " s" + (i == chosen ? "  <- chosen" : c.selected ? "  (selected)" : "") + "\n";
   }
+  const double score = tried.at(chosen).held_out.score, corrected = std::sqrt(score * score +
+                                                                              selectionOptimism(tried, chosen));
+  t += "#   the chosen score, corrected for being the best of those tried (Tibshirani & Tibshirani's rule: per fold, "
+       "how much more the chosen misses than that fold's best): " + fixed("%.2f", corrected * 180.0 / M_PI) +
+       " deg, against its own " + fixed("%.2f", score * 180.0 / M_PI) + "\n";
   return t + "#\n";
 }
 

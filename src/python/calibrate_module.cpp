@@ -115,6 +115,11 @@ py::list candidateList(const pf::CalibrationRun& run) {
     d["keys"] = py::cast(c.keys);
     d["held_out_bend_rad"] = c.skipped.empty() ? c.held_out.bend_rad : NAN;
     d["held_out_pressure"] = c.skipped.empty() ? c.held_out.pressure : NAN;
+    d["score"] = c.skipped.empty() ? c.held_out.score : NAN;
+    // The chosen's score widened by the choice's optimism (selectionOptimism): what its error bar takes.
+    if (i == run.chosen_candidate) {
+      d["corrected_score"] = std::sqrt(c.held_out.score * c.held_out.score + pf::selectionOptimism(run.candidates, i));
+    }
     d["rows_without_shape"] = c.held_out.unshaped;
     d["seconds"] = c.seconds;
     d["skipped"] = c.skipped;

@@ -319,8 +319,10 @@ std::vector<WallLaw> parseWallLawChoice(const std::string& name);
 /// |error| and of the fit's residual scatter (sqrt(sum e^2 / (n - k)) over the rows, k = @p fitted_keys), for the tip
 /// angle and for the tip position (NaN where the data measured no tip position): no bar is below the noise the fit
 /// leaves, even at a row it happens to hit. The rows of both are the same measurements, in the same order.
+/// @p held_out_scale multiplies the leave-one-out's errors: auto's choice among candidates makes its chosen one's too
+/// small, and selectionOptimism says by how much (the corrected score over its own; 1: no choice).
 TipUncertainty tipUncertainty(const std::vector<Residual>& fit, const std::vector<Residual>& leave_one_out,
-                              std::size_t fitted_keys);
+                              std::size_t fitted_keys, double held_out_scale = 1.0);
 
 /// The warning for rows the leave-one-out could not predict: the fit has a tip error there but the model fitted
 /// without the row has no shape at its pressure (beyond its limit point). Their error bars take the fit's error and

@@ -49,6 +49,13 @@ struct CandidateFit {
   bool selected = false;  ///< the set its law and comparison's selection stopped at
 };
 
+/// The choice's optimism: the chosen candidate's held-out score is the best of several, and so too low. Tibshirani &
+/// Tibshirani's rule (Ann. Appl. Stat. 3, 2009) estimates by how much, from the folds the candidates already share:
+/// per fold, the chosen's mean squared error there less the least any candidate makes there; the folds' mean. The
+/// corrected score is sqrt(score^2 + that). Each fold compares the candidates on the rows the chosen one is scored on;
+/// skipped candidates take no part. 0 for one candidate.
+double selectionOptimism(const std::vector<CandidateFit>& tried, std::size_t chosen);
+
 /// Folds of the selection's cross-validation: rows i with the same i mod kCrossValidationFolds are held out together
 /// (interleaved, so that every fold spans the pressures, the snap's included); data with at most that many rows hold
 /// each row out alone (leave-one-out).
