@@ -16,12 +16,6 @@ namespace pneumatic_finger {
 
 namespace {
 
-std::string fixed(const char* format, double value) {
-  char b[64];
-  std::snprintf(b, sizeof b, format, value);
-  return b;
-}
-
 // A row's measured bend for the scatter: every joint's sum, the tip angle, the chord (or its tip position's); NaN.
 double measuredBend(const Measurement& m) {
   if (m.hasJoints()) {
@@ -127,8 +121,8 @@ FitCheck checkFollows(const std::vector<Residual>& held_out, const std::vector<M
     ++e.missed_rows;
     missed.emplace_back(std::max(bend_missed ? std::fabs(bend) / bar_rad : 0.0, p_missed ? std::fabs(p) / kFollowPressure : 0.0),
                         formatMessage(r.gauge_pa) + " Pa (" +
-                            (shapeless ? std::string("no shape") : bend_missed ? fixed("%+.1f deg", bend * 180.0 / M_PI) : "") +
-                            (p_missed ? std::string(bend_missed ? ", " : "") + "pressure " + fixed("%+.0f %%", 100.0 * p) : "") +
+                            (shapeless ? std::string("no shape") : bend_missed ? formatNumber("%+.1f deg", bend * 180.0 / M_PI) : "") +
+                            (p_missed ? std::string(bend_missed ? ", " : "") + "pressure " + formatNumber("%+.0f %%", 100.0 * p) : "") +
                             ")");
   }
   std::stable_sort(missed.begin(), missed.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
@@ -142,10 +136,10 @@ FitCheck checkFollows(const std::vector<Residual>& held_out, const std::vector<M
   if (e.follows_data) return check;
   check.warning = "the fit does not follow its data: " + std::to_string(e.missed_rows) + " of " +
                   std::to_string(held_out.size()) + " rows are missed when held out by more than " +
-                  fixed("%.1f", bar_rad * 180.0 / M_PI) + " deg (the larger of " +
-                  fixed("%.0f", kFollowFloorRad * 180.0 / M_PI) + " deg and " + fixed("%.0f", kFollowScatters) +
-                  " times the data's own scatter, " + fixed("%.2f", scatter_rad * 180.0 / M_PI) + " deg)" +
-                  (by_volume ? " or their pressure by more than " + fixed("%.0f %%", 100.0 * kFollowPressure) : "") +
+                  formatNumber("%.1f", bar_rad * 180.0 / M_PI) + " deg (the larger of " +
+                  formatNumber("%.0f", kFollowFloorRad * 180.0 / M_PI) + " deg and " + formatNumber("%.0f", kFollowScatters) +
+                  " times the data's own scatter, " + formatNumber("%.2f", scatter_rad * 180.0 / M_PI) + " deg)" +
+                  (by_volume ? " or their pressure by more than " + formatNumber("%.0f %%", 100.0 * kFollowPressure) : "") +
                   "; the worst at " + rows + (e.missed_rows > 8 ? " and " + std::to_string(e.missed_rows - 8) + " more" : "") +
                   "; try: " +
                   whatToTry(held_out, unshaped, pressure_missed, by_volume, auto_chosen);

@@ -240,12 +240,6 @@ ModelSelection selectModel(const FingerParameters& base, const std::vector<WallL
 
 namespace {
 
-std::string fixed(const char* format, double value) {
-  char b[64];
-  std::snprintf(b, sizeof b, format, value);
-  return b;
-}
-
 }  // namespace
 
 double selectionOptimism(const std::vector<CandidateFit>& tried, std::size_t chosen) {
@@ -295,19 +289,19 @@ std::string candidatesTable(const std::vector<CandidateFit>& tried, std::size_t 
       t += "skipped: " + c.skipped + "\n";
       continue;
     }
-    t += "held out " + fixed("%.2f", c.held_out.bend_rad * 180.0 / M_PI) + " deg" +
-         " (score " + fixed("%.2f", c.held_out.score * 180.0 / M_PI) + " +- " +
-         fixed("%.2f", c.held_out.standard_error * 180.0 / M_PI) + ")" +
-         (c.held_out.pressure > 0.0 ? ", pressure " + fixed("%.1f", 100.0 * c.held_out.pressure) + " %" : "") +
-         (c.held_out.force > 0.0 ? ", force largest " + fixed("%.0f", 100.0 * c.held_out.force) + " % of the largest" : "") +
+    t += "held out " + formatNumber("%.2f", c.held_out.bend_rad * 180.0 / M_PI) + " deg" +
+         " (score " + formatNumber("%.2f", c.held_out.score * 180.0 / M_PI) + " +- " +
+         formatNumber("%.2f", c.held_out.standard_error * 180.0 / M_PI) + ")" +
+         (c.held_out.pressure > 0.0 ? ", pressure " + formatNumber("%.1f", 100.0 * c.held_out.pressure) + " %" : "") +
+         (c.held_out.force > 0.0 ? ", force largest " + formatNumber("%.0f", 100.0 * c.held_out.force) + " % of the largest" : "") +
          (c.held_out.unshaped > 0 ? ", " + std::to_string(c.held_out.unshaped) + " rows without a shape" : "") + "; " +
-         fixed("%.2f", c.seconds) + " s" + (i == chosen ? "  <- chosen" : c.selected ? "  (selected)" : "") + "\n";
+         formatNumber("%.2f", c.seconds) + " s" + (i == chosen ? "  <- chosen" : c.selected ? "  (selected)" : "") + "\n";
   }
   const double score = tried.at(chosen).held_out.score, corrected = std::sqrt(score * score +
                                                                               selectionOptimism(tried, chosen));
   t += "#   the chosen score, corrected for being the best of those tried (Tibshirani & Tibshirani's rule: per fold, "
-       "how much more the chosen misses than that fold's best): " + fixed("%.2f", corrected * 180.0 / M_PI) +
-       " deg, against its own " + fixed("%.2f", score * 180.0 / M_PI) + "\n";
+       "how much more the chosen misses than that fold's best): " + formatNumber("%.2f", corrected * 180.0 / M_PI) +
+       " deg, against its own " + formatNumber("%.2f", score * 180.0 / M_PI) + "\n";
   return t + "#\n";
 }
 

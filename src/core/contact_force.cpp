@@ -132,8 +132,9 @@ bool gaugeForContactForce(const FingerModel& model, const std::function<ContactS
   }
   const double most = force_at(max_gauge_pa);
   if (!(most >= force_n)) {
-    s << "presses with at most " << most << " N, at " << max_gauge_pa << " Pa (the top of its range), short of "
-      << force_n << " N";
+    // The asked force as the caller wrote it (formatMessage: 12.80665, not 12.8066), the computed ones to six digits.
+    s << "presses with at most " << most << " N, at " << formatMessage(max_gauge_pa)
+      << " Pa (the top of its range), short of " << formatMessage(force_n) << " N";
     why = s.str();
     return false;
   }

@@ -197,6 +197,12 @@ std::string formatYamlNumber(double value) {
   return text;
 }
 
+std::string formatNumber(const char* printf_format, double value) {
+  char buffer[64];
+  std::snprintf(buffer, sizeof(buffer), printf_format, value);
+  return buffer;
+}
+
 std::string formatMessage(double value) {
   if (std::isnan(value)) return "nan";
   char buffer[40];

@@ -28,12 +28,6 @@ constexpr const char* kDescription =
 
 constexpr double kDeg = pf::kDegPerRad;
 
-std::string fmt(const char* format, double v) {
-  char b[64];
-  std::snprintf(b, sizeof b, format, v);
-  return b;
-}
-
 std::string pad(const std::string& text, int width) {
   return std::string(static_cast<std::size_t>(std::max(0, width - static_cast<int>(text.size()))), ' ') + text;
 }
@@ -71,7 +65,7 @@ std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_vol
     if (!std::isnan(e)) w = std::max(w, std::fabs(e));
   };
   for (const pf::Residual& r : rows) {
-    t << "# " << (by_volume ? pad(fmt("%.4g", r.supplied_volume_m3), 11) : "") << pad(pf::formatMessage(r.gauge_pa), 10);
+    t << "# " << (by_volume ? pad(pf::formatNumber("%.4g", r.supplied_volume_m3), 11) : "") << pad(pf::formatMessage(r.gauge_pa), 10);
     for (int k = 0; k < n; ++k) {
       const auto i = static_cast<std::size_t>(k);
       const double e = r.measured_joint_rad.empty() ? NAN : r.model_joint_rad[i] - r.measured_joint_rad[i];
@@ -95,8 +89,8 @@ std::string errorTable(const std::vector<pf::Residual>& rows, int n, bool by_vol
 }
 
 // An angle in rad with its degrees beside it, a length in m with its mm: what a reader of the report compares.
-std::string angle(double rad) { return pf::formatMessage(rad) + " rad (" + fmt("%.3f", rad * kDeg) + " deg)"; }
-std::string length(double m) { return pf::formatMessage(m) + " m (" + fmt("%.3f", m * 1e3) + " mm)"; }
+std::string angle(double rad) { return pf::formatMessage(rad) + " rad (" + pf::formatNumber("%.3f", rad * kDeg) + " deg)"; }
+std::string length(double m) { return pf::formatMessage(m) + " m (" + pf::formatNumber("%.3f", m * 1e3) + " mm)"; }
 
 std::string largest(const std::array<double, 9>& w, int n, bool paper) {
   std::vector<std::string> parts;
@@ -107,12 +101,12 @@ std::string largest(const std::array<double, 9>& w, int n, bool paper) {
   }
   if (w[2] > 0) parts.push_back("tip angle " + angle(w[2]));
   if (w[7] > 0) parts.push_back("chord angle " + angle(w[7]));
-  if (w[8] > 0) parts.push_back("blocked force " + fmt("%.4f", w[8]) + " N");
+  if (w[8] > 0) parts.push_back("blocked force " + pf::formatNumber("%.4f", w[8]) + " N");
   if (w[3] > 0) parts.push_back("tip position " + length(w[3]));
   if (w[4] > 0) {
-    parts.push_back("pressure " + fmt("%.0f", w[4]) + " Pa (largest relative " + fmt("%.1f", 100.0 * w[5]) + " %)");
+    parts.push_back("pressure " + pf::formatNumber("%.0f", w[4]) + " Pa (largest relative " + pf::formatNumber("%.1f", 100.0 * w[5]) + " %)");
   }
-  if (w[6] > 0) parts.push_back("pressure at the measured bend " + fmt("%.0f", w[6]) + " Pa");
+  if (w[6] > 0) parts.push_back("pressure at the measured bend " + pf::formatNumber("%.0f", w[6]) + " Pa");
   std::string s;
   for (const std::string& p : parts) s += (s.empty() ? " " : ", ") + p;
   return s;
@@ -131,9 +125,9 @@ std::string uncertaintyLines(const pf::CalibrationRun& run) {
                 "of the data's scatter):"
               : "\n# uncertainty (one standard deviation, from the fit's curvature and the data's scatter):");
     for (std::size_t i = 0; i < k; ++i) {
-      t << " " << fit.keys[i] << " +- " << fmt("%.3g", fit.uncertainty[i]) << " ("
+      t << " " << fit.keys[i] << " +- " << pf::formatNumber("%.3g", fit.uncertainty[i]) << " ("
         // A share of a value of 0 means nothing: the bar alone, in the key's unit.
-        << (fit.values[i] != 0.0 ? fmt("%.3g", 100.0 * fit.uncertainty[i] / std::fabs(fit.values[i])) + " %)"
+        << (fit.values[i] != 0.0 ? pf::formatNumber("%.3g", 100.0 * fit.uncertainty[i] / std::fabs(fit.values[i])) + " %)"
                                  : std::string("at a value of 0)"))
         << (i + 1 < k ? "," : "");
     }
@@ -142,7 +136,7 @@ std::string uncertaintyLines(const pf::CalibrationRun& run) {
     t << "\n# correlation:";
     for (std::size_t a = 0; a < k; ++a) {
       for (std::size_t b = a + 1; b < k; ++b) {
-        t << " " << fit.keys[a] << "/" << fit.keys[b] << " " << fmt("%.3f", fit.correlation[a * k + b]);
+        t << " " << fit.keys[a] << "/" << fit.keys[b] << " " << pf::formatNumber("%.3f", fit.correlation[a * k + b]);
       }
     }
   }
@@ -169,8 +163,8 @@ std::string followLine(const pf::CalibrationRun& run) {
   const pf::CalibrationError& e = run.calibration_error;
   if (e.empty()) return "";
   return "# held out, " + (e.follows_data ? std::string("every row") : std::to_string(e.missed_rows) + " row(s) NOT") +
-         " within the follow bar, " + fmt("%.2f", run.follow_bar_rad * kDeg) + " deg (the larger of 5 deg and 3 "
-         "times the data's own scatter, " + fmt("%.2f", run.scatter_rad * kDeg) + " deg)\n";
+         " within the follow bar, " + pf::formatNumber("%.2f", run.follow_bar_rad * kDeg) + " deg (the larger of 5 deg and 3 "
+         "times the data's own scatter, " + pf::formatNumber("%.2f", run.scatter_rad * kDeg) + " deg)\n";
 }
 
 // The report: what was fitted to what, the error of the fit and of leave-one-out per row, and the error bar.
@@ -213,7 +207,7 @@ std::string relativeSummary(const std::vector<pf::Residual>& rows) {
     sum_sq += e * e;
     ++count;
   }
-  return "largest " + fmt("%.1f", 100.0 * worst) + " %, rms " + fmt("%.1f", 100.0 * std::sqrt(sum_sq / std::max(count, 1))) +
+  return "largest " + pf::formatNumber("%.1f", 100.0 * worst) + " %, rms " + pf::formatNumber("%.1f", 100.0 * std::sqrt(sum_sq / std::max(count, 1))) +
          " %";
 }
 
@@ -238,7 +232,7 @@ std::string errorSummary(const std::vector<pf::Residual>& rows, pf::CalibrationQ
     }
   }
   const double rms = std::sqrt(sum_sq / std::max(count, 1));
-  if (pascals) return "largest " + fmt("%.0f", worst) + " Pa, rms " + fmt("%.0f", rms) + " Pa";
+  if (pascals) return "largest " + pf::formatNumber("%.0f", worst) + " Pa, rms " + pf::formatNumber("%.0f", rms) + " Pa";
   return metres ? "largest " + length(worst) + ", rms " + length(rms) : "largest " + angle(worst) + ", rms " + angle(rms);
 }
 

@@ -147,6 +147,9 @@ std::string formatYamlNumber(double value);
 /// rows, parameter files) uses formatExact or formatShortest instead.
 std::string formatMessage(double value);
 
+/// @p value by a printf format of one number ("%.2f", "%.3g"): a report's fixed columns.
+std::string formatNumber(const char* printf_format, double value);
+
 /// The one check of a number against its definition: finite, in range, whole for an integer key. Every reader of
 /// parameters (the YAML loader, --set, the ROS nodes' private handles, dynamic_reconfigure) calls it.
 /// @throws ParameterError naming the key, the value and the allowed range with its unit
