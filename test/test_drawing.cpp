@@ -166,3 +166,54 @@ TEST(Drawing, BadDrawingsAreRefusedWithTheReason) {
             std::string::npos)
       << refusal(thin);
 }
+
+// withDrawingSize, which a fit calls at each step, is the file read again with the size changed: every key equal to
+// what fromRaw gives, on the shipped drawings under each law, for each size a calibration may fit; a refused drawing
+// is refused with fromRaw's message.
+TEST(Drawing, ASizeSetIsTheFileReadAgain) {
+  const std::vector<std::string> sizes = {"cavity_height_m", "cavity_width_m", "cavity_length_m", "wall_thickness_m",
+                                          "end_wall_thickness_m", "roof_thickness_m", "body_width_m", "chamber_count"};
+  int accepted = 0, refused = 0;
+  for (const char* file : {"epfl_ecoflex30_c7_coupon.yaml", "marchese2015_ribbed_drawing.yaml",
+                           "marchese2015_cylindrical_drawing.yaml"}) {
+    for (const char* law : {"paper", "membrane", "thick"}) {
+      pf::RawParameterMap raw = load(file);
+      raw["wall_law"] = pf::RawParameterValue{{static_cast<double>(std::string(law) == "paper"      ? pf::WallLaw::kPaper
+                                                                   : std::string(law) == "membrane" ? pf::WallLaw::kMembrane
+                                                                                                    : pf::WallLaw::kThick)},
+                                              false};
+      raw.erase("wall_critical_height_m");
+      const pf::FingerParameters p = pf::FingerParameters::fromRaw(raw);
+      for (const std::string& size : sizes) {
+        const std::string key = std::string(pf::kDrawingPrefix) + size;
+        const double value = size == "chamber_count" ? p.chamber_count + 2 : 1.1 * (size == "body_width_m" ? 0.05 : 0.004);
+        pf::RawParameterMap again = p.toRaw();
+        for (const std::string& made : pf::drawnModelKeys()) again.erase(made);
+        again[key] = pf::RawParameterValue{{value}, false};
+        const std::string what = std::string(file) + ", " + law + ", " + key;
+        std::string expected_refusal, refusal_got;
+        pf::RawParameterMap expected, got;
+        try {
+          expected = pf::FingerParameters::fromRaw(again).toRaw();
+        } catch (const pf::ParameterError& e) {
+          expected_refusal = e.what();
+        }
+        try {
+          got = pf::withDrawingSize(p, key, value).toRaw();
+        } catch (const pf::ParameterError& e) {
+          refusal_got = e.what();
+        }
+        EXPECT_EQ(refusal_got, expected_refusal) << what;
+        (expected_refusal.empty() ? accepted : refused) += 1;
+        ASSERT_EQ(got.size(), expected.size()) << what;
+        for (const auto& [k, v] : expected) {
+          ASSERT_EQ(got.count(k), 1u) << what << ": " << k;
+          EXPECT_EQ(got.at(k).values, v.values) << what << ": " << k;
+          EXPECT_EQ(got.at(k).is_list, v.is_list) << what << ": " << k;
+        }
+      }
+    }
+  }
+  EXPECT_GT(refused, 0);  // a refusal compared too (a wider cavity than its body, ...)
+  EXPECT_GT(accepted, 60);
+}

@@ -105,6 +105,69 @@ TEST(ModelSelection, ForwardSelectionFindsTheKeysTheDataWereMadeWith) {
   EXPECT_EQ(s.chosen.leave_one_out.size(), data.size());
 }
 
+// Chords and blocked forces made by the shipped EPFL fit with a 10 mm roof, where its drawing leaves the roof to its
+// default (7 mm, as thick as the walls). The bend alone cannot tell the roof from kappa and the gap: auto lists the
+// roof as skipped, with why. The forces can (their lever is the roof's b): auto fits the roof, and finds the 10 mm.
+TEST(ModelSelection, AutoFitsARoofTheDrawingLeavesToItsDefaultWhereTheDataCanTellIt) {
+  const pf::FingerParameters base = load("epfl_ecoflex30_c7.yaml");
+  ASSERT_EQ(base.drawing.count("drawing/roof_thickness_m"), 0u);
+  pf::RawParameterMap raw = base.toRaw();
+  raw["drawing/roof_thickness_m"] = pf::RawParameterValue{{0.010}, false};
+  const pf::FingerModel model(pf::FingerParameters::fromRaw(raw));
+  pf::FingerWorkspace ws(model);
+  std::vector<pf::Measurement> data;
+  for (int k = 0; k < 16; ++k) {
+    pf::Measurement m;
+    m.line = k + 1;
+    m.gauge_pa = 12e3 + 2e3 * k;
+    m.chord_angle_rad = model.evaluate(m.gauge_pa, ws).chordAngle();
+    data.push_back(m);
+  }
+  const auto select = [&base](const std::vector<pf::Measurement>& rows) {
+    return pf::selectModel(base, {pf::WallLaw::kThick}, {pf::CalibrationQuantity::kChordAngle}, rows,
+                           pf::CalibrationObjective::kMinimax, false);
+  };
+  const pf::ModelSelection bends = select(data);
+  const std::string roof = "drawing/roof_thickness_m";
+  const pf::CandidateFit& last = bends.tried.back();
+  ASSERT_EQ(last.keys.back(), roof) << pf::candidatesTable(bends.tried, bends.chosen_index);
+  EXPECT_NE(last.skipped.find("cannot tell the roof from wall_bulge_share"), std::string::npos) << last.skipped;
+  EXPECT_EQ(std::count(bends.chosen.fit.keys.begin(), bends.chosen.fit.keys.end(), roof), 0);
+  for (int k = 0; k < 8; ++k) {
+    pf::Measurement m;
+    m.line = 100 + k;
+    m.gauge_pa = 5e3 + 5e3 * k;  // through the free finger's limit point: the force is defined past it
+    m.blocked_tip_force_n = model.blockedTipForceN(m.gauge_pa);
+    data.push_back(m);
+  }
+  const pf::ModelSelection both = select(data);
+  const std::vector<std::string>& keys = both.chosen.fit.keys;
+  const auto at = std::find(keys.begin(), keys.end(), roof);
+  ASSERT_NE(at, keys.end()) << pf::candidatesTable(both.tried, both.chosen_index);
+  EXPECT_NEAR(both.chosen.fit.values[static_cast<std::size_t>(at - keys.begin())], 0.010, 1e-5);
+  EXPECT_LT(both.tried[both.chosen_index].held_out.score, 1e-3);
+  // Forces made by a 1 mm roof, below a quarter of the drawn 7 mm: the roof runs to its search range's end, and auto
+  // skips it (a drawn size the data push out of the drawing's reach stands for what the model lacks).
+  raw["drawing/roof_thickness_m"] = pf::RawParameterValue{{0.001}, false};
+  const pf::FingerModel thin(pf::FingerParameters::fromRaw(raw));
+  std::vector<pf::Measurement> thin_data = data;
+  for (pf::Measurement& m : thin_data) {
+    if (m.hasBlockedForce()) m.blocked_tip_force_n = thin.blockedTipForceN(m.gauge_pa);
+    if (m.hasChordAngle()) m.chord_angle_rad = thin.evaluate(m.gauge_pa, ws).chordAngle();
+  }
+  const pf::ModelSelection out_of_reach = select(thin_data);
+  const pf::CandidateFit& roofed = out_of_reach.tried.back();
+  ASSERT_EQ(roofed.keys.back(), roof) << pf::candidatesTable(out_of_reach.tried, out_of_reach.chosen_index);
+  EXPECT_NE(roofed.skipped.find("sits on the lower end of its search range"), std::string::npos) << roofed.skipped;
+  EXPECT_NE(roofed.skipped.find("the data want a body the drawing is not"), std::string::npos) << roofed.skipped;
+  raw["drawing/roof_thickness_m"] = pf::RawParameterValue{{0.010}, false};
+  // A drawing that states its roof was measured: auto keeps it.
+  const pf::ModelSelection stated = pf::selectModel(pf::FingerParameters::fromRaw(raw), {pf::WallLaw::kThick},
+                                                    {pf::CalibrationQuantity::kChordAngle}, data,
+                                                    pf::CalibrationObjective::kMinimax, false);
+  for (const pf::CandidateFit& c : stated.tried) EXPECT_EQ(std::count(c.keys.begin(), c.keys.end(), roof), 0);
+}
+
 // A candidate the data cannot identify is skipped with its reason, and the run goes on (Table 1: four rows).
 TEST(ModelSelection, ACandidateTheDataCannotIdentifyIsSkippedNotFatal) {
   pf::FingerParameters base = pf::FingerParameters::defaults();

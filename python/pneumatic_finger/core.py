@@ -92,7 +92,7 @@ def calibrate(data=None, keys=None, objective="minimax", config=None, overrides=
     "gauge_pa" (the model's pressure at each row's volume; needs drive="volume"), "tip_angle+gauge_pa" or
     "gauge_at_tip_angle" (None: what the data has, as the CLI chooses; by volume with gauge_pa, "tip_angle+gauge_pa"). drive:
     "pressure" (each row set by its gauge_pa) or "volume" (by its supplied_volume_m3; the pressure is then an output)
-    (None: pressure where the data has gauge_pa). wall_law: "auto" (fit each law, keep the best leave-one-out prediction), "paper", "membrane" or "thick" (None:
+    (None: pressure where the data has gauge_pa). wall_law: "auto" (choose the law, the keys and the comparison by their bends held out: docs/CALIBRATE.md, "What auto chooses"), "paper", "membrane" or "thick" (None:
     the parameter file's).
 
     Returns a dict: fitted (key -> value), wall_law, compared, objective_value, residuals (a dict of arrays, a row

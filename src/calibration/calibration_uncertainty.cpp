@@ -22,7 +22,6 @@ namespace {
 constexpr double kTradeOffCorrelation = 0.95;
 
 // The search coordinate of @p value on @p axis (log10 for a logarithmic one).
-double coordinateOf(const SearchAxis& axis, double value) { return axis.logarithmic ? std::log10(value) : value; }
 
 // (J^T J)^-1 at @p u by Ceres' covariance (a dense SVD, which finds a rank the data leave short), in the unit cube's
 // coordinates; false where the data do not determine every key.
@@ -49,15 +48,6 @@ bool unscaledCovariance(const FitProblem& problem, Eigen::VectorXd u, const Eige
   return true;
 }
 
-std::string boundWarning(const SearchAxis& axis, double value) {
-  const double x = coordinateOf(axis, value), width = axis.hi - axis.lo;
-  if (x > axis.lo + 1e-6 * width && x < axis.hi - 1e-6 * width) return "";
-  std::ostringstream w;
-  w << axis.key << " = " << formatMessage(value) << " sits on the " << (x <= axis.lo + 1e-6 * width ? "lower" : "upper")
-    << " end of its search range [" << formatMessage(axis.toValue(axis.lo)) << ", " << formatMessage(axis.toValue(axis.hi))
-    << "]: the data want it beyond, so the fit is not a minimum in it";
-  return w.str();
-}
 
 // The errors a minimax fit bounds, in the squares' form's terms: a tip position's two components as one distance,
 // every other term alone.

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 #include <optional>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -68,12 +69,24 @@ inline SearchAxis axisFor(const std::string& key, const FingerParameters& base) 
   return {key, false, 1e-3 * l, (key == "chamber_height_m" ? 4.0 : 1.0) * l};
 }
 
+// A value's place on its axis: its log10 on a logarithmic one.
+inline double coordinateOf(const SearchAxis& axis, double value) { return axis.logarithmic ? std::log10(value) : value; }
+
+// Why @p value of @p axis's key is no minimum: it sits on an end of the search range (within a millionth of it).
+// Empty: within.
+inline std::string boundWarning(const SearchAxis& axis, double value) {
+  const double x = coordinateOf(axis, value), width = axis.hi - axis.lo;
+  if (x > axis.lo + 1e-6 * width && x < axis.hi - 1e-6 * width) return "";
+  std::ostringstream w;
+  w << axis.key << " = " << formatMessage(value) << " sits on the " << (x <= axis.lo + 1e-6 * width ? "lower" : "upper")
+    << " end of its search range [" << formatMessage(axis.toValue(axis.lo)) << ", " << formatMessage(axis.toValue(axis.hi))
+    << "]: the data want it beyond, so the fit is not a minimum in it";
+  return w.str();
+}
+
 inline void setKey(FingerParameters& p, const std::string& key, double value) {
   if (key.rfind(kDrawingPrefix, 0) == 0) {  // drawn anew by the rule: the keys it makes follow the drawing
-    RawParameterMap raw = p.toRaw();
-    for (const std::string& made : drawnModelKeys()) raw.erase(made);
-    raw[key] = {{value}, false};
-    p = FingerParameters::fromRaw(raw);  // @throws ParameterError for a drawing the rule refuses
+    p = withDrawingSize(p, key, value);  // @throws ParameterError for a drawing the rule refuses
     return;
   }
   if (key == "base_wall_share" || key == "wall_locking_jm" || key == "dead_volume_m3" || key == "chamber_growth_ratio" ||

@@ -11,6 +11,8 @@
 #include <utility>
 #include <vector>
 
+#include "fit_space.hpp"
+#include "pneumatic_finger/core/drawing.hpp"
 #include "shared_scan.hpp"
 
 namespace pneumatic_finger {
@@ -91,7 +93,10 @@ bool clearlyBetter(const HeldOutError& candidate, const HeldOutError& current) {
     const double d = current.row_squared[i] - candidate.row_squared[i];
     if (!std::isnan(d)) gain.push_back(d);
   }
-  if (gain.size() < 2) return candidate.score < current.score;
+  // A gain under kNegligibleGain of the error is none a user can see (a key the others already settle scores the same
+  // to a few digits, and its rows' gains are all tiny and positive).
+  if (candidate.score >= current.score * (1.0 - kNegligibleGain)) return false;
+  if (gain.size() < 2) return true;
   const auto n = static_cast<double>(gain.size());
   double mean = 0.0, var = 0.0;
   for (double d : gain) mean += d / n;
@@ -115,6 +120,44 @@ std::vector<std::string> furtherKeys(WallLaw law, const std::vector<std::string>
                              [&keys](const std::string& k) { return std::count(keys.begin(), keys.end(), k) > 0; }),
               extra.end());
   return extra;
+}
+
+// The drawing's sizes auto may fit under @p law, not yet among @p keys: the roof, where the drawing leaves it to its
+// default and the law's lever b is drawn from it (the membrane and thick walls: b is the body's top). It is the size
+// a drawing most often leaves out, and it moves the prediction as much as the elastomer does (docs/DRAWING.md). The
+// sizes a drawing states were measured on the part, and the body's width moves no model key.
+std::vector<std::string> drawingKeys(const FingerParameters& start, WallLaw law, const std::vector<std::string>& keys) {
+  const std::string roof = std::string(kDrawingPrefix) + "roof_thickness_m";
+  // A roof the drawing states was measured; one it leaves to its default is a guess.
+  if (start.drawing.empty() || start.drawing.count(roof) > 0 || law == WallLaw::kPaper ||
+      std::count(keys.begin(), keys.end(), roof) > 0) {
+    return {};
+  }
+  return {roof};
+}
+
+// Why @p key cannot be told apart from @p keys by @p data, or empty. The bend takes b, c and kappa as (b/kappa,
+// c/kappa) (docs/MODEL.md, "The thick wall"): with the gap and kappa fitted, a roof (b) moves no bend they cannot;
+// only the blocked force, whose lever is b itself, separates them.
+std::string unidentifiable(const std::string& key, const std::vector<std::string>& keys,
+                           const std::vector<Measurement>& data) {
+  const bool forces = std::any_of(data.begin(), data.end(), [](const Measurement& m) { return m.hasBlockedForce(); });
+  const auto has = [&keys](const char* k) { return std::count(keys.begin(), keys.end(), k) > 0; };
+  if (key.rfind(kDrawingPrefix, 0) != 0 || forces || !has("wall_bulge_share") || !has("chamber_gap_m")) return "";
+  return "the bends cannot tell the roof from wall_bulge_share and chamber_gap_m (the bend takes b, c and kappa as "
+         "b/kappa and c/kappa); a blocked force, whose lever is b, would";
+}
+
+// Why @p fit's drawn sizes are no sizes, or empty: one sits on an end of its search range (a quarter to four times the
+// drawn value), so the data want a body the drawing is not; the fit then stands for what the model lacks, not for the
+// actuator. Auto skips it before its folds.
+std::string drawnSizeOutOfRange(const FingerParameters& start, const CalibrationResult& fit) {
+  for (std::size_t k = 0; k < fit.keys.size(); ++k) {
+    if (fit.keys[k].rfind(kDrawingPrefix, 0) != 0) continue;
+    const std::string w = boundWarning(axisFor(fit.keys[k], start), fit.values[k]);
+    if (!w.empty()) return w.substr(0, w.find(':')) + ": the data want a body the drawing is not";
+  }
+  return "";
 }
 
 // Row i's fold: i mod kCrossValidationFolds (each row its own where there are no more rows than folds).
@@ -143,6 +186,8 @@ Tried tryCandidate(const FingerParameters& start, CandidateFit c, const std::vec
         progress ? CalibrationProgress([&](const std::string& s) { progress(name + ": the fit: " + s); })
                  : CalibrationProgress();
     t.fit = calibrateKeepingScan(start, c.keys, data, objective, c.quantity, heard, &t.scan, false);
+    c.skipped = drawnSizeOutOfRange(start, t.fit);
+    if (!c.skipped.empty()) throw ParameterError(c.skipped);
     t.held_out = heldOutFromScan(start, c.keys, data, objective, c.quantity, progress, name + ": cross-validation",
                                  t.scan, interleavedFolds(data.size()));
     c.held_out = heldOutError(t.held_out, by_volume);
@@ -154,8 +199,38 @@ Tried tryCandidate(const FingerParameters& start, CandidateFit c, const std::vec
   return t;
 }
 
-// Forward selection for one law and comparison: from its default keys, the further key that lowers the yardstick
-// most, while it is clearlyBetter. Every candidate goes to @p tried; returns the selected one.
+// Forward selection from @p current: each round tries every key @p further names for the keys so far, one at a time,
+// and keeps the one that lowers the yardstick most while it is clearlyBetter. Every candidate goes to @p tried;
+// returns the candidate it stopped at.
+template <typename FurtherKeys>
+Tried growKeys(const FingerParameters& start, Tried current, const FurtherKeys& further,
+               const std::vector<Measurement>& data, CalibrationObjective objective, bool by_volume,
+               const CalibrationProgress& progress, std::vector<CandidateFit>& tried) {
+  while (true) {
+    Tried best;
+    best.candidate.held_out.score = std::numeric_limits<double>::infinity();
+    for (const std::string& key : further(current.candidate.keys)) {
+      CandidateFit grown = current.candidate;
+      grown.keys.push_back(key);
+      grown.selected = false;
+      const std::string why = unidentifiable(key, current.candidate.keys, data);
+      if (!why.empty()) {  // skipped unfitted: its fit would cost as much as any other, to score the same
+        grown.skipped = why;
+        tried.push_back(grown);
+        continue;
+      }
+      Tried t = tryCandidate(start, grown, data, objective, by_volume, progress);
+      tried.push_back(t.candidate);
+      if (t.candidate.skipped.empty() && t.candidate.held_out.score < best.candidate.held_out.score) best = std::move(t);
+    }
+    if (!std::isfinite(best.candidate.held_out.score) || !clearlyBetter(best.candidate.held_out, current.candidate.held_out)) {
+      return current;
+    }
+    current = std::move(best);
+  }
+}
+
+// Forward selection for one law and comparison: from its default keys, the law's further keys (furtherKeys).
 Tried selectKeys(const FingerParameters& start, WallLaw law, CalibrationQuantity quantity,
                  const std::vector<Measurement>& data, CalibrationObjective objective, bool by_volume,
                  const CalibrationProgress& progress, std::vector<CandidateFit>& tried) {
@@ -164,22 +239,29 @@ Tried selectKeys(const FingerParameters& start, WallLaw law, CalibrationQuantity
   tried.push_back(current.candidate);
   if (!current.candidate.skipped.empty()) return current;
   const bool has_gauge = !data.empty() && data.front().hasGauge();
-  while (true) {
-    Tried best;
-    best.candidate.held_out.score = std::numeric_limits<double>::infinity();
-    for (const std::string& key : furtherKeys(law, current.candidate.keys, by_volume, has_gauge)) {
-      CandidateFit grown = current.candidate;
-      grown.keys.push_back(key);
-      Tried t = tryCandidate(start, grown, data, objective, by_volume, progress);
-      tried.push_back(t.candidate);
-      if (t.candidate.skipped.empty() && t.candidate.held_out.score < best.candidate.held_out.score) best = std::move(t);
-    }
-    if (!std::isfinite(best.candidate.held_out.score) || !clearlyBetter(best.candidate.held_out, current.candidate.held_out)) {
-      break;
-    }
-    current = std::move(best);
-  }
-  return current;
+  return growKeys(
+      start, std::move(current),
+      [&](const std::vector<std::string>& keys) { return furtherKeys(law, keys, by_volume, has_gauge); }, data,
+      objective, by_volume, progress, tried);
+}
+
+// The drawing's stage, for the chosen law and comparison only (a drawing's size costs a fit per law otherwise): its
+// first round tries the drawing's sizes (drawingKeys); once one is kept, the law's keys may join it again.
+Tried growDrawing(const FingerParameters& start, Tried chosen, const std::vector<Measurement>& data,
+                  CalibrationObjective objective, bool by_volume, const CalibrationProgress& progress,
+                  std::vector<CandidateFit>& tried) {
+  const WallLaw law = chosen.candidate.law;
+  const std::vector<std::string> law_keys = chosen.candidate.keys;
+  const bool has_gauge = !data.empty() && data.front().hasGauge();
+  return growKeys(
+      start, std::move(chosen),
+      [&](const std::vector<std::string>& keys) {
+        std::vector<std::string> extra = drawingKeys(start, law, keys);
+        if (keys == law_keys) return extra;  // the law's further keys were tried on these keys already
+        for (const std::string& k : furtherKeys(law, keys, by_volume, has_gauge)) extra.push_back(k);
+        return extra;
+      },
+      data, objective, by_volume, progress, tried);
 }
 
 // Every candidate's reason, for a run in which none could be fitted.
@@ -223,6 +305,12 @@ ModelSelection selectModel(const FingerParameters& base, const std::vector<WallL
     }
   }
   if (!std::isfinite(chosen.candidate.held_out.score)) throw ParameterError(noCandidateMessage(s.tried));
+  const std::size_t before_drawing = s.tried.size();
+  chosen = growDrawing(chosen_start, std::move(chosen), data, objective, by_volume, progress, s.tried);
+  for (std::size_t i = before_drawing; i < s.tried.size(); ++i) {  // a drawing's size kept: the chosen moves to it
+    if (s.tried[i].keys == chosen.candidate.keys && s.tried[i].skipped.empty()) s.chosen_index = i;
+  }
+  s.tried[s.chosen_index].selected = true;
   const CandidateFit& c = chosen.candidate;
   s.chosen.law = c.law;
   s.chosen.quantity = c.quantity;

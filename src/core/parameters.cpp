@@ -238,6 +238,8 @@ FingerParameters FingerParameters::defaults() { return fromRaw({}); }
 namespace {
 
 FingerParameters fromResolved(const RawParameterMap& raw);
+void readDrawnKeys(const RawParameterMap& raw, FingerParameters& p);
+void checkPaperLever(const FingerParameters& p);
 
 // A drawn model key out of its range is the drawing's doing, and the user never set it: say where it comes from.
 ParameterError forTheDrawing(const ParameterError& e, const RawParameterMap& given) {
@@ -283,28 +285,39 @@ FingerParameters fromResolved(const RawParameterMap& raw) {
   }
   p.chamber_count = static_cast<int>(scalar(spec("chamber_count"), raw));
   const int n = p.chamber_count;
-  p.chamber_height_m = perChamber(spec("chamber_height_m"), raw, n);
-  p.wall_critical_height_m = perChamber(spec("wall_critical_height_m"), raw, n);
+  readDrawnKeys(raw, p);
   p.chamber_gap_m = perChamber(spec("chamber_gap_m"), raw, n);
-  p.chamber_thickness_m = perChamber(spec("chamber_thickness_m"), raw, n);
-  p.chamber_width_m = perChamber(spec("chamber_width_m"), raw, n);
-  p.segment_length_m = perChamber(spec("segment_length_m"), raw, n);
-  p.base_segment_length_m = scalar(spec("base_segment_length_m"), raw);
   p.base_wall_share = scalar(spec("base_wall_share"), raw);
   p.shear_modulus_pa = perChamber(spec("shear_modulus_pa"), raw, n);
   p.atmospheric_pressure_pa = scalar(spec("atmospheric_pressure_pa"), raw);
   p.elastomer_density_kg_m3 = scalar(spec("elastomer_density_kg_m3"), raw);
   p.wall_law = static_cast<WallLaw>(static_cast<int>(scalar(spec("wall_law"), raw)));
-  p.wall_thickness_m = perChamber(spec("wall_thickness_m"), raw, n);
   p.wall_locking_jm = scalar(spec("wall_locking_jm"), raw);
-  p.wall_flexion_face = static_cast<FlexionFace>(static_cast<int>(scalar(spec("wall_flexion_face"), raw)));
   p.wall_bulge_share = scalar(spec("wall_bulge_share"), raw);
   p.dead_volume_m3 = scalar(spec("dead_volume_m3"), raw);
   p.chamber_growth_ratio = scalar(spec("chamber_growth_ratio"), raw);
+  checkPaperLever(p);
+  return p;
+}
+
+// The keys a drawing makes but its count (drawnModelKeys), read from @p raw into @p p for p.chamber_count chambers.
+void readDrawnKeys(const RawParameterMap& raw, FingerParameters& p) {
+  const int n = p.chamber_count;
+  p.chamber_height_m = perChamber(spec("chamber_height_m"), raw, n);
+  p.wall_critical_height_m = perChamber(spec("wall_critical_height_m"), raw, n);
+  p.chamber_thickness_m = perChamber(spec("chamber_thickness_m"), raw, n);
+  p.chamber_width_m = perChamber(spec("chamber_width_m"), raw, n);
+  p.segment_length_m = perChamber(spec("segment_length_m"), raw, n);
+  p.base_segment_length_m = scalar(spec("base_segment_length_m"), raw);
+  p.wall_thickness_m = perChamber(spec("wall_thickness_m"), raw, n);
+  p.wall_flexion_face = static_cast<FlexionFace>(static_cast<int>(scalar(spec("wall_flexion_face"), raw)));
+}
+
+void checkPaperLever(const FingerParameters& p) {
   // docs/MODEL.md stage 3-4: under the paper law b is a height on the wall, so it cannot exceed the wall (chamber)
   // height L. Under the membrane law b is where the walls push, measured from the bending axis: the chamber need not
   // sit on the base layer, so b may exceed L ("The membrane law").
-  for (int i = 0; i < n && p.wall_law == WallLaw::kPaper; ++i) {  // (the thick wall's b is the membrane's)
+  for (int i = 0; i < p.chamber_count && p.wall_law == WallLaw::kPaper; ++i) {  // (the thick wall's b is the membrane's)
     const auto k = static_cast<std::size_t>(i);
     if (p.wall_critical_height_m[k] > p.chamber_height_m[k]) {
       std::ostringstream s;
@@ -314,10 +327,30 @@ FingerParameters fromResolved(const RawParameterMap& raw) {
       throw ParameterError(s.str());
     }
   }
-  return p;
 }
 
 }  // namespace
+
+FingerParameters withDrawingSize(const FingerParameters& p, const std::string& key, double value) {
+  RawParameterMap given = p.drawing;
+  given[key] = RawParameterValue{{value}, false};
+  const std::optional<ActuatorDrawing> d = drawingFromRaw(given);  // @throws ParameterError naming the key
+  if (!d || d->chamber_count != p.chamber_count) {  // a count changes every per-chamber key: the file read again
+    RawParameterMap raw = p.toRaw();
+    for (const std::string& made : drawnModelKeys()) raw.erase(made);
+    raw[key] = RawParameterValue{{value}, false};
+    return FingerParameters::fromRaw(raw);
+  }
+  FingerParameters out = p;
+  out.drawing = std::move(given);
+  try {
+    readDrawnKeys(modelKeysFromDrawing(*d, p.wall_law), out);
+    checkPaperLever(out);
+  } catch (const ParameterError& e) {
+    throw forTheDrawing(e, {});
+  }
+  return out;
+}
 
 RawParameterMap FingerParameters::toRaw() const {
   RawParameterMap raw;

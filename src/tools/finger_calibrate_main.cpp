@@ -290,11 +290,13 @@ void addDataOptions(CLI::App& app, DataOptions& o) {
                  "take the joints 2..N average from this column (e.g. paper_avg_rad) instead of the joints; implies "
                  "--compare average");
   app.add_option("--wall-law", o.wall_law,
-                 "auto (fit the paper, the membrane and the thick-wall law, keep the one with the smallest "
-                 "leave-one-out error and write it), paper, membrane or thick; default: the parameter file's "
-                 "wall_law. Without --fit each law takes its own keys (membrane: "
-                 "shear_modulus_pa,chamber_gap_m,wall_locking_jm; thick: shear_modulus_pa,chamber_gap_m, and under "
-                 "auto also with wall_locking_jm, the better prediction kept)");
+                 "auto, paper, membrane or thick; default: the parameter file's wall_law. auto without --fit chooses "
+                 "the law, the keys and the comparison: for each law, forward selection from its default keys "
+                 "(adding wall_locking_jm, wall_bulge_share, and by volume dead_volume_m3 and chamber_growth_ratio), "
+                 "then drawing/roof_thickness_m where the drawing leaves the roof to its default, each kept where its "
+                 "bends held out are clearly better (docs/CALIBRATE.md, \"What auto chooses\"). Without --fit a "
+                 "named law fits shear_modulus_pa,chamber_gap_m, and base_wall_share where every joint is compared, else "
+                 "wall_locking_jm under the membrane law (joint_1: base_wall_share alone)");
 }
 
 std::ofstream openOutput(const std::string& output) {

@@ -33,9 +33,13 @@ std::vector<double> heldOutBendErrors(const Residual& r);
 /// The yardstick of @p held_out (rows predicted without themselves); @p by_volume: the rows were set by their volume.
 HeldOutError heldOutError(const std::vector<Residual>& held_out, bool by_volume);
 
-/// Whether @p candidate predicts the same rows clearly better than @p current: the mean of the rows' gains in
-/// squared error (current's minus candidate's, row by row) exceeds its own standard error (a paired test, the
-/// one-standard-error rule of cross-validation: the held-out rows' own scatter is the bar a gain must clear).
+/// The least share of the score a candidate must take off to be clearly better (clearlyBetter).
+inline constexpr double kNegligibleGain = 0.01;
+
+/// Whether @p candidate predicts the same rows clearly better than @p current: its score is lower by more than
+/// kNegligibleGain of current's, and the mean of the rows' gains in squared error (current's minus candidate's, row
+/// by row) exceeds its own standard error (a paired test, the one-standard-error rule of cross-validation: the
+/// held-out rows' own scatter is the bar a gain must clear).
 bool clearlyBetter(const HeldOutError& candidate, const HeldOutError& current);
 
 /// One candidate auto tried: a law, a comparison and keys, with its cross-validated yardstick and its time.

@@ -60,6 +60,13 @@ std::optional<ActuatorDrawing> drawingFromRaw(const RawParameterMap& raw);
 /// membrane and thick laws: the body's top above the bending axis); the face (outer for N > 1, inner for N = 1).
 RawParameterMap modelKeysFromDrawing(const ActuatorDrawing& drawing, WallLaw law);
 
+/// @p p with its drawing's entry @p key ("drawing/NAME") set to @p value and the model keys the drawing makes drawn
+/// anew, the other keys as they were: what FingerParameters::fromRaw gives for p.toRaw() so changed, without the
+/// drawn keys. Only the drawn keys are read again (a fit sets a drawing's size at each of its steps), but for a
+/// changed chamber count, which changes every per-chamber key.
+/// @throws ParameterError as fromRaw does (a drawing the rule refuses, a drawn key out of its range)
+FingerParameters withDrawingSize(const FingerParameters& p, const std::string& key, double value);
+
 /// @p raw with its drawing resolved: the drawing's model keys put in (a key also given with another value is refused,
 /// naming both), the effective keys started where not given, the "drawing/" entries kept as given (a default is not
 /// written out, so that it follows the key it comes from). Without a drawing, @p raw.
