@@ -2,7 +2,6 @@
 // expected, the same words in finger_calibrate and Python.
 #include <algorithm>
 #include <cmath>
-#include <exception>
 #include <fstream>
 #include <string>
 
@@ -42,17 +41,9 @@ void headerColumns(const std::vector<std::string>& header, const std::string& at
 }
 
 double number(const std::string& text, const std::string& at, const char* column) {
-  std::size_t used = 0;
-  double v = NAN;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size()) {
-    throw ParameterError(at + ": " + column + " '" + text + "' is not a number");
-  }
-  return v;
+  const std::optional<double> v = readNumber(text);  // inf and nan are read, and checkCouponRows refuses them
+  if (!v) throw ParameterError(at + ": " + column + " '" + text + "' is not a number");
+  return *v;
 }
 
 }  // namespace

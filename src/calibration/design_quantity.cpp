@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <limits>
 #include <string>
 #include <vector>
@@ -21,12 +20,11 @@ bool among(const std::string& q, const char* const* first, const char* const* la
 
 // A number of a target's text. @throws ParameterError naming the target
 double targetNumber(const std::string& text, const std::string& field, const char* what) {
-  char* end = nullptr;
-  const double v = std::strtod(field.c_str(), &end);
-  if (field.empty() || *end != '\0' || !std::isfinite(v)) {
+  const std::optional<double> v = readNumber(field);
+  if (!v || !std::isfinite(*v)) {
     throw ParameterError("--target " + text + ": '" + field + "' is not a finite number (" + what + ")");
   }
-  return v;
+  return *v;
 }
 
 }  // namespace

@@ -194,13 +194,12 @@ Measurement readRow(const std::vector<std::string>& fields, const std::vector<st
   return measurementFrom(
       [&](int column) {
         const std::string& f = fields[static_cast<std::size_t>(column)];
-        char* end = nullptr;
-        const double v = std::strtod(f.c_str(), &end);
-        if (f.empty() || *end != '\0' || !std::isfinite(v)) {
+        const std::optional<double> v = readNumber(f);
+        if (!v || !std::isfinite(*v)) {
           throw ParameterError(at + "'" + f + "' in column " + header[static_cast<std::size_t>(column)] +
                                " is not a finite number");
         }
-        return v;
+        return *v;
       },
       c, line, at);
 }

@@ -3,7 +3,6 @@
 #include "pneumatic_finger/core/drawing.hpp"
 
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
@@ -386,18 +385,21 @@ RawParameterMap FingerParameters::toRaw() const {
   return raw;
 }
 
+std::optional<double> readNumber(const std::string& text) {
+  const char* begin = text.c_str();
+  char* end = nullptr;
+  const double v = std::strtod(begin, &end);
+  while (end != nullptr && (*end == ' ' || *end == '\t')) ++end;
+  if (end == begin || end == nullptr || *end != '\0') return std::nullopt;
+  return v;
+}
+
 namespace {
 
 double parseNumber(const std::string& text, const std::string& key) {
-  const char* begin = text.c_str();
-  char* end = nullptr;
-  errno = 0;
-  const double v = std::strtod(begin, &end);
-  while (end != nullptr && (*end == ' ' || *end == '\t')) ++end;
-  if (end == begin || end == nullptr || *end != '\0') {
-    throw ParameterError("parameter '" + key + "': '" + text + "' is not a number");
-  }
-  return v;
+  const std::optional<double> v = readNumber(text);
+  if (!v) throw ParameterError("parameter '" + key + "': '" + text + "' is not a number");
+  return *v;
 }
 
 std::string trim(const std::string& s) {

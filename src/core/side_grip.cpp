@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdlib>
 #include <sstream>
 #include <vector>
 
@@ -16,12 +15,11 @@ namespace {
 
 // One number of a grip's text. @throws ParameterError naming the key
 double gripNumber(const std::string& text, const std::string& key, const std::string& value) {
-  char* end = nullptr;
-  const double v = std::strtod(value.c_str(), &end);
-  if (value.empty() || *end != '\0' || !std::isfinite(v)) {
+  const std::optional<double> v = readNumber(value);
+  if (!v || !std::isfinite(*v)) {
     throw ParameterError("part '" + text + "': " + key + " '" + value + "' is not a finite number");
   }
-  return v;
+  return *v;
 }
 
 }  // namespace

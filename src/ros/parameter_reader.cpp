@@ -28,10 +28,9 @@ namespace {
 // a string that is one whole number, so that a hand-written file loads the same everywhere ("fast" is still refused).
 bool parseNumberText(const std::string& text, double& out) {
   if (text.empty() || std::isspace(static_cast<unsigned char>(text.front()))) return false;
-  char* end = nullptr;
-  const double value = std::strtod(text.c_str(), &end);
-  if (end != text.c_str() + text.size()) return false;
-  out = value;
+  const std::optional<double> value = readNumber(text);
+  if (!value) return false;
+  out = *value;
   return true;
 }
 

@@ -83,12 +83,9 @@ int runTool(const char* tool, CLI::App& app, int argc, char** argv, const std::f
 }
 
 double parseNumberOption(const std::string& option, const std::string& text) {
-  char* end = nullptr;
-  const double v = std::strtod(text.c_str(), &end);
-  if (text.empty() || end == nullptr || *end != '\0') {
-    throw ParameterError(option + ": '" + text + "' is not a number");
-  }
-  return v;
+  const std::optional<double> v = readNumber(text);
+  if (!v) throw ParameterError(option + ": '" + text + "' is not a number");
+  return *v;
 }
 
 double parseFiniteOption(const std::string& option, const std::string& text) {

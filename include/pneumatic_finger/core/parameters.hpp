@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -149,6 +150,10 @@ std::string formatMessage(double value);
 
 /// @p value by a printf format of one number ("%.2f", "%.3g"): a report's fixed columns.
 std::string formatNumber(const char* printf_format, double value);
+
+/// @p text as one number (strtod's syntax; blanks after it allowed), or nullopt where it is not one: the one reader of
+/// a number typed as text (--set, --target, --part); each caller says what was wrong in its own words.
+std::optional<double> readNumber(const std::string& text);
 
 /// The one check of a number against its definition: finite, in range, whole for an integer key. Every reader of
 /// parameters (the YAML loader, --set, the ROS nodes' private handles, dynamic_reconfigure) calls it.
