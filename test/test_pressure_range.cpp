@@ -30,6 +30,19 @@ TEST(PressureRange, ClampsAboveTheModelsRangeAndFlagsAboveTheValidated) {
   EXPECT_TRUE(std::isnan(pf::checkGaugeRange(NAN, range).gauge_pa));
 }
 
+// A pressure the node's input policy already checked gives checkGaugeRange's answer: the same flags at every pressure
+// of the range and beyond it (a clamped one evaluated at the top).
+TEST(PressureRange, ACheckedInputIsCheckedByTheSameRule) {
+  const pf::PressureRange range;
+  for (double p : {-5e4, 0.0, 1e5, 196133.0, 2.5e5, 294199.5, 4.9e6}) {
+    const pf::RangeCheck rule = pf::checkGaugeRange(p, range);
+    const pf::RangeCheck input = pf::checkedInput(rule.gauge_pa, rule.clamped, range.validated_max_gauge_pa);
+    EXPECT_EQ(input.gauge_pa, rule.gauge_pa) << p;
+    EXPECT_EQ(input.clamped, rule.clamped) << p;
+    EXPECT_EQ(input.above_validated, rule.above_validated) << p;
+  }
+}
+
 TEST(PressureRange, TheWordsNameThePressureAndTheRangeInThePersonsDigits) {
   const pf::PressureRange range;
   EXPECT_EQ(pf::clampedMessage(4.9e6, range),

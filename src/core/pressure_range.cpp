@@ -37,6 +37,14 @@ RangeCheck checkGaugeRange(double gauge_pa, const PressureRange& range) {
   return c;
 }
 
+RangeCheck checkedInput(double gauge_pa, bool clamped, double validated_max_gauge_pa) {
+  RangeCheck c;
+  c.gauge_pa = gauge_pa;
+  c.clamped = clamped;
+  c.above_validated = clamped || gauge_pa > validated_max_gauge_pa;
+  return c;
+}
+
 std::string clampedMessage(double gauge_pa, const PressureRange& range) {
   return "gauge pressure " + formatMessage(gauge_pa) + " Pa is above max_gauge_pa " +
          formatMessage(range.max_gauge_pa) + " Pa, the top of the model's range: clamped to it";

@@ -173,9 +173,8 @@ bool FingerNode::publishAt(double gauge_pa, const ros::Time& stamp, bool clamped
     ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), input_.lastProblem().c_str());
     if (have_pressure_) {  // before any shape there is none to repeat: diagnostics alone say why
       finger_state_.header.stamp = stamp;
-      RangeCheck range;  // what else holds, by the core's one rule, as Python and finger_model report it
-      range.clamped = clamped;
-      range.above_validated = clamped || gauge_pa > settings_.input.validated_max_gauge_pa;
+      // What else holds, by the core's one rule, as Python and finger_model report it.
+      const RangeCheck range = checkedInput(gauge_pa, clamped, settings_.input.validated_max_gauge_pa);
       finger_state_.status = FingerModelState::STATUS_BEYOND_LIMIT_POINT;
       finger_state_.status_flags = reportEvaluation(state.status, range, false).flags;
       finger_state_pub_.publish(finger_state_);
@@ -233,9 +232,8 @@ void FingerNode::publish(const FingerState& state, const ContactState* contact, 
   finger_state_.in_validated_range = state.gauge_pa >= 0 && state.gauge_pa <= settings_.input.validated_max_gauge_pa;
   const bool meets_itself = backboneMeetsItself(backbone, q_rad);  // said, and published with its status
   if (meets_itself) ROS_WARN_THROTTLE(5.0, "%s: %s", log_name_.c_str(), selfContactMessage(tip_angle_rad).c_str());
-  RangeCheck range;  // the input's check, as the input policy made it (a clamped volume is a clamped pressure)
-  range.clamped = clamped;
-  range.above_validated = clamped || state.gauge_pa > settings_.input.validated_max_gauge_pa;
+  // The input's check, as the input policy made it (a clamped volume is a clamped pressure).
+  const RangeCheck range = checkedInput(state.gauge_pa, clamped, settings_.input.validated_max_gauge_pa);
   const EvaluationReport report = reportEvaluation(state.status, range, meets_itself);  // the core's one rule
   finger_state_.status = static_cast<std::uint8_t>(report.status);
   finger_state_.status_flags = report.flags;

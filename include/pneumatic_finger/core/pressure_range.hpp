@@ -41,6 +41,11 @@ struct RangeCheck {
 /// @p gauge_pa against @p range (NaN and inf pass unchanged: the model refuses them with its own status).
 RangeCheck checkGaugeRange(double gauge_pa, const PressureRange& range);
 
+/// The same rule for a pressure an input policy has already checked (finger_node's: a supplied volume clamped to its
+/// range is a clamped pressure): @p gauge_pa as evaluated, @p clamped as the policy found it, and above the validated
+/// range where clamped or above @p validated_max_gauge_pa.
+RangeCheck checkedInput(double gauge_pa, bool clamped, double validated_max_gauge_pa);
+
 /// The words every interface says (its log, stderr, diagnostics), with numbers in formatMessage's format.
 std::string clampedMessage(double gauge_pa, const PressureRange& range);
 std::string vacuumMessage(double gauge_pa);
