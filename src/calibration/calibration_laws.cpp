@@ -15,8 +15,8 @@ std::vector<WallLaw> parseWallLawChoice(const std::string& name) {
   for (WallLaw law : {WallLaw::kPaper, WallLaw::kMembrane, WallLaw::kThick}) {
     if (name == wallLawName(law)) return {law};
   }
-  throw ParameterError("unknown wall law '" + name + "'; known: auto (fit each, keep the best prediction), paper, "
-                       "membrane, thick");
+  throw ParameterError("unknown wall law '" + name + "'; known: auto (choose the law, the keys and the comparison), "
+                       "paper, membrane, thick");
 }
 
 namespace {

@@ -100,10 +100,10 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
     run.chosen_candidate = selection.chosen_index;
     // The chosen candidate's held-out errors are the best of several: widened by the choice's optimism.
     const double score = run.candidates[run.chosen_candidate].held_out.score;
-    const double widen =
+    run.leave_one_out_widening =
         score > 0.0 ? std::sqrt(1.0 + selectionOptimism(run.candidates, run.chosen_candidate) / (score * score)) : 1.0;
-    run.tip_uncertainty =
-        tipUncertainty(run.best().fit.residuals, run.best().leave_one_out, run.best().fit.keys.size(), widen);
+    run.tip_uncertainty = tipUncertainty(run.best().fit.residuals, run.best().leave_one_out,
+                                         run.best().fit.keys.size(), run.leave_one_out_widening);
   } else if (laws.size() == 1 && !request.leave_one_out) {
     FingerParameters one = base;
     one.wall_law = laws[0];

@@ -92,6 +92,16 @@ double bendScatterRad(const std::vector<Measurement>& data) {
   return 1.4826 * *middle;
 }
 
+std::string followBarReason(double scatter_rad) {
+  const std::string floor = formatNumber("%.0f", kFollowFloorRad * 180.0 / M_PI) + " deg";
+  if (!(scatter_rad > 0.0)) {
+    return floor + ": the data's own scatter is measured on " + std::to_string(kScatterRows) +
+           " rows or more set by their pressure, each with a bend, and these have fewer";
+  }
+  return "the larger of " + floor + " and " + formatNumber("%.0f", kFollowScatters) + " times the data's own scatter, " +
+         formatNumber("%.2f", scatter_rad * 180.0 / M_PI) + " deg";
+}
+
 FitCheck checkFollows(const std::vector<Residual>& held_out, const std::vector<Measurement>& data,
                       CalibrationQuantity quantity, bool by_volume, bool auto_chosen) {
   const double scatter_rad = bendScatterRad(data);
@@ -136,9 +146,7 @@ FitCheck checkFollows(const std::vector<Residual>& held_out, const std::vector<M
   if (e.follows_data) return check;
   check.warning = "the fit does not follow its data: " + std::to_string(e.missed_rows) + " of " +
                   std::to_string(held_out.size()) + " rows are missed when held out by more than " +
-                  formatNumber("%.1f", bar_rad * 180.0 / M_PI) + " deg (the larger of " +
-                  formatNumber("%.0f", kFollowFloorRad * 180.0 / M_PI) + " deg and " + formatNumber("%.0f", kFollowScatters) +
-                  " times the data's own scatter, " + formatNumber("%.2f", scatter_rad * 180.0 / M_PI) + " deg)" +
+                  formatNumber("%.1f", bar_rad * 180.0 / M_PI) + " deg (" + followBarReason(scatter_rad) + ")" +
                   (by_volume ? " or their pressure by more than " + formatNumber("%.0f %%", 100.0 * kFollowPressure) : "") +
                   "; the worst at " + rows + (e.missed_rows > 8 ? " and " + std::to_string(e.missed_rows - 8) + " more" : "") +
                   "; try: " +

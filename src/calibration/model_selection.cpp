@@ -144,8 +144,9 @@ std::string unidentifiable(const std::string& key, const std::vector<std::string
   const bool forces = std::any_of(data.begin(), data.end(), [](const Measurement& m) { return m.hasBlockedForce(); });
   const auto has = [&keys](const char* k) { return std::count(keys.begin(), keys.end(), k) > 0; };
   if (key.rfind(kDrawingPrefix, 0) != 0 || forces || !has("wall_bulge_share") || !has("chamber_gap_m")) return "";
-  return "the bends cannot tell the roof from wall_bulge_share and chamber_gap_m (the bend takes b, c and kappa as "
-         "b/kappa and c/kappa); a blocked force, whose lever is b, would";
+  return "the bends cannot tell the roof (it sets the walls' lever b, wall_critical_height_m: the body's top above the "
+         "bending axis) from wall_bulge_share and chamber_gap_m: the bend takes b, c and kappa only as b/kappa and "
+         "c/kappa; a blocked force, whose lever is b itself, can";
 }
 
 // Why @p fit's drawn sizes are no sizes, or empty: one sits on an end of its search range (a quarter to four times the
@@ -155,7 +156,11 @@ std::string drawnSizeOutOfRange(const FingerParameters& start, const Calibration
   for (std::size_t k = 0; k < fit.keys.size(); ++k) {
     if (fit.keys[k].rfind(kDrawingPrefix, 0) != 0) continue;
     const std::string w = boundWarning(axisFor(fit.keys[k], start), fit.values[k]);
-    if (!w.empty()) return w.substr(0, w.find(':')) + ": the data want a body the drawing is not";
+    if (w.empty()) continue;
+    const std::string name = fit.keys[k].substr(std::string(kDrawingPrefix).size());
+    return w.substr(0, w.find(':')) + ", a quarter to four times the drawing's " +
+           formatMessage(drawnSize(start, name)) + " m" + (start.drawing.count(fit.keys[k]) > 0 ? "" : " (its default)") +
+           ": the data want a body the drawing is not";
   }
   return "";
 }
@@ -363,7 +368,8 @@ double selectionOptimism(const std::vector<CandidateFit>& tried, std::size_t cho
 }
 
 std::string candidatesTable(const std::vector<CandidateFit>& tried, std::size_t chosen) {
-  std::string t = "# auto: every candidate tried, judged by its bends held out at their measured pressures (rms over " +
+  std::string t = "# auto: every candidate tried, judged by its bends held out at their measured pressures (with the "
+                  "pressure by volume and the blocked force, where they are data; rms over " +
                   std::to_string(kCrossValidationFolds) + " interleaved folds; each row alone with " +
                   std::to_string(kCrossValidationFolds) + " rows or fewer; score +- one standard error); a further "
                   "key, a later law or comparison, is kept where it lowers the rows' squared errors by more than their standard "

@@ -115,6 +115,8 @@ py::list candidateList(const pf::CalibrationRun& run) {
     d["keys"] = py::cast(c.keys);
     d["held_out_bend_rad"] = c.skipped.empty() ? c.held_out.bend_rad : NAN;
     d["held_out_pressure"] = c.skipped.empty() ? c.held_out.pressure : NAN;
+    // The largest blocked force held out, as a share of the largest measured (0 where no force is data).
+    d["held_out_force"] = c.skipped.empty() ? c.held_out.force : NAN;
     d["score"] = c.skipped.empty() ? c.held_out.score : NAN;
     // The chosen's score widened by the choice's optimism (selectionOptimism): what its error bar takes.
     if (i == run.chosen_candidate) {

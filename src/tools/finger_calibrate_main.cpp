@@ -11,6 +11,7 @@
 
 #include "pneumatic_finger/calibration/coupon.hpp"
 #include "pneumatic_finger/calibration/calibration_run.hpp"
+#include "pneumatic_finger/calibration/fit_check.hpp"
 #include "pneumatic_finger/calibration/model_selection.hpp"
 #include "pneumatic_finger/tools/tool_support.hpp"
 #include "pneumatic_finger/core/units.hpp"
@@ -145,10 +146,13 @@ std::string uncertaintyLines(const pf::CalibrationRun& run) {
 }
 
 // The error bar's line: at each calibrated pressure, the tip angle's and the tip position's bar.
-std::string errorBarLine(const pf::TipUncertainty& bar) {
+std::string errorBarLine(const pf::TipUncertainty& bar, double widening) {
   if (bar.empty()) return "# no error bar written: the data measured neither the tip's angle nor its position\n";
-  std::string line = "# error bar written to the parameter file (tip_uncertainty: the largest of fit, leave-one-out "
-                     "and the fit's scatter):";
+  const std::string widened = widening > 1.0 ? " times " + pf::formatNumber("%.3f", widening) +
+                                                   " (auto's choice corrected: the chosen score's ratio)"
+                                             : "";
+  std::string line = "# error bar written to the parameter file (tip_uncertainty: the largest of fit, leave-one-out" +
+                     widened + " and the fit's scatter):";
   for (std::size_t i = 0; i < bar.gauge_pa.size(); ++i) {
     line += " at " + pf::formatMessage(bar.gauge_pa[i]) + " Pa";
     if (!std::isnan(bar.tip_angle_rad[i])) line += " " + pf::formatMessage(bar.tip_angle_rad[i]) + " rad";
@@ -163,8 +167,8 @@ std::string followLine(const pf::CalibrationRun& run) {
   const pf::CalibrationError& e = run.calibration_error;
   if (e.empty()) return "";
   return "# held out, " + (e.follows_data ? std::string("every row") : std::to_string(e.missed_rows) + " row(s) NOT") +
-         " within the follow bar, " + pf::formatNumber("%.2f", run.follow_bar_rad * kDeg) + " deg (the larger of 5 deg and 3 "
-         "times the data's own scatter, " + pf::formatNumber("%.2f", run.scatter_rad * kDeg) + " deg)\n";
+         " within the follow bar, " + pf::formatNumber("%.2f", run.follow_bar_rad * kDeg) + " deg (" +
+         pf::followBarReason(run.scatter_rad) + ")\n";
 }
 
 // The report: what was fitted to what, the error of the fit and of leave-one-out per row, and the error bar.
@@ -191,7 +195,7 @@ std::string report(const std::string& data_name, bool paper_data, std::size_t ro
   table << "\n#\n# error of the fit (angles in rad, tip_m in m)\n" << fit_table
         << "# leave-one-out error: each row predicted by a fit to the others\n" << loo_table
         << "#\n# largest |error|:" << largest(worst, n, paper_data) << "\n# largest leave-one-out |error|:"
-        << largest(worst_loo, n, false) << "\n" << followLine(run) << errorBarLine(run.tip_uncertainty);
+        << largest(worst_loo, n, false) << "\n" << followLine(run) << errorBarLine(run.tip_uncertainty, run.leave_one_out_widening);
   return table.str();
 }
 
@@ -292,9 +296,11 @@ void addDataOptions(CLI::App& app, DataOptions& o) {
   app.add_option("--wall-law", o.wall_law,
                  "auto, paper, membrane or thick; default: the parameter file's wall_law. auto without --fit chooses "
                  "the law, the keys and the comparison: for each law, forward selection from its default keys "
-                 "(adding wall_locking_jm, wall_bulge_share, and by volume dead_volume_m3 and chamber_growth_ratio), "
-                 "then drawing/roof_thickness_m where the drawing leaves the roof to its default, each kept where its "
-                 "bends held out are clearly better (docs/CALIBRATE.md, \"What auto chooses\"). Without --fit a "
+                 "(adding wall_locking_jm, wall_bulge_share, and by volume dead_volume_m3 and chamber_growth_ratio); "
+                 "then, for the chosen membrane or thick law only, drawing/roof_thickness_m where the drawing leaves "
+                 "the roof to its default. A key is kept where the rows held out (their bends, and the pressure or "
+                 "the blocked force where they are data) are clearly better (docs/CALIBRATE.md, \"What auto "
+                 "chooses\"). auto with --fit fits those keys under each law and keeps the best leave-one-out. Without --fit a "
                  "named law fits shear_modulus_pa,chamber_gap_m, and base_wall_share where every joint is compared, else "
                  "wall_locking_jm under the membrane law (joint_1: base_wall_share alone)");
 }
@@ -319,6 +325,7 @@ int calibrateOnData(const pf::ParameterOptions& parameters, DataOptions o, const
   request.average_column = o.average_column;
   request.drive = o.drive;
   request.progress = pf::CalibrationProgressPrinter(std::cerr, "finger_calibrate");  // quiet for the first 2 s
+  if (!o.wall_law.empty()) pf::parseWallLawChoice(o.wall_law);  // refused before the data, whose name it is not
   const pf::FingerParameters base = pf::calibrationBase(parameters.loadRaw(), o.wall_law);
   const pf::MeasurementSet data = pf::readMeasurementSets(o.data_paths, 1, o.average_column);
   pf::CalibrationRun run;

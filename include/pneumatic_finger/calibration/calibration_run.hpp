@@ -58,6 +58,9 @@ struct CalibrationRun {
   std::size_t chosen_candidate = 0;
   /// The error bar (tipUncertainty of the chosen fit and its leave-one-out); empty without leave-one-out.
   TipUncertainty tip_uncertainty;
+  /// The factor the bar's leave-one-out errors were widened by: auto's chosen score corrected for the choice, over
+  /// its own (selectionOptimism); 1 where nothing was chosen among candidates.
+  double leave_one_out_widening = 1.0;
   /// Every warning, the data's first (columns not read), then the fit's (keys that trade off, keys on a bound), and
   /// last, where the fit does not follow its data, which rows it misses and what to try (checkFollows).
   std::vector<std::string> warnings;

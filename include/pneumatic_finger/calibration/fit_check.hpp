@@ -25,6 +25,10 @@ inline constexpr double kFollowPressure = 0.10;
 inline constexpr std::size_t kScatterRows = 8;
 double bendScatterRad(const std::vector<Measurement>& data);
 
+/// Why the follow bar is what it is, in the report's words: "the larger of 5 deg and 3 times the data's own scatter,
+/// S deg", or, where @p scatter_rad is 0, that the scatter needs kScatterRows rows set by their pressure.
+std::string followBarReason(double scatter_rad);
+
 /// What the check found: the file's record, and for the report the missed rows and what to try.
 struct FitCheck {
   CalibrationError error;
