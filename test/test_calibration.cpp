@@ -109,6 +109,29 @@ TEST(Calibration, PaperAverageColumnGivesTheReferenceOptimum) {
   EXPECT_NEAR(fit.values[1], 5.2e-5, 0.1e-5);
 }
 
+// A key that cannot be fitted is refused with the list of those that can: a drawing's sizes only where the file has a
+// drawing (elsewhere, where they would come from).
+TEST(Calibration, AnUnknownKeyIsRefusedWithTheKeysThisFileCanFit) {
+  const std::vector<pf::Measurement> data = pf::readMeasurementsCsv(kTable1, 4);
+  const auto refused = [&data](const pf::FingerParameters& base) {
+    try {
+      pf::calibrate(base, {"shear_modulus"}, data, pf::CalibrationObjective::kMinimax);
+    } catch (const pf::ParameterError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(fitted)");
+  };
+  const std::string plain = refused(pf::FingerParameters::defaults());
+  EXPECT_NE(plain.find("parameter 'shear_modulus' cannot be fitted; fittable: shear_modulus_pa, "), std::string::npos)
+      << plain;
+  EXPECT_EQ(plain.find("drawing/cavity_height_m"), std::string::npos) << plain;
+  EXPECT_NE(plain.find("(and a drawing's sizes, drawing/KEY, where the file has a drawing"), std::string::npos) << plain;
+  pf::RawParameterMap raw;
+  pf::loadRawParametersFromYamlFile(std::string(PACKAGE_SOURCE_DIR) + "/config/epfl_ecoflex30_c7_coupon.yaml", raw);
+  const std::string drawn = refused(pf::FingerParameters::fromRaw(raw));
+  EXPECT_NE(drawn.find(", drawing/roof_thickness_m"), std::string::npos) << drawn;
+}
+
 TEST(Calibration, MalformedCsvIsRefusedNamingTheLine) {
   EXPECT_NE(refusal("# c\npressure,joint_1_rad,joint_2_rad\n1,2,3\n").find("m.csv:2: header has no 'gauge_pa'"),
             std::string::npos);

@@ -123,8 +123,12 @@ void checkKeysAndData(const FingerParameters& base, const std::vector<std::strin
     if (!isFittableKey(k)) {
       std::string fittable;
       for (const char* key : kFittable) fittable += (fittable.empty() ? "" : ", ") + std::string(key);
-      for (const char* key : kFittableDrawn) fittable += ", drawing/" + std::string(key);
-      throw ParameterError("parameter '" + k + "' cannot be fitted; fittable: " + fittable);
+      // A drawing's sizes where the file has a drawing; else what a drawing would add.
+      for (const char* key : kFittableDrawn) fittable += base.drawing.empty() ? "" : ", drawing/" + std::string(key);
+      throw ParameterError("parameter '" + k + "' cannot be fitted; fittable: " + fittable +
+                           (base.drawing.empty() ? " (and a drawing's sizes, drawing/KEY, where the file has a "
+                                                   "drawing: docs/DRAWING.md)"
+                                                 : ""));
     }
     if (std::count(keys.begin(), keys.end(), k) > 1) throw ParameterError("parameter '" + k + "' given twice");
   }

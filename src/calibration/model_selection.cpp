@@ -137,7 +137,7 @@ std::vector<std::string> drawingKeys(const FingerParameters& start, WallLaw law,
 }
 
 // Why @p key cannot be told apart from @p keys by @p data, or empty. The bend takes b, c and kappa as (b/kappa,
-// c/kappa) (docs/MODEL.md, "The thick wall"): with the gap and kappa fitted, a roof (b) moves no bend they cannot;
+// c/kappa) (docs/MODEL.md, "How much of that bulge tilts the wall"): with the gap and kappa fitted, a roof (b) moves no bend they cannot;
 // only the blocked force, whose lever is b itself, separates them.
 std::string unidentifiable(const std::string& key, const std::vector<std::string>& keys,
                            const std::vector<Measurement>& data) {
