@@ -35,6 +35,13 @@ TEST(FitCheck, TheDatasScatterIsTheNoiseOfTheBends) {
 
 // The EPFL ramp of chords under the paper law: it misses the snap's rows by tens of degrees held out. The warning
 // names them worst first with what to try, and the record says so; auto's fit of the same data follows it.
+// The bar's reason, as the report and the warning print it: the scatter where it is measured, else why it is not.
+TEST(FitCheck, TheFollowBarSaysWhereItComesFrom) {
+  EXPECT_EQ(pf::followBarReason(0.02), "the larger of 5 deg and 3 times the data's own scatter, 1.15 deg");
+  EXPECT_EQ(pf::followBarReason(0.0), "5 deg: the data's own scatter is measured on 8 rows or more set by their "
+                                      "pressure, each with a bend, and these have fewer");
+}
+
 TEST(FitCheck, AFitThatMissesItsDataSaysWhichRowsAndWhatToTry) {
   const std::string root = PACKAGE_SOURCE_DIR;
   pf::RawParameterMap raw;

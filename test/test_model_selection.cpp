@@ -77,6 +77,14 @@ TEST(ModelSelection, ClearlyBetterIsAPairedOneStandardErrorTest) {
   pf::HeldOutError c = b;
   c.row_squared = {0.0, 1.05, 1.05, 1.05, 1.05};  // mean gain 0.16, its standard error 0.21
   EXPECT_FALSE(pf::clearlyBetter(c, a));
+  // A gain on every row, tiny and all alike (its standard error near 0), under 1 % of the score: none a user sees.
+  pf::HeldOutError d;
+  d.row_squared = {0.99, 0.9901, 0.99, 0.9899, 0.99};
+  d.score = std::sqrt(0.99);  // 0.5 % below a's
+  EXPECT_FALSE(pf::clearlyBetter(d, a));
+  d.row_squared = {0.97, 0.9701, 0.97, 0.9699, 0.97};
+  d.score = std::sqrt(0.97);  // 1.5 % below
+  EXPECT_TRUE(pf::clearlyBetter(d, a));
 }
 
 // Chords made by a known thick wall (the shipped EPFL fit: its lock and its tilt), fitted from the coupon's file:

@@ -100,8 +100,7 @@ CalibrationRun runCalibration(const FingerParameters& base, const MeasurementSet
     run.chosen_candidate = selection.chosen_index;
     // The chosen candidate's held-out errors are the best of several: widened by the choice's optimism.
     const double score = run.candidates[run.chosen_candidate].held_out.score;
-    run.leave_one_out_widening =
-        score > 0.0 ? std::sqrt(1.0 + selectionOptimism(run.candidates, run.chosen_candidate) / (score * score)) : 1.0;
+    run.leave_one_out_widening = score > 0.0 ? correctedScore(run.candidates, run.chosen_candidate) / score : 1.0;
     run.tip_uncertainty = tipUncertainty(run.best().fit.residuals, run.best().leave_one_out,
                                          run.best().fit.keys.size(), run.leave_one_out_widening);
   } else if (laws.size() == 1 && !request.leave_one_out) {

@@ -21,8 +21,6 @@ namespace {
 
 constexpr double kTradeOffCorrelation = 0.95;
 
-// The search coordinate of @p value on @p axis (log10 for a logarithmic one).
-
 // (J^T J)^-1 at @p u by Ceres' covariance (a dense SVD, which finds a rank the data leave short), in the unit cube's
 // coordinates; false where the data do not determine every key.
 bool unscaledCovariance(const FitProblem& problem, Eigen::VectorXd u, const Eigen::MatrixXd& jacobian,
@@ -47,7 +45,6 @@ bool unscaledCovariance(const FitProblem& problem, Eigen::VectorXd u, const Eige
   covariance = block;
   return true;
 }
-
 
 // The errors a minimax fit bounds, in the squares' form's terms: a tip position's two components as one distance,
 // every other term alone.

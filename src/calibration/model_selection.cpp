@@ -137,8 +137,8 @@ std::vector<std::string> drawingKeys(const FingerParameters& start, WallLaw law,
 }
 
 // Why @p key cannot be told apart from @p keys by @p data, or empty. The bend takes b, c and kappa as (b/kappa,
-// c/kappa) (docs/MODEL.md, "How much of that bulge tilts the wall"): with the gap and kappa fitted, a roof (b) moves no bend they cannot;
-// only the blocked force, whose lever is b itself, separates them.
+// c/kappa) (docs/MODEL.md, "How much of that bulge tilts the wall"): with the gap and kappa fitted, a roof (b) moves
+// no bend they cannot; only the blocked force, whose lever is b itself, separates them.
 std::string unidentifiable(const std::string& key, const std::vector<std::string>& keys,
                            const std::vector<Measurement>& data) {
   const bool forces = std::any_of(data.begin(), data.end(), [](const Measurement& m) { return m.hasBlockedForce(); });
@@ -331,10 +331,6 @@ ModelSelection selectModel(const FingerParameters& base, const std::vector<WallL
   return s;
 }
 
-namespace {
-
-}  // namespace
-
 double selectionOptimism(const std::vector<CandidateFit>& tried, std::size_t chosen) {
   const std::vector<double>& own = tried.at(chosen).held_out.row_squared;
   const std::vector<std::size_t> fold_of = interleavedFolds(own.size());
@@ -367,6 +363,11 @@ double selectionOptimism(const std::vector<CandidateFit>& tried, std::size_t cho
   return counted > 0 ? total / counted : 0.0;
 }
 
+double correctedScore(const std::vector<CandidateFit>& tried, std::size_t chosen) {
+  const double score = tried.at(chosen).held_out.score;
+  return std::sqrt(score * score + selectionOptimism(tried, chosen));
+}
+
 std::string candidatesTable(const std::vector<CandidateFit>& tried, std::size_t chosen) {
   std::string t = "# auto: every candidate tried, judged by its bends held out at their measured pressures (with the "
                   "pressure by volume and the blocked force, where they are data; rms over " +
@@ -391,8 +392,7 @@ std::string candidatesTable(const std::vector<CandidateFit>& tried, std::size_t 
          (c.held_out.unshaped > 0 ? ", " + std::to_string(c.held_out.unshaped) + " rows without a shape" : "") + "; " +
          formatNumber("%.2f", c.seconds) + " s" + (i == chosen ? "  <- chosen" : c.selected ? "  (selected)" : "") + "\n";
   }
-  const double score = tried.at(chosen).held_out.score, corrected = std::sqrt(score * score +
-                                                                              selectionOptimism(tried, chosen));
+  const double score = tried.at(chosen).held_out.score, corrected = correctedScore(tried, chosen);
   t += "#   the chosen score, corrected for being the best of those tried (Tibshirani & Tibshirani's rule: per fold, "
        "how much more the chosen misses than that fold's best): " + formatNumber("%.2f", corrected * 180.0 / M_PI) +
        " deg, against its own " + formatNumber("%.2f", score * 180.0 / M_PI) + "\n";

@@ -27,14 +27,9 @@ PressureRange PressureRange::withTop(double max_gauge_pa) const {
 }
 
 RangeCheck checkGaugeRange(double gauge_pa, const PressureRange& range) {
-  RangeCheck c;
-  c.gauge_pa = gauge_pa;
-  c.above_validated = gauge_pa > range.validated_max_gauge_pa;
-  if (gauge_pa > range.max_gauge_pa && std::isfinite(gauge_pa)) {  // +inf is not a pressure: the model refuses it
-    c.clamped = true;
-    c.gauge_pa = range.max_gauge_pa;
-  }
-  return c;
+  // +inf is not a pressure: the model refuses it. The validated range lies within the model's (upTo, withTop).
+  const bool clamped = gauge_pa > range.max_gauge_pa && std::isfinite(gauge_pa);
+  return checkedInput(clamped ? range.max_gauge_pa : gauge_pa, clamped, range.validated_max_gauge_pa);
 }
 
 RangeCheck checkedInput(double gauge_pa, bool clamped, double validated_max_gauge_pa) {

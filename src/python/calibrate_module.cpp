@@ -120,7 +120,7 @@ py::list candidateList(const pf::CalibrationRun& run) {
     d["score"] = c.skipped.empty() ? c.held_out.score : NAN;
     // The chosen's score widened by the choice's optimism (selectionOptimism): what its error bar takes.
     if (i == run.chosen_candidate) {
-      d["corrected_score"] = std::sqrt(c.held_out.score * c.held_out.score + pf::selectionOptimism(run.candidates, i));
+      d["corrected_score"] = pf::correctedScore(run.candidates, i);
     }
     d["rows_without_shape"] = c.held_out.unshaped;
     d["seconds"] = c.seconds;

@@ -60,6 +60,9 @@ struct CandidateFit {
 /// skipped candidates take no part. 0 for one candidate.
 double selectionOptimism(const std::vector<CandidateFit>& tried, std::size_t chosen);
 
+/// The chosen candidate's score corrected for the choice: sqrt(score^2 + selectionOptimism).
+double correctedScore(const std::vector<CandidateFit>& tried, std::size_t chosen);
+
 /// Folds of the selection's cross-validation: rows i with the same i mod kCrossValidationFolds are held out together
 /// (interleaved, so that every fold spans the pressures, the snap's included); data with at most that many rows hold
 /// each row out alone (leave-one-out).
